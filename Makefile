@@ -1,0 +1,27 @@
+# Steakhouse Study: `make run` sets up and starts the platform; `make test` sets up and runs every test.
+VENV ?= .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.installed-$(shell cat pyproject.toml | cksum | cut -d' ' -f1)
+
+.PHONY: setup run test browser postgres
+
+setup: $(STAMP)
+
+$(STAMP): pyproject.toml
+	test -x $(PY) || python3 -m venv $(VENV)
+	$(PY) -m pip install -q --upgrade pip
+	$(PY) -m pip install -q -e '.[test]'
+	rm -f $(VENV)/.installed-*
+	touch $@
+
+run: setup
+	$(VENV)/bin/steakhouse serve
+
+browser:
+	@bash tests/tools/ensure_chromium.sh
+
+postgres:
+	@bash tests/tools/ensure_postgres.sh
+
+test: setup browser postgres
+	$(PY) -m pytest $(PYTEST_ARGS)

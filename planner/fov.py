@@ -1,0 +1,71 @@
+"""The field of view: the one function that decides what an agent sees (DOMAIN §2, paper §III).
+
+A cell is in view of an agent at cell ``p`` facing ``d`` when it is ``p`` itself, one of the two cells
+directly left or right of ``p``, or the angle between ``d`` and the vector from ``p``'s centre to the cell's
+centre is at most half the FOV angle (inclusive). No range limit and no occlusion (counters are waist
+high). An angle of 360° or more sees everything.
+
+Used alike by the participant's browser mask, the simulated human, the robot's model of the human and the
+logged metrics. Results are cached per (layout, pose, angle).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+from planner.geometry import Direction, Pos
+from planner.layout import Layout, Terrain
+
+_EPS = 1e-9
+_TRACKED = (Terrain.COUNTER, Terrain.GRILL, Terrain.BOARD, Terrain.SINK)
+
+
+@dataclass(frozen=True, slots=True)
+class View:
+    """What one pose sees: every cell in view, and those of them whose contents the KB tracks."""
+
+    cells: frozenset[Pos]
+    tracked: tuple[Pos, ...]
+
+
+def in_view(origin: Pos, facing: Direction, cell: Pos, angle: float) -> bool:
+    """The FOV rule for one cell (see the module docstring)."""
+    if angle >= 360.0:
+        return True
+    vx, vy = cell[0] - origin[0], cell[1] - origin[1]
+    if vx == 0 and vy == 0:
+        return True
+    dx, dy = facing.vector
+    if abs(vx) + abs(vy) == 1 and vx * dx + vy * dy == 0:
+        return True
+    dot = vx * dx + vy * dy
+    return dot >= math.hypot(vx, vy) * math.cos(math.radians(angle / 2.0)) - _EPS
+
+
+def visible_cells(layout: Layout, pos: Pos, facing: Direction, angle: float = 120.0) -> frozenset[Pos]:
+    """The set of the layout's cells in view from ``pos`` facing ``facing``."""
+    return view(layout, pos, facing, angle).cells
+
+
+def view(layout: Layout, pos: Pos, facing: Direction, angle: float = 120.0) -> View:
+    """The cached :class:`View` of a pose."""
+    table = _table(layout, float(angle))
+    key = (pos, facing)
+    found = table.get(key)
+    if found is None:
+        found = table[key] = _compute(layout, pos, facing, float(angle))
+    return found
+
+
+@lru_cache(maxsize=256)
+def _table(layout: Layout, angle: float) -> dict[tuple[Pos, Direction], View]:
+    return {}
+
+
+def _compute(layout: Layout, pos: Pos, facing: Direction, angle: float) -> View:
+    cells = frozenset(c for c in layout.cells() if in_view(pos, facing, c, angle))
+    tracked = tuple(c for c in sorted(cells, key=lambda p: (p[1], p[0]))
+                    if c in layout.stations and layout.stations[c][0] in _TRACKED)
+    return View(cells, tracked)

@@ -1,0 +1,172 @@
+"""The human's knowledge base (KB): what the person believes about the world (DOMAIN §3, paper §III-B).
+
+Contents: the status of each grill, board and sink, the objects on counters, and the robot's last
+acknowledged pose and held object. The rules, applied once per tick after the world has stepped:
+
+* Every tracked cell (counter, grill, board, sink) and the robot carry a *streak*: the number of
+  consecutive ticks they have been in view with the same occupant (the object on a counter, whether a
+  station holds anything, what the robot holds). When the streak reaches ``kb_delay`` the KB takes the
+  world's value, and while it stays in view the KB stays current (cook, chop and wash counts included).
+* Out of view, the last acknowledged value persists. A changed occupant restarts the streak, so an object
+  seen missing is removed once its place has been in view ``kb_delay`` ticks without it.
+* What the human does itself (pick up, put down, chop, wash, …) enters the KB at once.
+* When the robot is acknowledged holding an object the KB places elsewhere, that object is removed from
+  its old place (the nearest such counter to the robot; for a clean plate the sink, a plated steak the
+  grill, a dish the board).
+
+``kb_delay = 0`` with a 360° FOV gives an omniscient human whose KB always equals the world.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+from planner.events import Event
+from planner.fov import view
+from planner.geometry import Pos, manhattan
+from planner.layout import Layout, Terrain
+from planner.objects import CLEAN_PLATE, DISH, STEAK_PLATE
+from planner.state import AgentState, WorldState
+
+ROBOT_KEY: Pos = (-1, -1)
+_TRACKED_KINDS = (Terrain.COUNTER, Terrain.GRILL, Terrain.BOARD, Terrain.SINK)
+_OCCUPIED = "occupied"
+
+
+@dataclass(frozen=True, slots=True)
+class KnowledgeBase:
+    """Believed station statuses (same encoding as :class:`WorldState`), counter objects and robot.
+
+    ``streaks`` holds ``(key, occupant, count)`` for what was in view last tick (``ROBOT_KEY`` for the robot).
+    """
+
+    objects: tuple[tuple[Pos, str], ...]
+    grills: tuple[int | None, ...]
+    boards: tuple[int | None, ...]
+    sinks: tuple[int | None, ...]
+    robot: AgentState | None
+    streaks: tuple[tuple[Pos, object, int], ...] = ()
+
+    def object_at(self, pos: Pos) -> str | None:
+        for where, obj in self.objects:
+            if where == pos:
+                return obj
+        return None
+
+    def to_dict(self) -> dict[str, object]:
+        return {
+            "objects": [{"pos": list(p), "obj": o} for p, o in self.objects],
+            "grills": list(self.grills), "boards": list(self.boards), "sinks": list(self.sinks),
+            "robot": None if self.robot is None else self.robot.to_dict(),
+            "streaks": [[list(k), occ, n] for k, occ, n in self.streaks],
+        }
+
+
+def initial_kb(state: WorldState) -> KnowledgeBase:
+    """The KB at the start of a trial: the kitchen is empty and the robot at its start (both know the setup)."""
+    return KnowledgeBase(objects=state.objects, grills=state.grills, boards=state.boards,
+                         sinks=state.sinks, robot=state.robot)
+
+
+def omniscient_kb(state: WorldState) -> KnowledgeBase:
+    """A KB equal to the world (FOV 360°, delay 0)."""
+    return initial_kb(state)
+
+
+class _Working:
+    __slots__ = ("objects", "stations", "robot", "layout")
+
+    def __init__(self, kb: KnowledgeBase, layout: Layout) -> None:
+        self.layout = layout
+        self.objects: dict[Pos, str] = dict(kb.objects)
+        self.stations = {Terrain.GRILL: list(kb.grills), Terrain.BOARD: list(kb.boards),
+                         Terrain.SINK: list(kb.sinks)}
+        self.robot = kb.robot
+
+    def copy_cell(self, cell: Pos, world: WorldState) -> None:
+        kind, i = self.layout.stations[cell]
+        if kind is Terrain.COUNTER:
+            obj = world.object_at(cell)
+            if obj is None:
+                self.objects.pop(cell, None)
+            else:
+                self.objects[cell] = obj
+        else:
+            self.stations[kind][i] = _station_value(world, kind, i)
+
+
+def _station_value(world: WorldState, kind: Terrain, i: int) -> int | None:
+    if kind is Terrain.GRILL:
+        return world.grills[i]
+    if kind is Terrain.BOARD:
+        return world.boards[i]
+    return world.sinks[i]
+
+
+def _occupant(world: WorldState, layout: Layout, cell: Pos) -> object:
+    kind, i = layout.stations[cell]
+    if kind is Terrain.COUNTER:
+        return world.object_at(cell)
+    return None if _station_value(world, kind, i) is None else _OCCUPIED
+
+
+def update_kb(kb: KnowledgeBase, layout: Layout, world: WorldState, *, angle: float, kb_delay: int,
+              own_events: Iterable[Event] = (), pose: AgentState | None = None) -> KnowledgeBase:
+    """The KB after one tick, given the world after the step and the human's events of that step.
+
+    ``pose`` is the viewer (defaults to ``world.human``); its FOV decides what is in view.
+    """
+    viewer = pose or world.human
+    seen = view(layout, viewer.pos, viewer.facing, angle)
+    w = _Working(kb, layout)
+    previous = {key: (occ, n) for key, occ, n in kb.streaks}
+    streaks: list[tuple[Pos, object, int]] = []
+    own_cells = {e.pos for e in own_events if layout.stations.get(e.pos, (None,))[0] in _TRACKED_KINDS}
+    for cell in own_cells:
+        w.copy_cell(cell, world)
+    for cell in seen.tracked:
+        occ = _occupant(world, layout, cell)
+        prev = previous.get(cell)
+        count = prev[1] + 1 if prev is not None and prev[0] == occ else 1
+        if cell in own_cells:
+            count = max(count, kb_delay)
+        streaks.append((cell, occ, count))
+        if count >= kb_delay:
+            w.copy_cell(cell, world)
+    robot = world.robot
+    if robot.pos in seen.cells:
+        prev = previous.get(ROBOT_KEY)
+        count = prev[1] + 1 if prev is not None and prev[0] == robot.held else 1
+        streaks.append((ROBOT_KEY, robot.held, count))
+        if count >= kb_delay:
+            before = w.robot.held if w.robot is not None else None
+            w.robot = robot
+            if robot.held is not None and robot.held != before:
+                _remove_elsewhere(w, robot, seen.cells)
+    return KnowledgeBase(
+        objects=tuple(sorted(w.objects.items())),
+        grills=tuple(w.stations[Terrain.GRILL]), boards=tuple(w.stations[Terrain.BOARD]),
+        sinks=tuple(w.stations[Terrain.SINK]), robot=w.robot, streaks=tuple(streaks),
+    )
+
+
+_STATION_SOURCE = {CLEAN_PLATE: Terrain.SINK, STEAK_PLATE: Terrain.GRILL, DISH: Terrain.BOARD}
+
+
+def _remove_elsewhere(w: _Working, robot: AgentState, in_view: frozenset[Pos]) -> None:
+    """The robot holds what the KB believed was elsewhere: take it from its believed place."""
+    held = robot.held
+    source = _STATION_SOURCE.get(held)  # type: ignore[arg-type]
+    if source is not None:
+        cells = {Terrain.SINK: w.layout.sinks, Terrain.GRILL: w.layout.grills,
+                 Terrain.BOARD: w.layout.boards}[source]
+        statuses = w.stations[source]
+        candidates = [i for i, s in enumerate(statuses) if s is not None and cells[i] not in in_view]
+        if candidates:
+            nearest = min(candidates, key=lambda i: manhattan(cells[i], robot.pos))
+            statuses[nearest] = None
+        return
+    places = [p for p, obj in w.objects.items() if obj == held and p not in in_view]
+    if places:
+        del w.objects[min(places, key=lambda p: manhattan(p, robot.pos))]

@@ -1,0 +1,183 @@
+"""Kitchen layouts: parsing and validation of the plain grids (DOMAIN §1).
+
+Characters: ``X`` counter, space floor, ``O`` onion dispenser, ``M`` meat dispenser, ``D`` plate
+dispenser, ``P`` grill, ``B`` chopping board, ``W`` sink, ``S`` serving counter, ``1`` the robot's
+start, ``2`` the human's start (both start cells are floor). A valid layout is rectangular, closed by
+non-floor cells, has at least one of each station and exactly one start per agent. Every station must
+be reachable: some floor cell next to it is reachable from both starts.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import Enum
+
+from planner.geometry import DIRECTIONS, Pos
+
+
+class Terrain(str, Enum):
+    FLOOR = " "
+    COUNTER = "X"
+    ONION = "O"
+    MEAT = "M"
+    PLATE = "D"
+    GRILL = "P"
+    BOARD = "B"
+    SINK = "W"
+    SERVE = "S"
+
+
+STATIONS: tuple[Terrain, ...] = (
+    Terrain.ONION, Terrain.MEAT, Terrain.PLATE, Terrain.GRILL, Terrain.BOARD, Terrain.SINK, Terrain.SERVE,
+)
+START_CHARS = {"1": "robot", "2": "human"}
+
+
+class LayoutError(ValueError):
+    """A layout that cannot be played. Names the source, the line and column (1-based) and the reason."""
+
+    def __init__(self, source: str, line: int | None, column: int | None, reason: str) -> None:
+        self.source, self.line, self.column, self.reason = source, line, column, reason
+        where = source
+        if line is not None:
+            where += f":{line}" + (f":{column}" if column is not None else "")
+        super().__init__(f"{where}: {reason}")
+
+
+@dataclass(frozen=True, slots=True)
+class Layout:
+    """The fixed part of a kitchen. Station tuples list cells in reading order (row by row)."""
+
+    name: str
+    width: int
+    height: int
+    rows: tuple[str, ...]
+    starts: tuple[tuple[str, Pos], ...]
+    floor: frozenset[Pos] = field(repr=False)
+    counters: tuple[Pos, ...] = field(repr=False)
+    onions: tuple[Pos, ...] = field(repr=False)
+    meats: tuple[Pos, ...] = field(repr=False)
+    plates: tuple[Pos, ...] = field(repr=False)
+    grills: tuple[Pos, ...] = field(repr=False)
+    boards: tuple[Pos, ...] = field(repr=False)
+    sinks: tuple[Pos, ...] = field(repr=False)
+    serves: tuple[Pos, ...] = field(repr=False)
+    stations: dict[Pos, tuple[Terrain, int]] = field(repr=False, compare=False, hash=False)
+    """Every non-floor cell → its terrain and its index among the cells of that terrain."""
+
+    def terrain(self, pos: Pos) -> Terrain:
+        entry = self.stations.get(pos)
+        if entry is not None:
+            return entry[0]
+        return Terrain.FLOOR if pos in self.floor else Terrain.COUNTER
+
+    def is_floor(self, pos: Pos) -> bool:
+        return pos in self.floor
+
+    def start(self, agent: str) -> Pos:
+        return dict(self.starts)[agent]
+
+    def cells(self) -> tuple[Pos, ...]:
+        return tuple((x, y) for y in range(self.height) for x in range(self.width))
+
+    def text(self) -> str:
+        """The layout as its grid text, starts included (round-trips through :func:`parse_layout`)."""
+        grid = [list(row) for row in self.rows]
+        for agent, (x, y) in self.starts:
+            grid[y][x] = "1" if agent == "robot" else "2"
+        return "\n".join("".join(row) for row in grid) + "\n"
+
+
+def parse_layout(text: str, name: str = "layout", source: str | None = None) -> Layout:
+    """Parse and validate a grid. Raises :class:`LayoutError` naming line, column and reason."""
+    src = source or name
+    lines = text.splitlines()
+    while lines and lines[-1].strip() == "":
+        lines.pop()
+    if not lines:
+        raise LayoutError(src, None, None, "the layout is empty")
+    width = len(lines[0])
+    starts: dict[str, Pos] = {}
+    rows: list[str] = []
+    for y, line in enumerate(lines):
+        if len(line) != width:
+            raise LayoutError(src, y + 1, min(len(line), width) + 1,
+                              f"ragged row: {len(line)} characters where the first row has {width}")
+        row = []
+        for x, ch in enumerate(line):
+            if ch in START_CHARS:
+                agent = START_CHARS[ch]
+                if agent in starts:
+                    first = starts[agent]
+                    raise LayoutError(src, y + 1, x + 1,
+                                      f"a second {agent} start ('{ch}'); the first is at line {first[1] + 1}, "
+                                      f"column {first[0] + 1}")
+                starts[agent] = (x, y)
+                ch = Terrain.FLOOR.value
+            elif ch not in _TERRAIN_CHARS:
+                raise LayoutError(src, y + 1, x + 1, f"unknown character {ch!r}; allowed: {_ALLOWED}")
+            row.append(ch)
+        rows.append("".join(row))
+    height = len(rows)
+    for y, row in enumerate(rows):
+        for x, ch in enumerate(row):
+            on_border = x in (0, width - 1) or y in (0, height - 1)
+            if on_border and ch == Terrain.FLOOR.value:
+                raise LayoutError(src, y + 1, x + 1, "the kitchen is not closed: floor on the border")
+    for agent, ch in (("robot", "1"), ("human", "2")):
+        if agent not in starts:
+            raise LayoutError(src, None, None, f"no {agent} start ('{ch}')")
+    by_kind: dict[Terrain, list[Pos]] = {t: [] for t in Terrain}
+    for y, row in enumerate(rows):
+        for x, ch in enumerate(row):
+            by_kind[Terrain(ch)].append((x, y))
+    for station in STATIONS:
+        if not by_kind[station]:
+            raise LayoutError(src, None, None,
+                              f"missing station: no {station.name.lower()} ('{station.value}')")
+    floor = frozenset(by_kind[Terrain.FLOOR])
+    _check_reachable(src, floor, starts, by_kind)
+    stations = {pos: (kind, i) for kind, cells in by_kind.items() if kind is not Terrain.FLOOR
+                for i, pos in enumerate(cells)}
+    return Layout(
+        name=name, width=width, height=height, rows=tuple(rows),
+        starts=tuple(sorted(starts.items())), floor=floor,
+        counters=tuple(by_kind[Terrain.COUNTER]), onions=tuple(by_kind[Terrain.ONION]),
+        meats=tuple(by_kind[Terrain.MEAT]), plates=tuple(by_kind[Terrain.PLATE]),
+        grills=tuple(by_kind[Terrain.GRILL]), boards=tuple(by_kind[Terrain.BOARD]),
+        sinks=tuple(by_kind[Terrain.SINK]), serves=tuple(by_kind[Terrain.SERVE]),
+        stations=stations,
+    )
+
+
+_TERRAIN_CHARS = {t.value for t in Terrain}
+_ALLOWED = "X, space, O, M, D, P, B, W, S, 1, 2"
+
+
+def _check_reachable(src: str, floor: frozenset[Pos], starts: dict[str, Pos],
+                     by_kind: dict[Terrain, list[Pos]]) -> None:
+    regions = {agent: _flood(floor, pos) for agent, pos in starts.items()}
+    shared = regions["human"] & regions["robot"]
+    for station in STATIONS:
+        reachable = any(
+            (x + dx, y + dy) in shared
+            for (x, y) in by_kind[station]
+            for (dx, dy) in (d.vector for d in DIRECTIONS)
+        )
+        if not reachable:
+            x, y = by_kind[station][0]
+            raise LayoutError(src, y + 1, x + 1,
+                              f"no {station.name.lower()} ('{station.value}') can be reached by both agents")
+
+
+def _flood(floor: frozenset[Pos], start: Pos) -> frozenset[Pos]:
+    seen = {start}
+    todo = [start]
+    while todo:
+        x, y = todo.pop()
+        for dx, dy in ((0, 1), (0, -1), (1, 0), (-1, 0)):
+            nxt = (x + dx, y + dy)
+            if nxt in floor and nxt not in seen:
+                seen.add(nxt)
+                todo.append(nxt)
+    return frozenset(seen)

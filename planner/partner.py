@@ -1,0 +1,51 @@
+"""Robot-side policies that need no planner: the simulated partner and the robot that stays put.
+
+A robot policy has ``reset(world)`` and ``act(world, events, rng) -> Action``; the planners of
+:mod:`planner.robots` follow the same protocol.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Protocol
+
+import numpy as np
+
+from planner.events import Event
+from planner.geometry import Action
+from planner.human import HumanMemory, HumanModel
+from planner.kb import omniscient_kb
+from planner.layout import Layout
+from planner.rules import Rules
+from planner.state import WorldState
+
+
+class RobotPolicy(Protocol):
+    def reset(self, world: WorldState) -> None: ...
+
+    def act(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator) -> Action: ...
+
+
+class SimulatedPartner:
+    """The simulated human's model driving the robot's avatar, seeing everything (a scripted teammate)."""
+
+    def __init__(self, layout: Layout, rules: Rules) -> None:
+        self.model = HumanModel(layout, rules, me="robot")
+        self.memory = HumanMemory()
+
+    def reset(self, world: WorldState) -> None:
+        self.memory = HumanMemory()
+
+    def act(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator) -> Action:
+        action, self.memory = self.model.act(world, omniscient_kb(world), self.memory, rng)
+        return action
+
+
+class StayRobot:
+    """A robot that never moves (practice trials)."""
+
+    def reset(self, world: WorldState) -> None:
+        return None
+
+    def act(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator) -> Action:
+        return Action.STAY

@@ -1,0 +1,108 @@
+"""Shortest paths over (cell, facing), precomputed per layout (DOMAIN §4).
+
+Every action costs 1: a move into floor turns and steps; a move into anything else only turns. A target
+cell (a station or counter) is reached when the agent stands on a floor cell next to it and faces it; the
+interact that follows is not counted here. Distances are computed once per (layout, target) by a backward
+breadth-first search and cached.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+from planner.geometry import DIRECTIONS, Action, Direction, Pos, move_action
+from planner.layout import Layout
+
+Pose = tuple[Pos, Direction]
+UNREACHABLE = 10**6
+
+
+def next_pose(layout: Layout, pose: Pose, direction: Direction) -> Pose:
+    ahead = direction.ahead(pose[0])
+    return (ahead if ahead in layout.floor else pose[0], direction)
+
+
+@lru_cache(maxsize=4096)
+def distances_to(layout: Layout, target: Pos) -> dict[Pose, int]:
+    """Actions needed from each floor pose to stand next to ``target`` facing it (absent = unreachable)."""
+    dist: dict[Pose, int] = {}
+    frontier: list[Pose] = []
+    for d in DIRECTIONS:
+        stand = (target[0] - d.vector[0], target[1] - d.vector[1])
+        if stand in layout.floor:
+            dist[(stand, d)] = 0
+            frontier.append((stand, d))
+    preds = _predecessors(layout)
+    while frontier:
+        nxt: list[Pose] = []
+        for pose in frontier:
+            for prev in preds.get(pose, ()):
+                if prev not in dist:
+                    dist[prev] = dist[pose] + 1
+                    nxt.append(prev)
+        frontier = nxt
+    return dist
+
+
+@lru_cache(maxsize=64)
+def _predecessors(layout: Layout) -> dict[Pose, tuple[Pose, ...]]:
+    preds: dict[Pose, list[Pose]] = {}
+    for cell in layout.floor:
+        for facing in DIRECTIONS:
+            for d in DIRECTIONS:
+                preds.setdefault(next_pose(layout, (cell, facing), d), []).append((cell, facing))
+    return {k: tuple(v) for k, v in preds.items()}
+
+
+def distance(layout: Layout, pose: Pose, target: Pos) -> int:
+    return distances_to(layout, target).get(pose, UNREACHABLE)
+
+
+@lru_cache(maxsize=4096)
+def cell_distance(layout: Layout, a: Pos, b: Pos) -> int:
+    """Fewest moves from floor cell ``a`` to stand next to and face ``b``, from the best starting facing."""
+    table = distances_to(layout, b)
+    return min((table.get((a, d), UNREACHABLE) for d in DIRECTIONS), default=UNREACHABLE)
+
+
+def best_moves(layout: Layout, pose: Pose, target: Pos, blocked: Pos | None = None) -> list[Action]:
+    """The moves that bring ``pose`` one step closer to facing ``target``, avoiding the ``blocked`` cell.
+
+    Empty when already there or when every shortening move is blocked.
+    """
+    table = distances_to(layout, target)
+    here = table.get(pose, UNREACHABLE)
+    moves = []
+    for d in DIRECTIONS:
+        nxt = next_pose(layout, pose, d)
+        if blocked is not None and nxt[0] == blocked:
+            continue
+        if table.get(nxt, UNREACHABLE) < here:
+            moves.append(move_action(d))
+    return moves
+
+
+@lru_cache(maxsize=65536)
+def detour_moves(layout: Layout, pose: Pose, target: Pos, blocked: Pos) -> tuple[Action, ...]:
+    """The first moves of every shortest path to face ``target`` that never enters ``blocked``."""
+    goal = distances_to(layout, target)
+    if goal.get(pose) == 0:
+        return ()
+    firsts: dict[Pose, frozenset[Action]] = {}
+    frontier = {pose}
+    seen = {pose}
+    while frontier:
+        layer: dict[Pose, set[Action]] = {}
+        for current in frontier:
+            for d in DIRECTIONS:
+                after = next_pose(layout, current, d)
+                if after[0] == blocked or after in seen:
+                    continue
+                layer.setdefault(after, set()).update(firsts.get(current, (move_action(d),)))
+        reached = [a for p in layer if goal.get(p) == 0 for a in layer[p]]
+        if reached:
+            return tuple(sorted(set(reached), key=lambda a: a.value))
+        seen.update(layer)
+        firsts.update({p: frozenset(v) for p, v in layer.items()})
+        frontier = set(layer)
+    return ()

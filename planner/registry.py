@@ -1,0 +1,5 @@
+"""Names of the robot planners a study or a simulation may ask for (DOMAIN §5)."""
+
+from __future__ import annotations
+
+PLANNER_NAMES: tuple[str, ...] = ("fov_aware", "baseline", "no_rollout", "stay")

@@ -1,0 +1,25 @@
+"""The kitchen's numbers (DOMAIN §1). Defaults are those every run of the reference study used."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+
+
+@dataclass(frozen=True, slots=True)
+class Rules:
+    """Cook time in ticks, chop and wash presses, orders per trial, horizon in ticks, reward per delivery."""
+
+    cook_time: int = 10
+    chop_time: int = 2
+    wash_time: int = 2
+    orders: int = 2
+    horizon: int = 400
+    delivery_reward: int = 20
+
+    def __post_init__(self) -> None:
+        for name in ("cook_time", "chop_time", "wash_time", "orders", "horizon"):
+            if getattr(self, name) < 1:
+                raise ValueError(f"{name} must be at least 1, got {getattr(self, name)}")
+
+    def to_dict(self) -> dict[str, int]:
+        return asdict(self)

@@ -1,0 +1,152 @@
+"""Human subtasks and when they are available, judged on the human's KB (DOMAIN §4, paper §IV-A).
+
+Holding something forces its continuation (onion → board, meat → grill, dirty plate → sink, clean plate →
+grill, plated steak → board, dish → serving counter); when the station it needs is believed unusable
+(grill/board/sink occupied, nothing cooking, no garnish coming) the human puts the object on a counter.
+Empty-handed: keep chopping / washing if it was doing so and the work is unfinished; else every one of
+pickup meat (a grill empty, orders left, partner not holding meat), pickup onion (a board empty, partner
+not holding an onion), pickup plate (a sink empty, partner not holding a plate), pickup clean plate (a
+plate clean, a steak cooking or ready, and a garnish on the board or the partner holding an onion). If
+none applies: pickup plate.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import Enum
+
+from planner.kb import KnowledgeBase
+from planner.layout import Layout
+from planner.objects import CLEAN_PLATE, DIRTY_PLATE, DISH, MEAT, ONION, STEAK_PLATE
+from planner.geometry import Pos
+from planner.rules import Rules
+
+
+class Subtask(str, Enum):
+    PICKUP_MEAT = "pickup_meat"
+    PICKUP_ONION = "pickup_onion"
+    PICKUP_PLATE = "pickup_plate"
+    PICKUP_CLEAN_PLATE = "pickup_clean_plate"
+    PICKUP_STEAK = "pickup_steak"
+    PICKUP_GARNISH = "pickup_garnish"
+    DROP_MEAT = "drop_meat"
+    DROP_ONION = "drop_onion"
+    DROP_PLATE = "drop_plate"
+    CHOP_ONION = "chop_onion"
+    WASH_PLATE = "wash_plate"
+    DELIVER_DISH = "deliver_dish"
+    DROP_ON_COUNTER = "drop_on_counter"
+
+
+SUBTASKS: tuple[Subtask, ...] = tuple(Subtask)
+PLATES = (DIRTY_PLATE, CLEAN_PLATE)
+
+
+@dataclass(frozen=True, slots=True)
+class Believed:
+    """The facts availability is judged on: the KB, what the human holds, what it believes the partner holds."""
+
+    kb: KnowledgeBase
+    held: str | None
+    partner_held: str | None
+    orders_left: int
+
+
+def available(b: Believed, rules: Rules, current: Subtask | None = None) -> tuple[Subtask, ...]:
+    """The subtasks the human may choose now (DOMAIN §4); never empty."""
+    kb = b.kb
+    if b.held is not None:
+        return (forced_continuation(b),)
+    if current in (Subtask.CHOP_ONION, Subtask.DROP_ONION) and any(
+            s is not None and s < rules.chop_time for s in kb.boards):
+        return (Subtask.CHOP_ONION,)
+    if current in (Subtask.WASH_PLATE, Subtask.DROP_PLATE) and any(
+            s is not None and s < rules.wash_time for s in kb.sinks):
+        return (Subtask.WASH_PLATE,)
+    options = []
+    if any(g is None for g in kb.grills) and b.orders_left > 0 and b.partner_held != MEAT:
+        options.append(Subtask.PICKUP_MEAT)
+    if any(s is None for s in kb.boards) and b.partner_held != ONION:
+        options.append(Subtask.PICKUP_ONION)
+    if any(s is None for s in kb.sinks) and b.partner_held not in PLATES:
+        options.append(Subtask.PICKUP_PLATE)
+    plate_clean = any(s is not None and s >= rules.wash_time for s in kb.sinks)
+    steak = any(g is not None for g in kb.grills)
+    garnish = any(s is not None for s in kb.boards) or b.partner_held == ONION
+    if plate_clean and steak and garnish:
+        options.append(Subtask.PICKUP_CLEAN_PLATE)
+    return tuple(options) or (Subtask.PICKUP_PLATE,)
+
+
+def forced_continuation(b: Believed) -> Subtask:
+    kb, held = b.kb, b.held
+    if held == ONION:
+        return Subtask.DROP_ONION if any(s is None for s in kb.boards) else Subtask.DROP_ON_COUNTER
+    if held == MEAT:
+        return Subtask.DROP_MEAT if any(g is None for g in kb.grills) else Subtask.DROP_ON_COUNTER
+    if held == DIRTY_PLATE:
+        return Subtask.DROP_PLATE if any(s is None for s in kb.sinks) else Subtask.DROP_ON_COUNTER
+    if held == CLEAN_PLATE:
+        return Subtask.PICKUP_STEAK if any(g is not None for g in kb.grills) else Subtask.DROP_ON_COUNTER
+    if held == STEAK_PLATE:
+        garnish = any(s is not None for s in kb.boards) or b.partner_held == ONION
+        return Subtask.PICKUP_GARNISH if garnish else Subtask.DROP_ON_COUNTER
+    return Subtask.DELIVER_DISH
+
+
+def targets(layout: Layout, subtask: Subtask, kb: KnowledgeBase, rules: Rules) -> tuple[Pos, ...]:
+    """The cells the human would interact with to do ``subtask``, as its KB sees the kitchen."""
+    def counters_with(obj: str) -> tuple[Pos, ...]:
+        return tuple(p for p, o in kb.objects if o == obj)
+
+    def where(cells: tuple[Pos, ...], statuses: tuple[int | None, ...], test) -> tuple[Pos, ...]:
+        return tuple(c for c, s in zip(cells, statuses) if test(s))
+
+    if subtask is Subtask.PICKUP_MEAT:
+        return layout.meats + counters_with(MEAT)
+    if subtask is Subtask.PICKUP_ONION:
+        return layout.onions + counters_with(ONION)
+    if subtask is Subtask.PICKUP_PLATE:
+        return layout.plates + counters_with(DIRTY_PLATE)
+    if subtask is Subtask.PICKUP_CLEAN_PLATE:
+        return where(layout.sinks, kb.sinks, lambda s: s is not None and s >= rules.wash_time) + \
+            counters_with(CLEAN_PLATE)
+    if subtask is Subtask.PICKUP_STEAK:
+        return where(layout.grills, kb.grills, lambda s: s is not None) or layout.grills
+    if subtask is Subtask.PICKUP_GARNISH:
+        return where(layout.boards, kb.boards, lambda s: s is not None) or layout.boards
+    if subtask is Subtask.DROP_MEAT:
+        return where(layout.grills, kb.grills, lambda s: s is None)
+    if subtask is Subtask.DROP_ONION:
+        return where(layout.boards, kb.boards, lambda s: s is None)
+    if subtask is Subtask.DROP_PLATE:
+        return where(layout.sinks, kb.sinks, lambda s: s is None)
+    if subtask is Subtask.CHOP_ONION:
+        return where(layout.boards, kb.boards, lambda s: s is not None and s < rules.chop_time)
+    if subtask is Subtask.WASH_PLATE:
+        return where(layout.sinks, kb.sinks, lambda s: s is not None and s < rules.wash_time)
+    if subtask is Subtask.DELIVER_DISH:
+        return layout.serves
+    occupied = {p for p, _ in kb.objects}
+    return tuple(c for c in layout.counters if c not in occupied)
+
+
+def is_done(subtask: Subtask, held_before: str | None, held: str | None, b: Believed, rules: Rules) -> bool:
+    """Whether ``subtask`` finished in the last step, from what the human holds before and after."""
+    if subtask in _PICKS:
+        return held == _PICKS[subtask]
+    if subtask in (Subtask.DROP_MEAT, Subtask.DROP_ONION, Subtask.DROP_PLATE, Subtask.DROP_ON_COUNTER,
+                   Subtask.DELIVER_DISH):
+        return held_before is not None and held is None
+    if subtask is Subtask.CHOP_ONION:
+        return not any(s is not None and s < rules.chop_time for s in b.kb.boards)
+    if subtask is Subtask.WASH_PLATE:
+        return not any(s is not None and s < rules.wash_time for s in b.kb.sinks)
+    return False
+
+
+_PICKS = {
+    Subtask.PICKUP_MEAT: MEAT, Subtask.PICKUP_ONION: ONION, Subtask.PICKUP_PLATE: DIRTY_PLATE,
+    Subtask.PICKUP_CLEAN_PLATE: CLEAN_PLATE, Subtask.PICKUP_STEAK: STEAK_PLATE,
+    Subtask.PICKUP_GARNISH: DISH,
+}
