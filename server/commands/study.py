@@ -1,0 +1,50 @@
+"""``steakhouse study validate FILE...``: check study files before anything starts.
+
+Prints one summary line per valid file and every problem of the invalid ones (``FILE: field: reason``);
+exits 0 when all files are valid, 1 otherwise.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import Any
+
+
+def register(subparsers: Any) -> None:
+    """Add ``study`` and its subcommands to the ``steakhouse`` parser."""
+    study = subparsers.add_parser("study", help="work with study definitions (YAML)")
+    commands = study.add_subparsers(dest="study_command", metavar="SUBCOMMAND", required=True)
+    validate = commands.add_parser(
+        "validate",
+        help="check study files and list every problem",
+        description="Check study files; print a summary of each valid one and every problem of the others.",
+    )
+    validate.add_argument("files", nargs="+", metavar="FILE", help="study YAML file")
+    validate.set_defaults(handler=validate_files, subparser=validate)
+
+
+def validate_files(args: argparse.Namespace) -> int:
+    """Validate each file in ``args.files``; 0 when all are valid, 1 otherwise."""
+    from server.study import StudyConfigError, load_study
+
+    invalid = 0
+    for file in args.files:
+        try:
+            study = load_study(file)
+        except StudyConfigError as exc:
+            invalid += 1
+            for problem in exc.problems:
+                print(problem, file=sys.stderr)
+            continue
+        scheme = study.counterbalancing.scheme
+        conditions = ", ".join(c.id for c in study.conditions)
+        orders = len(study.condition_orders())
+        print(
+            f"{file}: ok: {study.id}: {len(study.conditions)} conditions ({conditions}); "
+            f"{orders} condition order{'s' if orders != 1 else ''} ({scheme}); "
+            f"config {study.config_hash()[:12]}"
+        )
+    if invalid:
+        print(f"{invalid} of {len(args.files)} study file(s) invalid", file=sys.stderr)
+    return 1 if invalid else 0

@@ -1,0 +1,90 @@
+"""Shared pieces of the study models: the frozen base class, ids, robot names, and located errors."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+from typing import Annotated, Any
+
+from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, ValidationError
+from pydantic_core import InitErrorDetails, PydanticCustomError
+
+from planner.registry import PLANNER_NAMES
+
+STUDY_ERROR = "study"
+"""Error type of every problem raised by the study's own checks (as opposed to pydantic's type checks)."""
+
+Loc = tuple[str | int, ...]
+
+_SLUG = re.compile(r"^[a-z0-9](?:[a-z0-9_-]*[a-z0-9])?$")
+
+
+class StudyModel(BaseModel):
+    """Base of every study model: immutable, and unknown keys are errors (a typo is never ignored)."""
+
+    model_config = ConfigDict(frozen=True, extra="forbid")
+
+
+def raise_problems(problems: Sequence[tuple[Loc, str]], value: Any) -> None:
+    """Raise every ``(location, reason)`` at once, located below the field being validated.
+
+    Pydantic merges a ``ValidationError`` raised inside a validator into the outer one, prefixing
+    each location with the field's own, so one validator can report several precise problems.
+    """
+    if not problems:
+        return
+    raise ValidationError.from_exception_data(
+        "Study",
+        [
+            InitErrorDetails(
+                type=PydanticCustomError(STUDY_ERROR, "{reason}", {"reason": reason}),
+                loc=loc,
+                input=value,
+            )
+            for loc, reason in problems
+        ],
+    )
+
+
+def duplicate_problems(values: Sequence[Any], what: str, suffix: Loc = ()) -> list[tuple[Loc, str]]:
+    """One problem per value that already appeared earlier in ``values``, located at its index."""
+    first: dict[Any, int] = {}
+    problems: list[tuple[Loc, str]] = []
+    for index, value in enumerate(values):
+        if value in first:
+            problems.append(((index, *suffix), f"duplicate {what} {value!r} (already at [{first[value]}])"))
+        else:
+            first[value] = index
+    return problems
+
+
+def _check_slug(value: str) -> str:
+    if not _SLUG.match(value):
+        raise ValueError(
+            f"{value!r} is not a valid id: use lowercase letters, digits, '-' and '_', "
+            "starting and ending with a letter or digit"
+        )
+    return value
+
+
+def _check_robot(value: str) -> str:
+    if value not in PLANNER_NAMES:
+        raise ValueError(f"unknown robot {value!r}; choose one of: {', '.join(PLANNER_NAMES)}")
+    return value
+
+
+Slug = Annotated[str, AfterValidator(_check_slug)]
+"""An identifier used in URLs, CSV columns and the store: lowercase letters, digits, ``-`` and ``_``."""
+
+RobotName = Annotated[str, AfterValidator(_check_robot)]
+"""The name of a robot planner, one of ``planner.registry.PLANNER_NAMES`` (DOMAIN §5)."""
+
+
+def _check_not_empty(value: Any) -> Any:
+    if isinstance(value, (list, tuple)) and not value:
+        raise ValueError("needs at least one entry")
+    return value
+
+
+NotEmpty = BeforeValidator(_check_not_empty)
+"""Annotation metadata for a list field that must have at least one entry."""

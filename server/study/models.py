@@ -1,0 +1,158 @@
+"""The study: what an experimenter writes in ``study_config/<id>.yaml``, parsed into frozen models.
+
+A study crosses robot planners with kitchens (the within-subject factors) into conditions, orders them
+per participant by a counterbalancing scheme, and fixes every number that shapes a trial. The resolved
+model's :meth:`Study.config_hash` is stored with every trial, so two trials with the same hash ran under
+the same settings (principle 6 of STYLE.md).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from typing import Annotated, Any
+
+from pydantic import Field, ValidationInfo, field_validator
+
+from server.study.base import Loc, NotEmpty, RobotName, Slug, StudyModel, duplicate_problems, raise_problems
+from server.study.conditions import Condition, Factor, cross_conditions
+from server.study.counterbalance import MAX_FULL_CONDITIONS, condition_orders
+from server.study.kitchens import Kitchen, KitchenEntry
+from server.study.questionnaire import Questionnaire
+from server.study.sections import Assignment, Counterbalancing, Practice, Reconnect, Recruiting, Timing, World
+from server.study.texts import DEFAULT_CONSENT, DEFAULT_INSTRUCTIONS
+
+_FACTOR_LEVELS = {"robot": "robots", "kitchen": "kitchens"}
+
+
+class Study(StudyModel):
+    """A complete study definition; see ``study_config/paper_study.yaml`` for a commented example."""
+
+    id: Slug
+    """Stable id; appears in participant links and the store. Changing it starts a new study."""
+    title: str = Field(min_length=1)
+    """Human-readable name shown to experimenters."""
+    description: str = ""
+    """What the study is about, for experimenters (not shown to participants)."""
+    kitchens: Annotated[tuple[KitchenEntry, ...], NotEmpty]
+    """Levels of the kitchen factor: shipped kitchen names or layout paths relative to the study file."""
+    robots: Annotated[tuple[RobotName, ...], NotEmpty]
+    """Levels of the robot factor: planner names (``fov_aware``, ``baseline``, ``no_rollout``, ``stay``)."""
+    factors: Annotated[tuple[Factor, ...], NotEmpty] = ("robot", "kitchen")
+    """Within-subject factors, crossed into the conditions; the first varies slowest in the condition
+    list. A dimension left out must have a single level (e.g. one kitchen with ``factors: [robot]``)."""
+    counterbalancing: Counterbalancing = Counterbalancing()
+    """How each participant's condition order is chosen."""
+    practice: tuple[Practice, ...] = ()
+    """Practice trials before the conditions, in this order."""
+    timing: Timing = Timing()
+    """Tick rate or wait-for-participant mode."""
+    world: World = World()
+    """Field of view, knowledge-base delay, orders, horizon and the kitchen's timings."""
+    questionnaires: tuple[Questionnaire, ...] = ()
+    """Questionnaires, each shown after every trial or at the end of the study."""
+    consent: str = DEFAULT_CONSENT
+    """Consent page (Markdown). Declining ends the session with the screen-out code."""
+    instructions: str = DEFAULT_INSTRUCTIONS
+    """Instructions page shown before practice (Markdown)."""
+    recruiting: Recruiting = Recruiting()
+    """Recruiting-platform parameters, completion and screen-out codes and redirects."""
+    reconnect: Reconnect = Reconnect()
+    """What a dropped connection does to the running trial."""
+    assignment: Assignment = Assignment()
+    """How in-progress participants count when balancing condition orders."""
+    test_run: bool = False
+    """Mark every participant as a test run: not counted for assignment, excluded from exports by default."""
+    notes: str = ""
+    """Free text for experimenters (admin pages only)."""
+
+    @field_validator("kitchens")
+    @classmethod
+    def _unique_kitchens(cls, kitchens: tuple[Kitchen, ...]) -> tuple[Kitchen, ...]:
+        raise_problems(duplicate_problems([k.name for k in kitchens], "kitchen"), kitchens)
+        return kitchens
+
+    @field_validator("robots")
+    @classmethod
+    def _unique_robots(cls, robots: tuple[str, ...]) -> tuple[str, ...]:
+        raise_problems(duplicate_problems(robots, "robot"), robots)
+        return robots
+
+    @field_validator("factors")
+    @classmethod
+    def _check_factors(cls, factors: tuple[Factor, ...], info: ValidationInfo) -> tuple[Factor, ...]:
+        problems = duplicate_problems(factors, "factor")
+        for factor, field in _FACTOR_LEVELS.items():
+            levels = info.data.get(field)
+            if factor not in factors and levels is not None and len(levels) != 1:
+                problems.append(
+                    ((), f"{field} has {len(levels)} entries but {factor!r} is not a factor; "
+                         f"add it to factors or keep one entry")
+                )
+        raise_problems(problems, factors)
+        return factors
+
+    @field_validator("counterbalancing")
+    @classmethod
+    def _check_counterbalancing(cls, value: Counterbalancing, info: ValidationInfo) -> Counterbalancing:
+        if not all(field in info.data for field in ("kitchens", "robots", "factors")):
+            return value
+        ids = [c.id for c in _conditions(info.data)]
+        problems: list[tuple[Loc, str]] = []
+        if value.scheme == "full" and len(ids) > MAX_FULL_CONDITIONS:
+            problems.append(
+                (("scheme",), f"full counterbalancing of {len(ids)} conditions gives too many orders; "
+                              "use latin_square")
+            )
+        if value.scheme == "fixed" and value.order is not None:
+            in_order = [
+                ((i,), f"unknown condition {cid!r}; conditions are: {', '.join(ids)}")
+                for i, cid in enumerate(value.order)
+                if cid not in ids
+            ] + duplicate_problems(value.order, "condition")
+            problems += [(("order", *loc), reason) for loc, reason in in_order]
+            missing = [cid for cid in ids if cid not in value.order]
+            if missing:
+                problems.append((("order",), f"missing conditions: {', '.join(missing)}"))
+        raise_problems(problems, value)
+        return value
+
+    @field_validator("questionnaires")
+    @classmethod
+    def _unique_questionnaires(cls, value: tuple[Questionnaire, ...]) -> tuple[Questionnaire, ...]:
+        raise_problems(duplicate_problems([q.id for q in value], "questionnaire id", ("id",)), value)
+        return value
+
+    @property
+    def conditions(self) -> tuple[Condition, ...]:
+        """Every robot × kitchen condition, in study order (first factor slowest)."""
+        return _conditions({"robots": self.robots, "kitchens": self.kitchens, "factors": self.factors})
+
+    def condition_orders(self) -> list[tuple[str, ...]]:
+        """The condition orders participants are assigned to (lists of condition ids)."""
+        scheme = self.counterbalancing
+        return condition_orders([c.id for c in self.conditions], scheme.scheme, scheme.order)
+
+    def kitchen(self, name: str) -> Kitchen:
+        """The kitchen called ``name`` among the study's and the practice kitchens."""
+        for kitchen in (*self.kitchens, *(p.kitchen for p in self.practice)):
+            if kitchen.name == name:
+                return kitchen
+        raise KeyError(name)
+
+    def canonical_json(self) -> str:
+        """The resolved study as canonical JSON (sorted keys, no spaces), without machine paths."""
+        data = self.model_dump(
+            mode="json",
+            exclude={"kitchens": {"__all__": {"path"}}, "practice": {"__all__": {"kitchen": {"path"}}}},
+        )
+        return json.dumps(data, sort_keys=True, separators=(",", ":"), ensure_ascii=False)
+
+    def config_hash(self) -> str:
+        """SHA-256 (hex) of :meth:`canonical_json`; stored with every trial."""
+        return hashlib.sha256(self.canonical_json().encode("utf-8")).hexdigest()
+
+
+def _conditions(data: dict[str, Any]) -> tuple[Condition, ...]:
+    return cross_conditions(data["robots"], [k.name for k in data["kitchens"]], data["factors"])
+

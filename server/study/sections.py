@@ -1,0 +1,156 @@
+"""The smaller sections of a study: world numbers, timing, practice, recruiting, reconnects, assignment."""
+
+from __future__ import annotations
+
+import re
+from typing import Literal
+
+from pydantic import Field, field_validator, model_validator
+
+from server.study.base import Loc, RobotName, StudyModel, duplicate_problems, raise_problems
+from server.study.kitchens import KitchenEntry
+
+CODE_PLACEHOLDER = "{code}"
+_URL_PARAMETER = re.compile(r"^[A-Za-z0-9_.-]+$")
+
+
+class World(StudyModel):
+    """The game's numbers (DOMAIN §1–§3); the defaults are the paper's."""
+
+    fov_angle: float = Field(default=120.0, gt=0, le=360)
+    """Field-of-view angle in degrees; cells outside it are black for the participant. 360 sees all."""
+    kb_delay: int = Field(default=3, ge=0)
+    """Consecutive ticks something must stay in view before it enters the human's knowledge base."""
+    orders: int = Field(default=2, ge=1)
+    """Dishes to deliver; a trial ends when all are delivered (or at the horizon)."""
+    horizon: int = Field(default=400, ge=1)
+    """Maximum ticks per trial."""
+    cook_time: int = Field(default=10, ge=1)
+    """Ticks a steak needs on the grill."""
+    chop_time: int = Field(default=2, ge=1)
+    """Interact presses to chop an onion."""
+    wash_time: int = Field(default=2, ge=1)
+    """Interact presses to wash a plate."""
+    delivery_reward: int = Field(default=20, ge=0)
+    """Score for each delivered dish."""
+
+
+class Timing(StudyModel):
+    """How the world's clock advances during a trial."""
+
+    mode: Literal["fixed_rate", "wait_for_participant"] = "fixed_rate"
+    """``fixed_rate``: the world steps every tick whatever the participant does (the reference app);
+    ``wait_for_participant``: a step happens only when the participant has an action queued
+    (the reference study), and never faster than ``tick_rate_hz``."""
+    tick_rate_hz: float = Field(default=5.0, gt=0, le=30)
+    """World steps per second (5 Hz = one tick every 200 ms)."""
+
+
+class Counterbalancing(StudyModel):
+    """How condition orders are formed (see ``server.study.counterbalance``).
+
+    Written either as a bare scheme (``counterbalancing: latin_square``) or as a mapping
+    (``{scheme: fixed, order: [...]}``).
+    """
+
+    scheme: Literal["latin_square", "full", "fixed"] = "latin_square"
+    """``latin_square``: balanced Latin square (Williams design); ``full``: every permutation;
+    ``fixed``: everyone gets ``order``."""
+    order: tuple[str, ...] | None = None
+    """For ``fixed`` only: every condition id exactly once (``fov_aware@none_3``, ...)."""
+
+    @model_validator(mode="before")
+    @classmethod
+    def _from_scheme_name(cls, value: object) -> object:
+        return {"scheme": value} if isinstance(value, str) else value
+
+    @model_validator(mode="after")
+    def _order_matches_scheme(self) -> Counterbalancing:
+        if self.scheme == "fixed" and self.order is None:
+            raise_problems([(("order",), "scheme 'fixed' needs an order listing every condition id")], self)
+        if self.scheme != "fixed" and self.order is not None:
+            reason = f"an order is only used with scheme 'fixed', not {self.scheme!r}"
+            raise_problems([(("order",), reason)], self)
+        return self
+
+
+class Practice(StudyModel):
+    """Practice trials played before the experimental conditions; never analysed."""
+
+    kitchen: KitchenEntry
+    """Shipped kitchen name or layout path (need not be one of the study's kitchens)."""
+    robot: RobotName
+    """Robot partner for practice, e.g. ``stay`` (a robot that does not move)."""
+    count: int = Field(default=1, ge=1)
+    """How many practice trials of this kind."""
+
+
+class Recruiting(StudyModel):
+    """Recruiting-platform settings (e.g. Prolific): parameters to capture and where participants end."""
+
+    completion_code: str | None = None
+    """Code shown on the end page to participants who finished (quote it in YAML if it is all digits)."""
+    completion_redirect_url: str | None = None
+    """Where finished participants are sent; ``{code}`` is replaced by ``completion_code``."""
+    screen_out_code: str | None = None
+    """Code for participants who end early (declined consent, too many abandoned trials)."""
+    screen_out_redirect_url: str | None = None
+    """Where screened-out participants are sent; ``{code}`` is replaced by ``screen_out_code``."""
+    url_parameters: tuple[str, ...] = ("PROLIFIC_PID", "STUDY_ID", "SESSION_ID")
+    """Query parameters of the landing URL stored with the participant."""
+
+    @field_validator("completion_redirect_url", "screen_out_redirect_url")
+    @classmethod
+    def _check_redirect(cls, url: str | None) -> str | None:
+        if url is None:
+            return url
+        if not re.match(r"^https?://\S+$", url):
+            raise ValueError("must be an http:// or https:// address without spaces")
+        if "{" in url.replace(CODE_PLACEHOLDER, "") or "}" in url.replace(CODE_PLACEHOLDER, ""):
+            raise ValueError(f"the only placeholder allowed is {CODE_PLACEHOLDER}")
+        return url
+
+    @field_validator("url_parameters")
+    @classmethod
+    def _check_parameters(cls, names: tuple[str, ...]) -> tuple[str, ...]:
+        problems: list[tuple[Loc, str]] = [
+            ((index,), f"{name!r} is not a URL parameter name (letters, digits, '_', '.', '-')")
+            for index, name in enumerate(names)
+            if not _URL_PARAMETER.match(name)
+        ]
+        raise_problems(problems + duplicate_problems(names, "parameter"), names)
+        return names
+
+    @model_validator(mode="after")
+    def _codes_for_placeholders(self) -> Recruiting:
+        problems: list[tuple[Loc, str]] = []
+        for kind in ("completion", "screen_out"):
+            url = getattr(self, f"{kind}_redirect_url")
+            if url and CODE_PLACEHOLDER in url and getattr(self, f"{kind}_code") is None:
+                reason = f"{kind}_redirect_url uses {CODE_PLACEHOLDER} but no code is set"
+                problems.append(((f"{kind}_code",), reason))
+        raise_problems(problems, self)
+        return self
+
+    def redirect(self, kind: Literal["completion", "screen_out"]) -> str | None:
+        """The redirect URL for ``kind`` with ``{code}`` filled in (plain replacement, no formatting)."""
+        url: str | None = getattr(self, f"{kind}_redirect_url")
+        code: str = getattr(self, f"{kind}_code") or ""
+        return None if url is None else url.replace(CODE_PLACEHOLDER, code)
+
+
+class Reconnect(StudyModel):
+    """What happens when a participant's connection drops during a trial."""
+
+    grace_seconds: float = Field(default=60.0, ge=0)
+    """Within this many seconds the participant's token resumes the same trial, nothing lost."""
+    after_grace: Literal["resume", "restart", "abandon"] = "abandon"
+    """When they return later: ``resume`` the trial where it stopped, ``restart`` it from its first tick,
+    or ``abandon`` it (marked abandoned) and continue with the next trial."""
+
+
+class Assignment(StudyModel):
+    """How a new participant gets a condition order: the least-filled order wins."""
+
+    in_progress_window_minutes: float = Field(default=30.0, gt=0)
+    """Participants who started within this many minutes and have not finished count toward their order."""

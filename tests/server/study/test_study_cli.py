@@ -1,0 +1,61 @@
+"""``steakhouse study validate FILE...``: exit codes, a summary per valid file, every problem otherwise."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from server.cli import main
+
+STUDY_CONFIG = Path(__file__).resolve().parents[3] / "study_config"
+PAPER = str(STUDY_CONFIG / "paper_study.yaml")
+DEMO = str(STUDY_CONFIG / "demo.yaml")
+
+
+def test_valid_files_exit_0_with_one_summary_line_each(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["study", "validate", PAPER, DEMO]) == 0
+    out, err = capsys.readouterr()
+    paper, demo = out.splitlines()
+    assert paper.startswith(f"{PAPER}: ok: paper_study: 4 conditions (fov_aware@none_3, fov_aware@mid_2, ")
+    assert "4 condition orders (latin_square)" in paper
+    assert demo.startswith(f"{DEMO}: ok: demo: 2 conditions (fov_aware@none_3, baseline@none_3)")
+    assert "2 condition orders" in demo
+    assert err == ""
+
+
+def test_invalid_file_exits_1_listing_every_problem(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(
+        "id: bad\ntitle: Bad\nkitchens: [none_3, atlantis]\nrobots: [fov_aware, terminator]\n"
+        "questionnaires:\n  - id: q\n    items:\n      - {id: a, text: Hello.}\n",
+        encoding="utf-8",
+    )
+    assert main(["study", "validate", str(bad)]) == 1
+    out, err = capsys.readouterr()
+    assert out == ""
+    lines = err.splitlines()
+    assert lines[0].startswith(f"{bad}: kitchens[1]: unknown kitchen 'atlantis'")
+    assert lines[1].startswith(f"{bad}: robots[1]: unknown robot 'terminator'")
+    assert lines[2].startswith(f"{bad}: questionnaires[0].items[0].scale: required field is missing")
+    assert lines[3] == "1 of 1 study file(s) invalid"
+
+
+def test_one_invalid_file_fails_the_run_but_all_are_checked(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    broken = tmp_path / "broken.yaml"
+    broken.write_text("id: x\ntitle: [unclosed\n", encoding="utf-8")
+    assert main(["study", "validate", str(broken), PAPER]) == 1
+    out, err = capsys.readouterr()
+    assert out.startswith(f"{PAPER}: ok: paper_study")
+    assert err.startswith(f"{broken}: invalid YAML at line 3, column 1")
+
+
+def test_validate_needs_a_file(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as info:
+        main(["study", "validate"])
+    assert info.value.code == 2
+    assert "FILE" in capsys.readouterr().err
