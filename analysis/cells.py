@@ -1,0 +1,134 @@
+"""Complete-case handling for a within-subject design.
+
+A repeated-measures ANOVA needs every subject in every cell of the within design (the full crossing
+of the levels of the within factors), each cell holding one value of the dependent variable.
+Subjects that lack a cell, or whose value in a cell is missing (NaN), are removed as a whole
+(listwise deletion), and the reason is kept so that the report can say who was excluded and why.
+R's ``afex::aov_ez`` and JASP do the same (with a warning), pingouin does it silently; here it is
+done explicitly and reported.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Hashable, Iterable, Sequence
+from typing import Any
+
+import pandas as pd
+
+from analysis.errors import AnalysisInputError
+
+Cell = tuple[Any, ...]
+
+
+def require_columns(df: pd.DataFrame, columns: Iterable[str]) -> None:
+    """Raise ``AnalysisInputError`` naming the first of ``columns`` that ``df`` lacks."""
+    for column in columns:
+        if column not in df.columns:
+            available = ", ".join(repr(str(c)) for c in df.columns) or "none"
+            raise AnalysisInputError(
+                f"column {column!r} not found in the table; available columns: {available}"
+            )
+
+
+def factor_levels(df: pd.DataFrame, factor: str) -> list[Any]:
+    """Levels of ``factor`` in a stable order: the category order if categorical, else sorted."""
+    column = df[factor]
+    if isinstance(column.dtype, pd.CategoricalDtype):
+        present = set(column.dropna().unique())
+        return [level for level in column.cat.categories if level in present]
+    return sorted(column.dropna().unique().tolist(), key=_sort_key)
+
+
+def cell_label(within: Sequence[str], cell: Cell) -> str:
+    """``robot=baseline, kitchen=mid_2`` for ``within=("robot", "kitchen")``."""
+    return ", ".join(f"{factor}={level}" for factor, level in zip(within, cell, strict=True))
+
+
+def validate_design(df: pd.DataFrame, dv: str, within: Sequence[str], subject: str) -> None:
+    """Check the columns, their types and the one-row-per-subject-and-cell shape of ``df``.
+
+    Raises ``AnalysisInputError`` for a missing column, a non-numeric ``dv``, an empty subject or
+    factor value, a factor with fewer than two levels, or two rows for one subject and cell.
+    """
+    roles = [dv, *within, subject]
+    if len(set(roles)) != len(roles):
+        raise AnalysisInputError(
+            f"dv, within factors and subject must be distinct columns: {roles}"
+        )
+    require_columns(df, roles)
+    if not pd.api.types.is_numeric_dtype(df[dv]):
+        raise AnalysisInputError(
+            f"column {dv!r} is the dependent variable but is not numeric (dtype {df[dv].dtype})"
+        )
+    for column in [subject, *within]:
+        empty = int(df[column].isna().sum())
+        if empty:
+            raise AnalysisInputError(
+                f"column {column!r} has {empty} empty value(s); every row needs a subject "
+                "and a level of each within factor"
+            )
+    for factor in within:
+        levels = factor_levels(df, factor)
+        if len(levels) < 2:
+            raise AnalysisInputError(
+                f"within factor {factor!r} has {len(levels)} level(s) {levels}; "
+                "a repeated-measures factor needs at least two"
+            )
+    doubled = df[df.duplicated([subject, *within], keep=False)]
+    if not doubled.empty:
+        first = doubled.iloc[0]
+        cell = tuple(first[f] for f in within)
+        raise AnalysisInputError(
+            f"subject {first[subject]} has more than one row in cell {cell_label(within, cell)}; "
+            "the analysis needs one row per subject and cell (aggregate trials first)"
+        )
+
+
+def complete_cases(
+    df: pd.DataFrame, dv: str, within: Sequence[str], subject: str
+) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Split ``df`` into the subjects with a value in every within cell and the others.
+
+    Returns ``(clean, excluded)``: ``clean`` holds all rows of the complete subjects (original
+    columns, original order); ``excluded`` has one row per removed subject with columns
+    ``subject, reason``, the reason naming each missing cell (``missing cell robot=baseline,
+    kitchen=mid_2``) or missing value (``missing value of ticks in cell ...``), joined by ``; ``.
+    """
+    within = list(within)
+    validate_design(df, dv, within, subject)
+    cells: list[Cell] = list(itertools.product(*(factor_levels(df, f) for f in within)))
+    kept: list[Hashable] = []
+    excluded: list[dict[str, Any]] = []
+    for subject_id, rows in df.groupby(subject, sort=True, observed=True):
+        values = {tuple(row[within]): row[dv] for _, row in rows.iterrows()}
+        problems = []
+        for cell in cells:
+            if cell not in values:
+                problems.append(f"missing cell {cell_label(within, cell)}")
+            elif pd.isna(values[cell]):
+                problems.append(f"missing value of {dv} in cell {cell_label(within, cell)}")
+        if problems:
+            excluded.append({"subject": subject_id, "reason": "; ".join(problems)})
+        else:
+            kept.append(subject_id)
+    clean = df[df[subject].isin(kept)].reset_index(drop=True)
+    return clean, pd.DataFrame(excluded, columns=["subject", "reason"])
+
+
+def require_complete(df: pd.DataFrame, dv: str, within: Sequence[str], subject: str) -> None:
+    """Raise ``AnalysisInputError`` unless every subject has a value in every within cell."""
+    _, excluded = complete_cases(df, dv, within, subject)
+    if not excluded.empty:
+        first = excluded.iloc[0]
+        raise AnalysisInputError(
+            f"{len(excluded)} subject(s) lack cells for {dv!r}, e.g. subject {first['subject']}: "
+            f"{first['reason']}; drop them with analysis.cells.complete_cases first"
+        )
+
+
+def _sort_key(level: Any) -> tuple[str, Any]:
+    """Sort numbers numerically and everything else as text, without mixing the two."""
+    if isinstance(level, int | float) and not isinstance(level, bool):
+        return ("0", level)
+    return ("1", str(level))
