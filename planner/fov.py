@@ -28,6 +28,8 @@ class View:
 
     cells: frozenset[Pos]
     tracked: tuple[Pos, ...]
+    stations: tuple[tuple[Pos, Terrain, int], ...]
+    """The grills, boards and sinks in view, with their kind and index."""
 
 
 def in_view(origin: Pos, facing: Direction, cell: Pos, angle: float) -> bool:
@@ -68,4 +70,5 @@ def _compute(layout: Layout, pos: Pos, facing: Direction, angle: float) -> View:
     cells = frozenset(c for c in layout.cells() if in_view(pos, facing, c, angle))
     tracked = tuple(c for c in sorted(cells, key=lambda p: (p[1], p[0]))
                     if c in layout.stations and layout.stations[c][0] in _TRACKED)
-    return View(cells, tracked)
+    stations = tuple((c, *layout.stations[c]) for c in tracked if layout.stations[c][0] is not Terrain.COUNTER)
+    return View(cells, tracked, stations)

@@ -31,14 +31,14 @@ from planner.state import AgentState, WorldState
 
 ROBOT_KEY: Pos = (-1, -1)
 _TRACKED_KINDS = (Terrain.COUNTER, Terrain.GRILL, Terrain.BOARD, Terrain.SINK)
-_OCCUPIED = "occupied"
 
 
 @dataclass(frozen=True, slots=True)
 class KnowledgeBase:
     """Believed station statuses (same encoding as :class:`WorldState`), counter objects and robot.
 
-    ``streaks`` holds ``(key, occupant, count)`` for what was in view last tick (``ROBOT_KEY`` for the robot).
+    ``streaks`` holds ``(key, occupant, count)`` for what was in view last tick and may still change the KB:
+    counters whose content disagrees with the KB, the stations, and the robot (``ROBOT_KEY``).
     """
 
     objects: tuple[tuple[Pos, str], ...]
@@ -75,40 +75,66 @@ def omniscient_kb(state: WorldState) -> KnowledgeBase:
 
 
 class _Working:
-    __slots__ = ("objects", "stations", "robot", "layout")
+    """Mutable copies of the KB's parts, made only when a part changes."""
+
+    __slots__ = ("kb", "objects", "stations", "robot", "layout")
 
     def __init__(self, kb: KnowledgeBase, layout: Layout) -> None:
-        self.layout = layout
-        self.objects: dict[Pos, str] = dict(kb.objects)
-        self.stations = {Terrain.GRILL: list(kb.grills), Terrain.BOARD: list(kb.boards),
-                         Terrain.SINK: list(kb.sinks)}
+        self.kb, self.layout = kb, layout
+        self.objects: dict[Pos, str] | None = None
+        self.stations: dict[Terrain, list[int | None]] = {}
         self.robot = kb.robot
 
-    def copy_cell(self, cell: Pos, world: WorldState) -> None:
+    def counters(self) -> dict[Pos, str]:
+        if self.objects is None:
+            self.objects = dict(self.kb.objects)
+        return self.objects
+
+    def station_list(self, kind: Terrain) -> list[int | None]:
+        found = self.stations.get(kind)
+        if found is None:
+            found = self.stations[kind] = list(_statuses(self.kb, kind))
+        return found
+
+    def set_counter(self, cell: Pos, obj: str | None) -> None:
+        counters = self.counters()
+        if obj is None:
+            counters.pop(cell, None)
+        else:
+            counters[cell] = obj
+
+    def copy_cell(self, cell: Pos, world: WorldState, world_objects: dict[Pos, str]) -> None:
         kind, i = self.layout.stations[cell]
         if kind is Terrain.COUNTER:
-            obj = world.object_at(cell)
-            if obj is None:
-                self.objects.pop(cell, None)
-            else:
-                self.objects[cell] = obj
+            self.set_counter(cell, world_objects.get(cell))
         else:
-            self.stations[kind][i] = _station_value(world, kind, i)
+            value = _statuses(world, kind)[i]
+            if _statuses(self.kb, kind)[i] != value or kind in self.stations:
+                self.station_list(kind)[i] = value
+
+    def build(self, streaks: list[tuple[Pos, object, int]]) -> KnowledgeBase:
+        kb = self.kb
+        return KnowledgeBase(
+            objects=kb.objects if self.objects is None else tuple(sorted(self.objects.items())),
+            grills=_frozen(self.stations, Terrain.GRILL, kb.grills),
+            boards=_frozen(self.stations, Terrain.BOARD, kb.boards),
+            sinks=_frozen(self.stations, Terrain.SINK, kb.sinks),
+            robot=self.robot, streaks=tuple(streaks),
+        )
 
 
-def _station_value(world: WorldState, kind: Terrain, i: int) -> int | None:
+def _frozen(changed: dict[Terrain, list[int | None]], kind: Terrain,
+            original: tuple[int | None, ...]) -> tuple[int | None, ...]:
+    values = changed.get(kind)
+    return original if values is None else tuple(values)
+
+
+def _statuses(source: WorldState | KnowledgeBase, kind: Terrain) -> tuple[int | None, ...]:
     if kind is Terrain.GRILL:
-        return world.grills[i]
+        return source.grills
     if kind is Terrain.BOARD:
-        return world.boards[i]
-    return world.sinks[i]
-
-
-def _occupant(world: WorldState, layout: Layout, cell: Pos) -> object:
-    kind, i = layout.stations[cell]
-    if kind is Terrain.COUNTER:
-        return world.object_at(cell)
-    return None if _station_value(world, kind, i) is None else _OCCUPIED
+        return source.boards
+    return source.sinks
 
 
 def update_kb(kb: KnowledgeBase, layout: Layout, world: WorldState, *, angle: float, kb_delay: int,
@@ -116,26 +142,49 @@ def update_kb(kb: KnowledgeBase, layout: Layout, world: WorldState, *, angle: fl
     """The KB after one tick, given the world after the step and the human's events of that step.
 
     ``pose`` is the viewer (defaults to ``world.human``); its FOV decides what is in view.
+
+    Only counters whose world content differs from the KB need a streak (a counter that agrees with
+    the KB gains nothing from acknowledgement, and any change restarts its count anyway), so the work per
+    tick is proportional to the objects in the kitchen, not to the cells in view.
     """
     viewer = pose or world.human
     seen = view(layout, viewer.pos, viewer.facing, angle)
+    in_view = seen.cells
     w = _Working(kb, layout)
+    world_objects = dict(world.objects)
     previous = {key: (occ, n) for key, occ, n in kb.streaks}
     streaks: list[tuple[Pos, object, int]] = []
-    own_cells = {e.pos for e in own_events if layout.stations.get(e.pos, (None,))[0] in _TRACKED_KINDS}
-    for cell in own_cells:
-        w.copy_cell(cell, world)
-    for cell in seen.tracked:
-        occ = _occupant(world, layout, cell)
+    own_cells = set()
+    for event in own_events:
+        entry = layout.stations.get(event.pos)
+        if entry is not None and entry[0] in _TRACKED_KINDS:
+            own_cells.add(event.pos)
+            w.copy_cell(event.pos, world, world_objects)
+    kb_objects = w.counters() if own_cells else dict(kb.objects)
+    for cell in world_objects.keys() | kb_objects.keys():
+        if cell not in in_view:
+            continue
+        occ = world_objects.get(cell)
+        if occ == kb_objects.get(cell):
+            continue
+        prev = previous.get(cell)
+        count = prev[1] + 1 if prev is not None and prev[0] == occ else 1
+        if count >= kb_delay:
+            w.set_counter(cell, occ)
+        else:
+            streaks.append((cell, occ, count))
+    for cell, kind, i in seen.stations:
+        value = _statuses(world, kind)[i]
+        occ = value is not None
         prev = previous.get(cell)
         count = prev[1] + 1 if prev is not None and prev[0] == occ else 1
         if cell in own_cells:
             count = max(count, kb_delay)
         streaks.append((cell, occ, count))
         if count >= kb_delay:
-            w.copy_cell(cell, world)
+            w.copy_cell(cell, world, world_objects)
     robot = world.robot
-    if robot.pos in seen.cells:
+    if robot.pos in in_view:
         prev = previous.get(ROBOT_KEY)
         count = prev[1] + 1 if prev is not None and prev[0] == robot.held else 1
         streaks.append((ROBOT_KEY, robot.held, count))
@@ -143,12 +192,8 @@ def update_kb(kb: KnowledgeBase, layout: Layout, world: WorldState, *, angle: fl
             before = w.robot.held if w.robot is not None else None
             w.robot = robot
             if robot.held is not None and robot.held != before:
-                _remove_elsewhere(w, robot, seen.cells)
-    return KnowledgeBase(
-        objects=tuple(sorted(w.objects.items())),
-        grills=tuple(w.stations[Terrain.GRILL]), boards=tuple(w.stations[Terrain.BOARD]),
-        sinks=tuple(w.stations[Terrain.SINK]), robot=w.robot, streaks=tuple(streaks),
-    )
+                _remove_elsewhere(w, robot, in_view)
+    return w.build(streaks)
 
 
 _STATION_SOURCE = {CLEAN_PLATE: Terrain.SINK, STEAK_PLATE: Terrain.GRILL, DISH: Terrain.BOARD}
@@ -161,12 +206,13 @@ def _remove_elsewhere(w: _Working, robot: AgentState, in_view: frozenset[Pos]) -
     if source is not None:
         cells = {Terrain.SINK: w.layout.sinks, Terrain.GRILL: w.layout.grills,
                  Terrain.BOARD: w.layout.boards}[source]
-        statuses = w.stations[source]
+        statuses = w.station_list(source)
         candidates = [i for i, s in enumerate(statuses) if s is not None and cells[i] not in in_view]
         if candidates:
             nearest = min(candidates, key=lambda i: manhattan(cells[i], robot.pos))
             statuses[nearest] = None
         return
-    places = [p for p, obj in w.objects.items() if obj == held and p not in in_view]
+    counters = w.counters()
+    places = [p for p, obj in counters.items() if obj == held and p not in in_view]
     if places:
-        del w.objects[min(places, key=lambda p: manhattan(p, robot.pos))]
+        del counters[min(places, key=lambda p: manhattan(p, robot.pos))]

@@ -64,6 +64,11 @@ class Layout:
     serves: tuple[Pos, ...] = field(repr=False)
     stations: dict[Pos, tuple[Terrain, int]] = field(repr=False, compare=False, hash=False)
     """Every non-floor cell → its terrain and its index among the cells of that terrain."""
+    hash_value: int = field(repr=False, compare=False, default=0)
+
+    def __hash__(self) -> int:
+        """Precomputed from the grid and starts (what equality compares), so cache lookups stay cheap."""
+        return self.hash_value
 
     def terrain(self, pos: Pos) -> Terrain:
         entry = self.stations.get(pos)
@@ -146,7 +151,7 @@ def parse_layout(text: str, name: str = "layout", source: str | None = None) -> 
         meats=tuple(by_kind[Terrain.MEAT]), plates=tuple(by_kind[Terrain.PLATE]),
         grills=tuple(by_kind[Terrain.GRILL]), boards=tuple(by_kind[Terrain.BOARD]),
         sinks=tuple(by_kind[Terrain.SINK]), serves=tuple(by_kind[Terrain.SERVE]),
-        stations=stations,
+        stations=stations, hash_value=hash((name, tuple(rows), tuple(sorted(starts.items())))),
     )
 
 

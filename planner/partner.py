@@ -1,4 +1,4 @@
-"""Robot-side policies that need no planner: the simulated partner and the robot that stays put.
+"""The simulated partner: the human model driving the robot's avatar, and the robot policy protocol.
 
 A robot policy has ``reset(world)`` and ``act(world, events, rng) -> Action``; the planners of
 :mod:`planner.robots` follow the same protocol.
@@ -39,13 +39,3 @@ class SimulatedPartner:
     def act(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator) -> Action:
         action, self.memory = self.model.act(world, omniscient_kb(world), self.memory, rng)
         return action
-
-
-class StayRobot:
-    """A robot that never moves (practice trials)."""
-
-    def reset(self, world: WorldState) -> None:
-        return None
-
-    def act(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator) -> Action:
-        return Action.STAY

@@ -19,7 +19,7 @@ from planner.partner import RobotPolicy, SimulatedPartner
 from planner.rules import Rules
 from planner.state import WorldState, initial_state, is_done
 from planner.step import step
-from planner.summary import GAP_COMPONENTS, gap_components, summarize
+from planner.summary import GAP_COMPONENTS, kb_gap_components
 
 
 @dataclass(frozen=True, slots=True)
@@ -77,7 +77,7 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
         world, events = step(layout, world, {"human": h_action, "robot": r_action}, rules)
         kb = update_kb(kb, layout, world, angle=settings.angle, kb_delay=settings.kb_delay,
                        own_events=[e for e in events if e.agent == "human"])
-        gaps = gap_components(summarize(kb, rules), summarize(world, rules))
+        gaps = kb_gap_components(kb, world, rules)
         total = sum(gaps.values())
         gap_sum += total
         gap_ticks += total > 0

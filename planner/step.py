@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from planner.events import Event, EventKind
-from planner.geometry import Action, Pos
+from planner.geometry import Action, Direction, Pos
 from planner.layout import Layout, Terrain
 from planner.objects import CLEAN_PLATE, DIRTY_PLATE, DISH, MEAT, ONION, STEAK_PLATE
 from planner.rules import Rules
@@ -21,7 +21,7 @@ _DISPENSED = {Terrain.ONION: ONION, Terrain.MEAT: MEAT, Terrain.PLATE: DIRTY_PLA
 
 
 class _Scratch:
-    """The mutable working copy of one step; never escapes :func:`step`."""
+    """The mutable working copy of one step, made only when someone interacts; never escapes :func:`step`."""
 
     __slots__ = ("objects", "grills", "boards", "sinks", "orders_left", "score", "events")
 
@@ -38,20 +38,29 @@ class _Scratch:
 def step(layout: Layout, state: WorldState, joint_action: Mapping[str, Action],
          rules: Rules = DEFAULT_RULES) -> tuple[WorldState, tuple[Event, ...]]:
     """Apply one joint action. Pure: the input state is not changed."""
-    w = _Scratch(state)
-    agents = {"robot": state.robot, "human": state.human}
-    for name in ("robot", "human"):
-        if joint_action[name] is Action.INTERACT:
-            agents[name] = _interact(layout, rules, w, name, agents[name])
-    _move(layout, agents, joint_action, w)
-    grills = tuple(g + 1 if g is not None and g < rules.cook_time else g for g in w.grills)
-    new_state = WorldState(
-        human=agents["human"], robot=agents["robot"],
-        objects=tuple(sorted(w.objects.items())) if w.objects else (),
-        grills=grills, boards=tuple(w.boards), sinks=tuple(w.sinks),
-        orders_left=w.orders_left, tick=state.tick + 1, score=w.score,
-    )
-    return new_state, tuple(w.events)
+    robot, human = state.robot, state.human
+    r_action, h_action = joint_action["robot"], joint_action["human"]
+    w: _Scratch | None = None
+    if r_action is Action.INTERACT or h_action is Action.INTERACT:
+        w = _Scratch(state)
+        if r_action is Action.INTERACT:
+            robot = _interact(layout, rules, w, "robot", robot)
+        if h_action is Action.INTERACT:
+            human = _interact(layout, rules, w, "human", human)
+    robot, human, blocked = _move(layout, robot, human, r_action, h_action)
+    if w is None:
+        objects, grills, boards, sinks = state.objects, state.grills, state.boards, state.sinks
+        orders_left, score, events = state.orders_left, state.score, blocked
+    else:
+        objects = tuple(sorted(w.objects.items())) if w.objects else ()
+        grills, boards, sinks = tuple(w.grills), tuple(w.boards), tuple(w.sinks)
+        orders_left, score, events = w.orders_left, w.score, tuple(w.events) + blocked
+    cook = rules.cook_time
+    if any(g is not None and g < cook for g in grills):
+        grills = tuple(g + 1 if g is not None and g < cook else g for g in grills)
+    new_state = WorldState(human=human, robot=robot, objects=objects, grills=grills, boards=boards,
+                           sinks=sinks, orders_left=orders_left, tick=state.tick + 1, score=score)
+    return new_state, events
 
 
 def _interact(layout: Layout, rules: Rules, w: _Scratch, name: str, agent: AgentState) -> AgentState:
@@ -113,24 +122,24 @@ def _interact(layout: Layout, rules: Rules, w: _Scratch, name: str, agent: Agent
     return AgentState(agent.pos, agent.facing, new_held)
 
 
-def _move(layout: Layout, agents: dict[str, AgentState], joint_action: Mapping[str, Action],
-          w: _Scratch) -> None:
-    intended: dict[str, AgentState] = {}
-    for name, agent in agents.items():
-        direction = joint_action[name].direction
-        if direction is None:
-            intended[name] = agent
-            continue
-        ahead = direction.ahead(agent.pos)
-        pos = ahead if ahead in layout.floor else agent.pos
-        intended[name] = AgentState(pos, direction, agent.held)
-    r_old, h_old = agents["robot"].pos, agents["human"].pos
-    r_new, h_new = intended["robot"].pos, intended["human"].pos
-    if r_new == h_new or (r_new == h_old and h_new == r_old):
-        for name, agent in agents.items():
-            turned = intended[name]
-            if turned.pos != agent.pos:
-                w.events.append(Event(name, EventKind.BLOCKED, turned.pos))
-            agents[name] = AgentState(agent.pos, turned.facing, agent.held)
-        return
-    agents.update(intended)
+def _move(layout: Layout, robot: AgentState, human: AgentState, r_action: Action,
+          h_action: Action) -> tuple[AgentState, AgentState, tuple[Event, ...]]:
+    r_dir, h_dir = r_action.direction, h_action.direction
+    if r_dir is None and h_dir is None:
+        return robot, human, ()
+    r_new = _turn_and_step(layout, robot, r_dir)
+    h_new = _turn_and_step(layout, human, h_dir)
+    if r_new.pos == h_new.pos or (r_new.pos == human.pos and h_new.pos == robot.pos):
+        blocked = tuple(Event(name, EventKind.BLOCKED, new.pos)
+                        for name, old, new in (("robot", robot, r_new), ("human", human, h_new))
+                        if new.pos != old.pos)
+        return (AgentState(robot.pos, r_new.facing, robot.held),
+                AgentState(human.pos, h_new.facing, human.held), blocked)
+    return r_new, h_new, ()
+
+
+def _turn_and_step(layout: Layout, agent: AgentState, direction: Direction | None) -> AgentState:
+    if direction is None:
+        return agent
+    ahead = direction.ahead(agent.pos)
+    return AgentState(ahead if ahead in layout.floor else agent.pos, direction, agent.held)

@@ -46,7 +46,7 @@ def summarize(statuses: WorldState | KnowledgeBase, rules: Rules) -> Summary:
 
 
 def gap_components(kb: Summary, world: Summary) -> dict[str, int]:
-    """1 for each component where the KB differs from the world, else 0."""
+    """1 for each component where the KB differs from the world, else 0 (from two summaries)."""
     return {
         "grill": int(kb.grills != world.grills),
         "board": int(kb.boards != world.boards),
@@ -55,6 +55,26 @@ def gap_components(kb: Summary, world: Summary) -> dict[str, int]:
     }
 
 
+def kb_gap_components(kb: KnowledgeBase, world: WorldState, rules: Rules) -> dict[str, int]:
+    """The same as ``gap_components(summarize(kb), summarize(world))``, without building summaries."""
+    robot_held = None if kb.robot is None else kb.robot.held
+    return {
+        "grill": int(not _same(kb.grills, world.grills, rules.cook_time)),
+        "board": int(not _same(kb.boards, world.boards, rules.chop_time)),
+        "sink": int(not _same(kb.sinks, world.sinks, rules.wash_time)),
+        "robot_held": int(robot_held != world.robot.held),
+    }
+
+
+def _same(believed: tuple[int | None, ...], actual: tuple[int | None, ...], done_at: int) -> bool:
+    if believed == actual:
+        return True
+    for a, b in zip(believed, actual):
+        if (a is None) != (b is None) or (a is not None and b is not None and (a >= done_at) != (b >= done_at)):
+            return False
+    return True
+
+
 def kb_gap(kb: KnowledgeBase, world: WorldState, rules: Rules) -> int:
     """The KB gap at one tick: the number of differing components."""
-    return sum(gap_components(summarize(kb, rules), summarize(world, rules)).values())
+    return sum(kb_gap_components(kb, world, rules).values())

@@ -4,14 +4,18 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+import numpy as np
+
 from planner.geometry import Action, Direction
+from planner.human import HumanMemory, HumanModel
 from planner.kb import initial_kb, update_kb
 from planner.objects import MEAT, ONION
 from planner.play import TrialSettings, run_trial
 from planner.rules import Rules
 from planner.state import AgentState, initial_state
 from planner.step import step
-from planner.summary import kb_gap
+from planner.partner import SimulatedPartner
+from planner.summary import gap_components, kb_gap, kb_gap_components, summarize
 from study_config import layout_names, load_layout
 
 RULES = Rules()
@@ -133,3 +137,20 @@ def test_kb_gap_counts_differing_components(kitchen):
     world = replace(world, boards=(RULES.chop_time,), robot=replace(world.robot, held=ONION))
     kb = replace(kb, boards=(1,))
     assert kb_gap(kb, world, RULES) == 2
+
+
+def test_fast_gap_equals_the_gap_of_the_two_summaries():
+    layout = load_layout("mid_2")
+    world = initial_state(layout, RULES)
+    kb = initial_kb(world)
+    human, memory, partner = HumanModel(layout, RULES), HumanMemory(), SimulatedPartner(layout, RULES)
+    rng = np.random.default_rng(5)
+    differing = 0
+    for _ in range(150):
+        h, memory = human.act(world, kb, memory, rng)
+        world, events = step(layout, world, {"human": h, "robot": partner.act(world, (), rng)}, RULES)
+        kb = tick(layout, kb, world, events=[e for e in events if e.agent == "human"])
+        fast = kb_gap_components(kb, world, RULES)
+        assert fast == gap_components(summarize(kb, RULES), summarize(world, RULES))
+        differing += sum(fast.values()) > 0
+    assert differing > 0

@@ -1,0 +1,45 @@
+"""The robot planners by name (DOMAIN §5): ``make_robot(name, layout, rules, config)``.
+
+``stay`` never moves (practice trials); ``fov_aware``, ``baseline`` and ``no_rollout`` are the
+hierarchical QMDP planner with different models of the human (see :mod:`planner.qmdp`).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Sequence
+
+import numpy as np
+
+from planner.decision import Decision
+from planner.events import Event
+from planner.geometry import Action
+from planner.layout import Layout
+from planner.registry import PLANNER_NAMES
+from planner.rules import Rules
+from planner.state import WorldState
+
+
+class StayRobot:
+    """A robot that never moves."""
+
+    def reset(self, world: WorldState) -> None:
+        return None
+
+    def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,
+               deadline: float | None = None) -> Decision:
+        start = time.perf_counter()
+        return Decision(Action.STAY, elapsed_ms=(time.perf_counter() - start) * 1000)
+
+    def act(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator) -> Action:
+        return Action.STAY
+
+
+def make_robot(name: str, layout: Layout, rules: Rules, config: object | None = None):
+    """A fresh robot policy. Raises ``ValueError`` naming the known planners for an unknown name."""
+    if name not in PLANNER_NAMES:
+        raise ValueError(f"unknown robot planner {name!r}; known: {', '.join(PLANNER_NAMES)}")
+    if name == "stay":
+        return StayRobot()
+    from planner.qmdp import make_qmdp_robot
+    return make_qmdp_robot(name, layout, rules, config)
