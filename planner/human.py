@@ -90,7 +90,7 @@ class HumanModel:
         still = memory.still + 1 if memory.wants_move and memory.last_pose == pose else 0
         partner_still = memory.partner_still + 1 if memory.partner_pos == partner_pos else 0
         action, wants_move = self.move_toward(pose, targets(self.layout, subtask, kb, self.rules), partner_pos,
-                                              rng)
+                                              rng, partner_parked=partner_still >= STUCK_TICKS)
         yielding = max(memory.yielding - 1, 0)
         if yielding and action is not Action.INTERACT:
             action, wants_move = Action.STAY, False
@@ -114,12 +114,13 @@ class HumanModel:
         return False
 
     def move_toward(self, pose: Pose, cells: tuple[Pos, ...], blocked: Pos,
-                    rng: np.random.Generator | None = None) -> tuple[Action, bool]:
+                    rng: np.random.Generator | None = None, partner_parked: bool = False) -> tuple[Action, bool]:
         """Interact if facing the nearest target; else the first move along a shortest path to it.
 
         When the partner stands on every shortest path: wait with probability ``WAIT_WHEN_BLOCKED``, else a
         shortest detour around it, chosen at random among equals (randomness breaks the symmetric dance of two
-        agents dodging the same way at the same time). Also answers whether
+        agents dodging the same way at the same time). A partner that has not moved for two ticks
+        (``partner_parked``) is walked around: the path avoids its cell all the way. Also answers whether
         the model wants to move (it is not yet at its target).
         """
         best, best_d = None, UNREACHABLE
@@ -131,6 +132,10 @@ class HumanModel:
             return Action.STAY, False
         if best_d == 0:
             return Action.INTERACT, False
+        if partner_parked:
+            around = detour_moves(self.layout, pose, best, blocked)
+            if around:
+                return around[0], True
         moves = best_moves(self.layout, pose, best, blocked)
         if moves:
             return moves[0], True

@@ -45,6 +45,8 @@ class TrialResult:
     robot_in_fov_pct: float
     final: WorldState
     actions: tuple[tuple[Action, Action], ...] = ()
+    decision_ms: tuple[float, ...] = ()
+    timed_out: int = 0
 
     def to_dict(self) -> dict[str, object]:
         return {
@@ -71,9 +73,18 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
     gap_ticks = gap_sum = in_fov = 0
     component_ticks = dict.fromkeys(GAP_COMPONENTS, 0)
     actions: list[tuple[Action, Action]] = []
+    decision_ms: list[float] = []
+    timed_out = 0
     while not is_done(world, rules):
         h_action, memory = human.act(world, kb, memory, human_rng)
-        r_action = partner.act(world, events, robot_rng)
+        decide = getattr(partner, "decide", None)
+        if decide is not None:
+            decision = decide(world, events, robot_rng)
+            r_action = decision.action
+            decision_ms.append(decision.elapsed_ms)
+            timed_out += decision.timed_out
+        else:
+            r_action = partner.act(world, events, robot_rng)
         world, events = step(layout, world, {"human": h_action, "robot": r_action}, rules)
         kb = update_kb(kb, layout, world, angle=settings.angle, kb_delay=settings.kb_delay,
                        own_events=[e for e in events if e.agent == "human"])
@@ -93,4 +104,5 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
         kb_gap_mean=gap_sum / ticks, kb_gap_ticks_pct=100.0 * gap_ticks / ticks,
         gap_component_pct={k: 100.0 * v / ticks for k, v in component_ticks.items()},
         robot_in_fov_pct=100.0 * in_fov / ticks, final=world, actions=tuple(actions),
+        decision_ms=tuple(decision_ms), timed_out=timed_out,
     )

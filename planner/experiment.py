@@ -1,0 +1,102 @@
+"""The paper's simulation experiment (§VI): robots × kitchens × seeds with the simulated FOV-limited human.
+
+One trial per (kitchen, robot, seed); the human's random stream depends only on the seed, so the robots
+are compared on paired trials. :func:`summarize_trials` gives the paper-style table: mean ± sd ticks per
+robot per kitchen and overall, and the paired difference of the FOV-aware robot against the baseline
+(mean % change of ticks, paired t-test p and Wilcoxon signed-rank p).
+"""
+
+from __future__ import annotations
+
+import statistics
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import stats
+
+from planner.play import TrialSettings, run_trial
+from planner.planner_config import PlannerConfig
+from planner.robots import make_robot
+from planner.rules import Rules
+
+COLUMNS = ("layout", "robot", "seed", "ticks", "finished", "reward", "kb_gap_mean", "kb_gap_ticks_pct",
+           "robot_in_fov_pct", "decision_ms_p50", "decision_ms_p99")
+
+
+@dataclass(frozen=True, slots=True)
+class TrialSpec:
+    layout_name: str
+    robot: str
+    seed: int
+    human_angle: float = 120.0
+    kb_delay: int = 3
+
+
+def run_spec(spec: TrialSpec) -> dict[str, object]:
+    """One simulated trial as a row of ``trials.csv`` (importable by worker processes)."""
+    from study_config import load_layout
+
+    layout = load_layout(spec.layout_name)
+    rules = Rules()
+    robot = make_robot(spec.robot, layout, rules,
+                       PlannerConfig(human_angle=spec.human_angle, human_delay=spec.kb_delay, seed=spec.seed))
+    result = run_trial(layout, spec.seed, TrialSettings(angle=spec.human_angle, kb_delay=spec.kb_delay,
+                                                         rules=rules), robot=robot)
+    times = np.array(result.decision_ms) if result.decision_ms else np.zeros(1)
+    return {
+        "layout": spec.layout_name, "robot": spec.robot, "seed": spec.seed, "ticks": result.ticks,
+        "finished": int(result.finished), "reward": result.score,
+        "kb_gap_mean": round(result.kb_gap_mean, 4), "kb_gap_ticks_pct": round(result.kb_gap_ticks_pct, 2),
+        "robot_in_fov_pct": round(result.robot_in_fov_pct, 2),
+        "decision_ms_p50": round(float(np.percentile(times, 50)), 3),
+        "decision_ms_p99": round(float(np.percentile(times, 99)), 3),
+    }
+
+
+@dataclass(frozen=True, slots=True)
+class PairedComparison:
+    robot: str
+    reference: str
+    pairs: int
+    mean_change_pct: float
+    t_p: float
+    wilcoxon_p: float
+
+
+def paired_comparison(rows: list[dict[str, object]], robot: str = "fov_aware",
+                      reference: str = "baseline") -> PairedComparison | None:
+    """Ticks of ``robot`` against ``reference`` on the same (kitchen, seed) trials."""
+    by_key = {(r["layout"], r["seed"], r["robot"]): float(r["ticks"]) for r in rows}
+    keys = sorted({(l, s) for l, s, rb in by_key if rb == robot and (l, s, reference) in by_key})
+    if len(keys) < 2:
+        return None
+    a = np.array([by_key[(l, s, robot)] for l, s in keys])
+    b = np.array([by_key[(l, s, reference)] for l, s in keys])
+    change = 100.0 * (a.mean() - b.mean()) / b.mean()
+    t_p = float(stats.ttest_rel(a, b).pvalue) if np.any(a != b) else 1.0
+    w_p = float(stats.wilcoxon(a, b).pvalue) if np.any(a != b) else 1.0
+    return PairedComparison(robot, reference, len(keys), float(change), t_p, w_p)
+
+
+def summarize_trials(rows: list[dict[str, object]]) -> str:
+    """The paper-style table as text."""
+    robots = sorted({str(r["robot"]) for r in rows}, key=lambda r: (r != "fov_aware", r))
+    layouts = sorted({str(r["layout"]) for r in rows})
+    head = f"{'kitchen':<10}" + "".join(f"{rb:>22}" for rb in robots)
+    lines = ["ticks to finish (mean ± sd; unfinished trials count the horizon)", head, "-" * len(head)]
+    for layout in layouts + ["overall"]:
+        cells = []
+        for rb in robots:
+            ticks = [float(r["ticks"]) for r in rows if r["robot"] == rb and (layout == "overall" or r["layout"] == layout)]
+            unfinished = sum(1 for r in rows if r["robot"] == rb and not r["finished"]
+                             and (layout == "overall" or r["layout"] == layout))
+            sd = statistics.stdev(ticks) if len(ticks) > 1 else 0.0
+            mark = f" ({unfinished} unf.)" if unfinished else ""
+            cells.append(f"{statistics.mean(ticks):.1f} ± {sd:.1f}{mark}" if ticks else "-")
+        lines.append(f"{layout:<10}" + "".join(f"{c:>22}" for c in cells))
+    comparison = paired_comparison(rows)
+    if comparison is not None:
+        lines.append(f"fov_aware vs baseline over {comparison.pairs} paired trials: "
+                     f"{comparison.mean_change_pct:+.1f}% ticks, paired t-test p = {comparison.t_p:.4g}, "
+                     f"Wilcoxon p = {comparison.wilcoxon_p:.4g}")
+    return "\n".join(lines)

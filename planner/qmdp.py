@@ -1,0 +1,198 @@
+"""The hierarchical QMDP robot (paper §IV–V; DOMAIN §5): ``fov_aware``, ``baseline``, ``no_rollout``.
+
+Each tick the robot
+
+1. updates its model of the human's KB with the FOV rules (:func:`planner.kb.update_kb`, the human's
+   angle and delay; the baseline models an omniscient human: 360°, delay 0) and its belief over the human's
+   subtask (:mod:`planner.belief`);
+2. for every subtask the robot could take and every likely human subtask ``s`` (belief ≥ threshold),
+   simulates the joint system forward (:class:`planner.rollout.Rollout`) with the human choosing from its
+   modelled KB, and scores the shaping-potential progress;
+3. combines them QMDP-style, ``Q(b, r) = Σ_s b(s) V(r, s)``, with a small bonus for keeping its current
+   subtask, and takes ``r* = argmax Q``;
+4. **exploration** (FOV-aware only, depth ``k``): when several first moves toward ``r*`` are equally short,
+   it rolls each out and keeps the one whose effect on the human's KB (the robot and what it holds seen in
+   time) pays most — this is what produces the staircase paths that stay in the FOV. The no-rollout robot
+   (depth 0) and the baseline take the first shortest move.
+
+The lookahead horizon is ``search_depth`` subtasks × 6 ticks. Randomness: rollouts use seeds derived
+from ``config.seed`` and the tick (common random numbers across candidates), so a decision is a pure
+function of the observation history. A ``deadline`` (``time.perf_counter()`` value) stops the search and
+returns the best action so far (``timed_out``).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Sequence
+from dataclasses import replace
+
+import numpy as np
+
+from planner.belief import Belief, update_belief
+from planner.decision import Decision
+from planner.events import Event
+from planner.fov import view
+from planner.geometry import DIRECTIONS, Action, move_action
+from planner.kb import KnowledgeBase, initial_kb, update_kb
+from planner.layout import Layout
+from planner.paths import best_moves, distance, next_pose
+from planner.planner_config import PlannerConfig
+from planner.rollout import Rollout, RobotTasker
+from planner.rules import Rules
+from planner.state import AgentState, WorldState
+from planner.subtasks import Subtask
+
+TICKS_PER_SUBTASK = 6
+
+
+class QmdpRobot:
+    def __init__(self, layout: Layout, rules: Rules, config: PlannerConfig, explore: bool) -> None:
+        self.layout, self.rules, self.cfg, self.explore = layout, rules, config, explore
+        self.rollout = Rollout(layout, rules, config)
+        self.tasker = RobotTasker(layout, rules)
+        self.kb: KnowledgeBase | None = None
+        self.belief: Belief | None = None
+        self.last_human: AgentState | None = None
+        self.current: Subtask | None = None
+        self.held_before: str | None = None
+        self.pending: tuple[Action, ...] = ()
+
+    def reset(self, world: WorldState) -> None:
+        self.kb = initial_kb(world)
+        self.belief = None
+        self.last_human = None
+        self.current = None
+        self.held_before = world.robot.held
+        self.pending = ()
+
+    def observe(self, world: WorldState, events: Sequence[Event]) -> None:
+        if self.kb is None:
+            self.reset(world)
+        assert self.kb is not None
+        human_events = [e for e in events if e.agent == "human"]
+        self.kb = update_kb(self.kb, self.layout, world, angle=self.cfg.human_angle,
+                            kb_delay=self.cfg.human_delay, own_events=human_events)
+        action = _infer_action(self.last_human, world.human, bool(human_events))
+        partner_held = self.kb.robot.held if self.kb.robot is not None else None
+        self.belief = update_belief(self.belief, self.layout, self.rules, self.kb, self.last_human, world.human,
+                                    action, partner_held, world.orders_left, weight=self.cfg.progress_weight,
+                                    floor=self.cfg.belief_floor)
+        self.last_human = world.human
+        if self.current is not None and (self.tasker.done(self.current, self.held_before, world)
+                                         or self.current not in self.tasker.options(world, self.current)):
+            self.current = None
+        self.held_before = world.robot.held
+
+    def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,
+               deadline: float | None = None) -> Decision:
+        start = time.perf_counter()
+        self.observe(world, events)
+        assert self.kb is not None and self.belief is not None
+        likely = self.belief.likely(self.cfg.belief_threshold, self.cfg.max_subtasks)
+        if self.pending and self.kb.robot is not None and self.kb.robot.held != world.robot.held:
+            action, self.pending = self.pending[0], self.pending[1:]
+            return Decision(action=action, belief=self.belief.as_dict(),
+                            elapsed_ms=(time.perf_counter() - start) * 1000)
+        self.pending = ()
+        options = self.tasker.options(world, self.current)
+        horizon = self.cfg.search_depth * TICKS_PER_SUBTASK
+        seed = self.cfg.seed * 1_000_003 + world.tick
+        q: dict[Subtask, float] = {}
+        timed_out = False
+        for r in options:
+            if deadline is not None and q and time.perf_counter() > deadline:
+                timed_out = True
+                break
+            value = sum(p * self.rollout.value(world, self.kb, s, r, horizon, seed) for s, p in likely)
+            q[r] = self.cfg.gamma * value + (self.cfg.commitment_bonus if r is self.current else 0.0)
+        best = max(q, key=lambda r: (q[r], r is self.current, -options.index(r)))
+        self.current = best
+        action, explored = self.first_move(world, best, likely, horizon, seed, deadline)
+        return Decision(action=action, q_values={r.value: v for r, v in q.items()},
+                        belief=self.belief.as_dict(), explored_kbs=explored,
+                        elapsed_ms=(time.perf_counter() - start) * 1000, timed_out=timed_out)
+
+    def act(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator) -> Action:
+        return self.decide(world, events, rng).action
+
+    def first_move(self, world: WorldState, subtask: Subtask, likely, horizon: int, seed: int,
+                   deadline: float | None) -> tuple[Action, int]:
+        """Exploration: the direct first move toward ``subtask`` against the first moves of plans that
+        show the robot to the human first (every first move on a shortest path, and the way into the
+        human's view held for ``kb_delay`` ticks), each scored by a rollout that tracks the modelled KB."""
+        default = self.rollout.robot_move(world, subtask)
+        if not self.explore or self.cfg.exploration_depth <= 0 or default is Action.INTERACT:
+            return default, 0
+        assert self.kb is not None
+        candidates: dict[Action, tuple[Action, ...]] = {default: ()}
+        cells = self.tasker.targets(subtask, world)
+        pose = (world.robot.pos, world.robot.facing)
+        if cells:
+            nearest = min(cells, key=lambda c: distance(self.layout, pose, c))
+            for move in best_moves(self.layout, pose, nearest, world.human.pos):
+                candidates.setdefault(move, ())
+        show = self.show_plan(world)
+        if show:
+            candidates[show[0]] = show[1:]
+        if len(candidates) < 2:
+            return default, 0
+        scored = []
+        for move, rest in candidates.items():
+            if deadline is not None and time.perf_counter() > deadline:
+                break
+            plan = (move,) + rest
+            v = sum(p * self.rollout.value(world, self.kb, s, subtask, horizon, seed, prefix=plan)
+                    for s, p in likely)
+            scored.append((v, move is default, move))
+        chosen = max(scored, key=lambda t: (t[0], t[1]))[2]
+        self.pending = candidates[chosen]
+        return chosen, len(scored)
+
+    def show_plan(self, world: WorldState) -> tuple[Action, ...]:
+        """Moves (at most ``exploration_depth`` to get there) into the human's current view, then stays
+        ``human_delay`` ticks, so the human acknowledges what the robot holds. Empty when the modelled KB
+        already knows what the robot holds, when the robot is in view, or when the view is out of reach."""
+        human = world.human
+        if self.kb is None or self.kb.robot is None or self.kb.robot.held == world.robot.held:
+            return ()
+        seen = view(self.layout, human.pos, human.facing, self.cfg.human_angle).cells
+        if world.robot.pos in seen:
+            return ()
+        start = (world.robot.pos, world.robot.facing)
+        frontier, first = [start], {start: ()}
+        for _ in range(self.cfg.exploration_depth):
+            nxt = []
+            for pose in frontier:
+                for d in DIRECTIONS:
+                    after = next_pose(self.layout, pose, d)
+                    if after in first or after[0] == human.pos:
+                        continue
+                    first[after] = first[pose] + (move_action(d),)
+                    if after[0] in seen:
+                        return first[after] + (Action.STAY,) * max(self.cfg.human_delay - 1, 0)
+                    nxt.append(after)
+            frontier = nxt
+        return ()
+
+
+def _infer_action(before: AgentState | None, now: AgentState, interacted: bool) -> Action | None:
+    if before is None:
+        return None
+    if interacted:
+        return Action.INTERACT
+    if before.pos != now.pos or before.facing != now.facing:
+        return Action(now.facing.value)
+    return Action.STAY
+
+
+def make_qmdp_robot(name: str, layout: Layout, rules: Rules, config: PlannerConfig | None = None) -> QmdpRobot:
+    cfg = config or PlannerConfig()
+    if name == "baseline":
+        return QmdpRobot(layout, rules, cfg.omniscient_human(), explore=False)
+    if name == "no_rollout":
+        return QmdpRobot(layout, rules, replace(cfg, exploration_depth=0), explore=False)
+    if name == "fov_aware":
+        return QmdpRobot(layout, rules, cfg, explore=True)
+    raise ValueError(f"unknown QMDP robot {name!r}")
+

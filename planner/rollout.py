@@ -1,0 +1,142 @@
+"""Lookahead for the robot planners: the joint system simulated forward with the human model.
+
+A rollout starts from the real world, the robot's model of the human's KB and a hypothesised human
+subtask. The simulated human follows that subtask, then chooses anew from *its modelled KB* exactly as
+:class:`planner.human.HumanModel` does (FOV-limited for the FOV-aware robot, omniscient for the baseline),
+its KB updated every tick by the same FOV rules, so the robot entering its view, or working out of it,
+changes what it predicts the person will do. The robot follows a candidate subtask, then picks the
+available subtask nearest to it that the human is not already doing.
+
+Value of a rollout: the discounted sum of the increments of the shaping potential Φ (DOMAIN §5 step 4,
+the reference's rewards): Φ = −40 per order left (+100 when none is), +5 per steak on a grill,
++(3 + count) per board and per sink in use, +12 / +20 / +30 per clean plate / plated steak / dish held.
+Progress made sooner is worth more (``tick_discount`` per tick).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from planner.geometry import Action, Pos
+from planner.human import HumanMemory, HumanModel
+from planner.kb import KnowledgeBase, omniscient_kb, update_kb
+from planner.layout import Layout
+from planner.objects import CLEAN_PLATE, DISH, STEAK_PLATE
+from planner.paths import UNREACHABLE, distances_to
+from planner.planner_config import PlannerConfig
+from planner.rules import Rules
+from planner.state import WorldState
+from planner.step import step
+from planner.subtasks import Believed, Subtask, available, is_done, targets
+
+
+def potential(world: WorldState, cfg: PlannerConfig) -> float:
+    value = cfg.order_left_penalty * world.orders_left
+    if world.orders_left == 0:
+        value += cfg.all_done_reward
+    value += cfg.steak_on_grill * sum(g is not None for g in world.grills)
+    value += sum(cfg.station_in_use + b for b in world.boards if b is not None)
+    value += sum(cfg.station_in_use + s for s in world.sinks if s is not None)
+    for held in (world.human.held, world.robot.held):
+        if held == CLEAN_PLATE:
+            value += cfg.hold_clean_plate
+        elif held == STEAK_PLATE:
+            value += cfg.hold_steak
+        elif held == DISH:
+            value += cfg.hold_dish
+    return value
+
+
+@dataclass(frozen=True, slots=True)
+class RobotTasker:
+    """The robot's own subtask logic, judged on the world (the robot sees everything)."""
+
+    layout: Layout
+    rules: Rules
+
+    def options(self, world: WorldState, current: Subtask | None) -> tuple[Subtask, ...]:
+        """The human's options (DOMAIN §4) from the robot's seat, plus what only someone who sees the whole
+        kitchen would add: finishing an onion or plate left unfinished, and putting a plated steak down
+        when its garnish still needs chopping (else both agents can end up waiting on a board nobody chops).
+        """
+        b = Believed(kb=omniscient_kb(world), held=world.robot.held, partner_held=world.human.held,
+                     orders_left=world.orders_left)
+        options = list(available(b, self.rules, current))
+        unchopped = any(v is not None and v < self.rules.chop_time for v in world.boards)
+        unwashed = any(v is not None and v < self.rules.wash_time for v in world.sinks)
+        if world.robot.held is None:
+            if unchopped and Subtask.CHOP_ONION not in options:
+                options.append(Subtask.CHOP_ONION)
+            if unwashed and Subtask.WASH_PLATE not in options:
+                options.append(Subtask.WASH_PLATE)
+        elif world.robot.held == STEAK_PLATE and unchopped and Subtask.DROP_ON_COUNTER not in options:
+            options.append(Subtask.DROP_ON_COUNTER)
+        return tuple(options)
+
+    def done(self, subtask: Subtask, held_before: str | None, world: WorldState) -> bool:
+        b = Believed(kb=omniscient_kb(world), held=world.robot.held, partner_held=world.human.held,
+                     orders_left=world.orders_left)
+        return is_done(subtask, held_before, world.robot.held, b, self.rules)
+
+    def targets(self, subtask: Subtask, world: WorldState) -> tuple[Pos, ...]:
+        return targets(self.layout, subtask, omniscient_kb(world), self.rules)
+
+    def nearest(self, world: WorldState, options: tuple[Subtask, ...], avoid: Subtask | None) -> Subtask:
+        pose = (world.robot.pos, world.robot.facing)
+        best, best_d = options[0], UNREACHABLE + 1
+        for s in options:
+            d = min((distances_to(self.layout, c).get(pose, UNREACHABLE) for c in self.targets(s, world)),
+                    default=UNREACHABLE)
+            if s is avoid and len(options) > 1:
+                d += UNREACHABLE // 2
+            if d < best_d:
+                best, best_d = s, d
+        return best
+
+
+class Rollout:
+    """Simulates the joint system for one (robot subtask, human subtask) hypothesis."""
+
+    def __init__(self, layout: Layout, rules: Rules, cfg: PlannerConfig) -> None:
+        self.layout, self.rules, self.cfg = layout, rules, cfg
+        self.human = HumanModel(layout, rules, me="human")
+        self.robot_model = HumanModel(layout, rules, me="robot")
+        self.tasker = RobotTasker(layout, rules)
+        self.omniscient = cfg.human_angle >= 360.0 and cfg.human_delay == 0
+
+    def value(self, world: WorldState, kb: KnowledgeBase, human_subtask: Subtask, robot_subtask: Subtask,
+              horizon: int, seed: int, prefix: tuple[Action, ...] = ()) -> float:
+        """The discounted progress of the hypothesis; the robot plays ``prefix`` first, then its subtask."""
+        rng = np.random.default_rng(seed)
+        memory = HumanMemory(subtask=human_subtask, held=world.human.held)
+        robot_task: Subtask | None = robot_subtask
+        phi = potential(world, self.cfg)
+        total, discount = 0.0, 1.0
+        for t in range(horizon):
+            h_action, memory = self.human.act(world, kb, memory, rng)
+            if robot_task is None:
+                robot_task = self.tasker.nearest(world, self.tasker.options(world, None), memory.subtask)
+            r_action = prefix[t] if t < len(prefix) else self.robot_move(world, robot_task)
+            held_before = world.robot.held
+            world, events = step(self.layout, world, {"human": h_action, "robot": r_action}, self.rules)
+            if self.omniscient:
+                kb = omniscient_kb(world)
+            else:
+                kb = update_kb(kb, self.layout, world, angle=self.cfg.human_angle,
+                               kb_delay=self.cfg.human_delay,
+                               own_events=[e for e in events if e.agent == "human"])
+            new_phi = potential(world, self.cfg)
+            total += discount * (new_phi - phi)
+            phi, discount = new_phi, discount * self.cfg.tick_discount
+            if self.tasker.done(robot_task, held_before, world) or robot_task not in self.tasker.options(world, robot_task):
+                robot_task = None
+            if world.orders_left == 0:
+                break
+        return total
+
+    def robot_move(self, world: WorldState, subtask: Subtask) -> Action:
+        pose = (world.robot.pos, world.robot.facing)
+        action, _ = self.robot_model.move_toward(pose, self.tasker.targets(subtask, world), world.human.pos)
+        return action
