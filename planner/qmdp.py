@@ -33,8 +33,8 @@ from planner.belief import Belief, update_belief
 from planner.decision import Decision
 from planner.events import Event
 from planner.fov import view
-from planner.geometry import DIRECTIONS, Action, move_action
-from planner.kb import KnowledgeBase, initial_kb, update_kb
+from planner.geometry import DIRECTIONS, Action, manhattan, move_action
+from planner.kb import KnowledgeBase, initial_kb, omniscient_kb, update_kb
 from planner.layout import Layout
 from planner.paths import best_moves, distance, next_pose
 from planner.planner_config import PlannerConfig
@@ -57,6 +57,7 @@ class QmdpRobot:
         self.current: Subtask | None = None
         self.held_before: str | None = None
         self.pending: tuple[Action, ...] = ()
+        self.human_still = 0
 
     def reset(self, world: WorldState) -> None:
         self.kb = initial_kb(world)
@@ -65,6 +66,7 @@ class QmdpRobot:
         self.current = None
         self.held_before = world.robot.held
         self.pending = ()
+        self.human_still = 0
 
     def observe(self, world: WorldState, events: Sequence[Event]) -> None:
         if self.kb is None:
@@ -78,6 +80,8 @@ class QmdpRobot:
         self.belief = update_belief(self.belief, self.layout, self.rules, self.kb, self.last_human, world.human,
                                     action, partner_held, world.orders_left, weight=self.cfg.progress_weight,
                                     floor=self.cfg.belief_floor)
+        moved = self.last_human is not None and self.last_human.pos != world.human.pos
+        self.human_still = 0 if moved else self.human_still + 1
         self.last_human = world.human
         if self.current is not None and (self.tasker.done(self.current, self.held_before, world)
                                          or self.current not in self.tasker.options(world, self.current)):
@@ -104,11 +108,13 @@ class QmdpRobot:
             if deadline is not None and q and time.perf_counter() > deadline:
                 timed_out = True
                 break
-            value = sum(p * self.rollout.value(world, self.kb, s, r, horizon, seed) for s, p in likely)
+            value = sum(p * self.rollout.value(world, self.kb, s, r, horizon, seed, parked_for=self.human_still)
+                        for s, p in likely)
             q[r] = self.cfg.gamma * value + (self.cfg.commitment_bonus if r is self.current else 0.0)
         best = max(q, key=lambda r: (q[r], r is self.current, -options.index(r)))
         self.current = best
         action, explored = self.first_move(world, best, likely, horizon, seed, deadline)
+        action = self.yield_if_blocking(world, best, action)
         return Decision(action=action, q_values={r.value: v for r, v in q.items()},
                         belief=self.belief.as_dict(), explored_kbs=explored,
                         elapsed_ms=(time.perf_counter() - start) * 1000, timed_out=timed_out)
@@ -121,7 +127,7 @@ class QmdpRobot:
         """Exploration: the direct first move toward ``subtask`` against the first moves of plans that
         show the robot to the human first (every first move on a shortest path, and the way into the
         human's view held for ``kb_delay`` ticks), each scored by a rollout that tracks the modelled KB."""
-        default = self.rollout.robot_move(world, subtask)
+        default = self.rollout.robot_move(world, subtask, self.human_still >= 2)
         if not self.explore or self.cfg.exploration_depth <= 0 or default is Action.INTERACT:
             return default, 0
         assert self.kb is not None
@@ -142,12 +148,26 @@ class QmdpRobot:
             if deadline is not None and time.perf_counter() > deadline:
                 break
             plan = (move,) + rest
-            v = sum(p * self.rollout.value(world, self.kb, s, subtask, horizon, seed, prefix=plan)
-                    for s, p in likely)
+            v = sum(p * self.rollout.value(world, self.kb, s, subtask, horizon, seed, prefix=plan,
+                                           parked_for=self.human_still) for s, p in likely)
             scored.append((v, move is default, move))
         chosen = max(scored, key=lambda t: (t[0], t[1]))[2]
         self.pending = candidates[chosen]
         return chosen, len(scored)
+
+    def yield_if_blocking(self, world: WorldState, subtask: Subtask, action: Action) -> Action:
+        """The human model's yield rule for the robot: waiting at a station (steak not ready, garnish not
+        chopped) next to a human that has not moved for two ticks, it steps aside (the first free move
+        away from the human)."""
+        if action is not Action.INTERACT or not self.rollout.robot_model.waiting(subtask, omniscient_kb(world)):
+            return action
+        if self.human_still < 2 or manhattan(world.robot.pos, world.human.pos) != 1:
+            return action
+        for d in sorted(DIRECTIONS, key=lambda d: -manhattan(d.ahead(world.robot.pos), world.human.pos)):
+            target = d.ahead(world.robot.pos)
+            if target in self.layout.floor and target != world.human.pos:
+                return move_action(d)
+        return action
 
     def show_plan(self, world: WorldState) -> tuple[Action, ...]:
         """Moves (at most ``exploration_depth`` to get there) into the human's current view, then stays

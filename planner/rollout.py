@@ -9,7 +9,9 @@ available subtask nearest to it that the human is not already doing.
 
 Value of a rollout: the discounted sum of the increments of the shaping potential Φ (DOMAIN §5 step 4,
 the reference's rewards): Φ = −40 per order left (+100 when none is), +5 per steak on a grill,
-+(3 + count) per board and per sink in use, +12 / +20 / +30 per clean plate / plated steak / dish held.
++(3 + count) per board and per sink in use, +12 / +20 / +30 per clean plate / plated steak / dish held
+*or on a counter* (the reference counted only held ones; then putting a plate down to free the hands
+looks like lost work and the robot would rather block a station than step away).
 Progress made sooner is worth more (``tick_discount`` per tick).
 """
 
@@ -39,7 +41,7 @@ def potential(world: WorldState, cfg: PlannerConfig) -> float:
     value += cfg.steak_on_grill * sum(g is not None for g in world.grills)
     value += sum(cfg.station_in_use + b for b in world.boards if b is not None)
     value += sum(cfg.station_in_use + s for s in world.sinks if s is not None)
-    for held in (world.human.held, world.robot.held):
+    for held in (world.human.held, world.robot.held, *(obj for _, obj in world.objects)):
         if held == CLEAN_PLATE:
             value += cfg.hold_clean_plate
         elif held == STEAK_PLATE:
@@ -59,7 +61,8 @@ class RobotTasker:
     def options(self, world: WorldState, current: Subtask | None) -> tuple[Subtask, ...]:
         """The human's options (DOMAIN §4) from the robot's seat, plus what only someone who sees the whole
         kitchen would add: finishing an onion or plate left unfinished, and putting a plated steak down
-        when its garnish still needs chopping (else both agents can end up waiting on a board nobody chops).
+        while no garnish is ready (else both agents can end up waiting on a board nobody chops, or the
+        robot waiting in the only spot from which the human could bring the onion).
         """
         b = Believed(kb=omniscient_kb(world), held=world.robot.held, partner_held=world.human.held,
                      orders_left=world.orders_left)
@@ -71,8 +74,10 @@ class RobotTasker:
                 options.append(Subtask.CHOP_ONION)
             if unwashed and Subtask.WASH_PLATE not in options:
                 options.append(Subtask.WASH_PLATE)
-        elif world.robot.held == STEAK_PLATE and unchopped and Subtask.DROP_ON_COUNTER not in options:
-            options.append(Subtask.DROP_ON_COUNTER)
+        elif world.robot.held == STEAK_PLATE and not any(v is not None and v >= self.rules.chop_time
+                                                         for v in world.boards):
+            if Subtask.DROP_ON_COUNTER not in options:
+                options.append(Subtask.DROP_ON_COUNTER)
         return tuple(options)
 
     def done(self, subtask: Subtask, held_before: str | None, world: WorldState) -> bool:
@@ -107,18 +112,20 @@ class Rollout:
         self.omniscient = cfg.human_angle >= 360.0 and cfg.human_delay == 0
 
     def value(self, world: WorldState, kb: KnowledgeBase, human_subtask: Subtask, robot_subtask: Subtask,
-              horizon: int, seed: int, prefix: tuple[Action, ...] = ()) -> float:
+              horizon: int, seed: int, prefix: tuple[Action, ...] = (), parked_for: int = 0) -> float:
         """The discounted progress of the hypothesis; the robot plays ``prefix`` first, then its subtask."""
         rng = np.random.default_rng(seed)
         memory = HumanMemory(subtask=human_subtask, held=world.human.held)
         robot_task: Subtask | None = robot_subtask
         phi = potential(world, self.cfg)
         total, discount = 0.0, 1.0
+        human_still = parked_for
         for t in range(horizon):
             h_action, memory = self.human.act(world, kb, memory, rng)
             if robot_task is None:
                 robot_task = self.tasker.nearest(world, self.tasker.options(world, None), memory.subtask)
-            r_action = prefix[t] if t < len(prefix) else self.robot_move(world, robot_task)
+            r_action = prefix[t] if t < len(prefix) else self.robot_move(world, robot_task, human_still >= 2)
+            human_before = world.human.pos
             held_before = world.robot.held
             world, events = step(self.layout, world, {"human": h_action, "robot": r_action}, self.rules)
             if self.omniscient:
@@ -127,6 +134,7 @@ class Rollout:
                 kb = update_kb(kb, self.layout, world, angle=self.cfg.human_angle,
                                kb_delay=self.cfg.human_delay,
                                own_events=[e for e in events if e.agent == "human"])
+            human_still = human_still + 1 if world.human.pos == human_before else 0
             new_phi = potential(world, self.cfg)
             total += discount * (new_phi - phi)
             phi, discount = new_phi, discount * self.cfg.tick_discount
@@ -136,7 +144,9 @@ class Rollout:
                 break
         return total
 
-    def robot_move(self, world: WorldState, subtask: Subtask) -> Action:
+    def robot_move(self, world: WorldState, subtask: Subtask, human_parked: bool = False) -> Action:
+        """The robot's next move toward ``subtask`` (walking around a human parked for two ticks)."""
         pose = (world.robot.pos, world.robot.facing)
-        action, _ = self.robot_model.move_toward(pose, self.tasker.targets(subtask, world), world.human.pos)
+        action, _ = self.robot_model.move_toward(pose, self.tasker.targets(subtask, world), world.human.pos,
+                                                 partner_parked=human_parked)
         return action

@@ -3,5 +3,5 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 cd "$root"
-make -s setup >/dev/null
+make -s setup >/dev/null 2>&1
 exec "$root/.venv/bin/python" "$root/benchmarks/planner/bench.py" "$@"
