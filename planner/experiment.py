@@ -30,6 +30,7 @@ class TrialSpec:
     seed: int
     human_angle: float = 120.0
     kb_delay: int = 3
+    rollout_samples: int = 1
 
 
 def run_spec(spec: TrialSpec) -> dict[str, object]:
@@ -39,7 +40,8 @@ def run_spec(spec: TrialSpec) -> dict[str, object]:
     layout = load_layout(spec.layout_name)
     rules = Rules()
     robot = make_robot(spec.robot, layout, rules,
-                       PlannerConfig(human_angle=spec.human_angle, human_delay=spec.kb_delay, seed=spec.seed))
+                       PlannerConfig(human_angle=spec.human_angle, human_delay=spec.kb_delay, seed=spec.seed,
+                                     rollout_samples=spec.rollout_samples))
     result = run_trial(layout, spec.seed, TrialSettings(angle=spec.human_angle, kb_delay=spec.kb_delay,
                                                          rules=rules), robot=robot)
     times = np.array(result.decision_ms) if result.decision_ms else np.zeros(1)

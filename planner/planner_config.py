@@ -12,6 +12,7 @@ class PlannerConfig:
     human's KB; 0 = the no-rollout robot. ``search_depth`` (n): subtasks looked ahead per agent.
     ``belief_threshold``: human subtasks below it are not planned for. ``gamma``: the QMDP discount;
     ``tick_discount``: the per-tick discount of progress inside a lookahead (paper: 0.8 per abstract depth).
+    ``rollout_samples``: simulated futures averaged per hypothesis (the human's choices are random).
     Rewards are the reference implementation's shaping (DOMAIN §5, step 4)."""
 
     human_angle: float = 120.0
@@ -32,6 +33,7 @@ class PlannerConfig:
     hold_steak: float = 20.0
     hold_dish: float = 30.0
     commitment_bonus: float = 1.0
+    rollout_samples: int = 1
     seed: int = 0
 
     def omniscient_human(self) -> PlannerConfig:

@@ -108,8 +108,7 @@ class QmdpRobot:
             if deadline is not None and q and time.perf_counter() > deadline:
                 timed_out = True
                 break
-            value = sum(p * self.rollout.value(world, self.kb, s, r, horizon, seed, parked_for=self.human_still)
-                        for s, p in likely)
+            value = sum(p * self.sampled(world, s, r, horizon, seed) for s, p in likely)
             q[r] = self.cfg.gamma * value + (self.cfg.commitment_bonus if r is self.current else 0.0)
         best = max(q, key=lambda r: (q[r], r is self.current, -options.index(r)))
         self.current = best
@@ -148,12 +147,20 @@ class QmdpRobot:
             if deadline is not None and time.perf_counter() > deadline:
                 break
             plan = (move,) + rest
-            v = sum(p * self.rollout.value(world, self.kb, s, subtask, horizon, seed, prefix=plan,
-                                           parked_for=self.human_still) for s, p in likely)
+            v = sum(p * self.sampled(world, s, subtask, horizon, seed, plan) for s, p in likely)
             scored.append((v, move is default, move))
         chosen = max(scored, key=lambda t: (t[0], t[1]))[2]
         self.pending = candidates[chosen]
         return chosen, len(scored)
+
+    def sampled(self, world: WorldState, human_subtask: Subtask, robot_subtask: Subtask, horizon: int,
+                seed: int, prefix: tuple[Action, ...] = ()) -> float:
+        """The mean rollout value over ``rollout_samples`` seeded futures (the same seeds for every
+        candidate, so candidates are compared on common random numbers)."""
+        assert self.kb is not None
+        n = max(self.cfg.rollout_samples, 1)
+        return sum(self.rollout.value(world, self.kb, human_subtask, robot_subtask, horizon, seed + 7919 * i,
+                                      prefix=prefix, parked_for=self.human_still) for i in range(n)) / n
 
     def yield_if_blocking(self, world: WorldState, subtask: Subtask, action: Action) -> Action:
         """The human model's yield rule for the robot: waiting at a station (steak not ready, garnish not
