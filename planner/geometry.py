@@ -68,7 +68,10 @@ MOTIONS: tuple[Action, ...] = MOVES + (Action.STAY,)
 
 
 def move_action(direction: Direction) -> Action:
-    return Action(direction.value)
+    return _MOVE_OF[direction]
+
+
+_MOVE_OF: dict[Direction, Action] = {d: Action(d.value) for d in DIRECTIONS}
 
 
 def manhattan(a: Pos, b: Pos) -> int:

@@ -70,16 +70,18 @@ def best_moves(layout: Layout, pose: Pose, target: Pos, blocked: Pos | None = No
 
     Empty when already there or when every shortening move is blocked.
     """
+    return [action for action, cell in _shortening(layout, target).get(pose, ()) if cell != blocked]
+
+
+@lru_cache(maxsize=4096)
+def _shortening(layout: Layout, target: Pos) -> dict[Pose, tuple[tuple[Action, Pos], ...]]:
+    """Per pose, the moves (and the cell each ends on) that shorten the way to ``target``."""
     table = distances_to(layout, target)
-    here = table.get(pose, UNREACHABLE)
-    moves = []
-    for d in DIRECTIONS:
-        nxt = next_pose(layout, pose, d)
-        if blocked is not None and nxt[0] == blocked:
-            continue
-        if table.get(nxt, UNREACHABLE) < here:
-            moves.append(move_action(d))
-    return moves
+    result: dict[Pose, tuple[tuple[Action, Pos], ...]] = {}
+    for pose, here in table.items():
+        result[pose] = tuple((move_action(d), nxt[0]) for d in DIRECTIONS
+                             if table.get(nxt := next_pose(layout, pose, d), UNREACHABLE) < here)
+    return result
 
 
 @lru_cache(maxsize=65536)
