@@ -1,0 +1,93 @@
+"""The FastAPI application: ``create_app(settings)``.
+
+Studies are loaded and validated when the app is created (an invalid study raises before anything
+starts). At start-up the lifespan opens the store and migrates it, records the studies, starts the
+background writer, the robot worker pool and the game registry, and puts them in ``app.state.services``;
+at shutdown it suspends the live trials (they resume from the store), flushes the writer and stops the
+workers. No module-level mutable state.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import secrets
+from collections.abc import AsyncIterator, Callable
+from contextlib import asynccontextmanager
+from typing import Any
+
+from fastapi import FastAPI
+
+from server import errors
+from server.catalog import Catalog, load_catalog
+from server.game.live import GameDeps
+from server.game.registry import GameRegistry
+from server.robots import make_pool
+from server.routes import admin, health, participant, play
+from server.routes.static import client_files
+from server.services import Services
+from server.settings import Settings
+from server.store.engine import Store
+from server.store.migrate import startup_lock
+from server.store.studies import sync_study
+from server.store.writer import BatchWriter
+
+log = logging.getLogger("server")
+
+
+def create_app(settings: Settings | None = None, *, robot_factory: Callable[..., Any] | None = None) -> FastAPI:
+    """The app for ``settings`` (read from the environment when omitted).
+
+    ``robot_factory`` replaces ``settings.robot_factory`` for in-process planners (``robot_workers = 0``).
+    """
+    settings = settings or Settings()
+    catalog = load_catalog(settings.study_files)
+    admin_token = _admin_token(settings)
+
+    @asynccontextmanager
+    async def lifespan(app: FastAPI) -> AsyncIterator[None]:
+        store = Store(settings.database_url)
+        await asyncio.to_thread(_prepare_store, store, catalog)
+        writer = BatchWriter(store, settings.flush_interval_s)
+        writer.start()
+        pool = make_pool(settings.workers, settings.robot_factory, robot_factory)
+        await pool.start()
+        deps = GameDeps(store, writer, pool, settings.decision_deadline_fraction, settings.max_message_bytes,
+                        on_end=lambda game: None)
+        registry = GameRegistry(catalog, deps, settings.sweep_interval_s)
+        await registry.start()
+        app.state.services = Services(settings, catalog, store, writer, pool, registry, admin_token)
+        log.info("serving %s on %s with %s robot worker(s)", ", ".join(catalog.studies), store.dialect,
+                 settings.workers or "in-process")
+        try:
+            yield
+        finally:
+            await registry.shutdown()
+            await writer.close()
+            await pool.shutdown()
+            store.dispose()
+
+    app = FastAPI(title="Steakhouse Study", version="0.1.0", lifespan=lifespan)
+    errors.install(app)
+    for module in (health, participant, play, admin):
+        app.include_router(module.router)
+    static = settings.static_root()
+    if static is not None:
+        app.mount("/", client_files(static), name="client")
+    return app
+
+
+def _prepare_store(store: Store, catalog: Catalog) -> None:
+    store.migrate()
+    with store.transaction() as session:
+        startup_lock(session)
+        for loaded in catalog:
+            sync_study(session, loaded.study)
+
+
+def _admin_token(settings: Settings) -> str:
+    if settings.admin_token is not None and settings.admin_token.get_secret_value():
+        return settings.admin_token.get_secret_value()
+    token = secrets.token_urlsafe(24)
+    log.warning("no STEAKHOUSE_ADMIN_TOKEN set; the admin token for this run is: %s", token)
+    return token

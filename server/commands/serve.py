@@ -1,0 +1,70 @@
+"""``steakhouse serve``: run the study server (FastAPI on uvicorn).
+
+Options override the ``STEAKHOUSE_*`` environment (see :mod:`server.settings`); without ``--study`` the
+shipped ``demo.yaml`` and ``paper_study.yaml`` are served; without ``--database-url`` (or ``DATABASE_URL``)
+the store is the SQLite file ``./data/steakhouse.sqlite3``, created with its folder. Invalid settings or
+study files stop the command with every problem listed (exit 1).
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import sys
+from typing import Any
+
+from server.cli import UsageError
+
+
+def register(subparsers: Any) -> None:
+    parser = subparsers.add_parser("serve", help="run the study server",
+                                   description="Run the study server (participant pages, websocket, admin API).")
+    parser.add_argument("--host", help="interface to listen on (default 127.0.0.1; 0.0.0.0 in a container)")
+    parser.add_argument("--port", type=int, help="TCP port (default 8000)")
+    parser.add_argument("--study", action="append", metavar="FILE", dest="studies",
+                        help="study YAML to serve (repeatable; default: the shipped demo and paper studies)")
+    parser.add_argument("--database-url", metavar="URL",
+                        help="SQLAlchemy URL of the store (default: sqlite:///./data/steakhouse.sqlite3)")
+    parser.add_argument("--workers", type=int, metavar="N", dest="robot_workers",
+                        help="robot planner worker processes (default: CPU count; 0 = in the server process)")
+    parser.add_argument("--static", metavar="DIR", dest="static_dir", help="folder of the browser client")
+    parser.add_argument("--log-level", choices=("debug", "info", "warning", "error"))
+    parser.set_defaults(handler=serve, subparser=parser)
+
+
+def serve(args: argparse.Namespace) -> int:
+    import uvicorn
+    from pydantic import ValidationError
+
+    from planner.layout import LayoutError
+    from server.app import create_app
+    from server.catalog import DuplicateStudyError
+    from server.settings import Settings
+    from server.study import StudyConfigError
+
+    overrides: dict[str, Any] = {name: getattr(args, name) for name in
+                                 ("host", "port", "database_url", "robot_workers", "static_dir", "log_level")
+                                 if getattr(args, name) is not None}
+    if args.studies:
+        overrides["study_files"] = tuple(args.studies)
+    try:
+        settings = Settings(**overrides)
+    except ValidationError as exc:
+        problems = "; ".join(f"{'.'.join(str(p) for p in e['loc'])}: {e['msg']}" for e in exc.errors())
+        raise UsageError(f"invalid settings: {problems}") from None
+    logging.basicConfig(level=settings.log_level.upper(), format="%(asctime)s %(levelname)s %(name)s: %(message)s")
+    if settings.log_level != "debug":
+        logging.getLogger("alembic").setLevel(logging.WARNING)
+    try:
+        app = create_app(settings)
+    except StudyConfigError as exc:
+        for problem in exc.problems:
+            print(problem, file=sys.stderr)
+        print("the server did not start: fix the study file(s) above", file=sys.stderr)
+        return 1
+    except (LayoutError, DuplicateStudyError) as exc:
+        print(f"{exc}\nthe server did not start", file=sys.stderr)
+        return 1
+    uvicorn.run(app, host=settings.host, port=settings.port, log_level=settings.log_level,
+                ws_max_size=settings.ws_max_frame_bytes, timeout_graceful_shutdown=5)
+    return 0

@@ -1,0 +1,71 @@
+"""A participant's plan: the fixed list of steps they go through, made once at join and stored with them.
+
+consent → instructions → practice trial(s) → for each condition of the assigned order: the trial, then
+every ``after_each_trial`` questionnaire → the ``end_of_study`` questionnaires → done.
+
+Storing the plan (rather than recomputing it from the study file) keeps a participant's progress stable
+if the study file is edited while they take part.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import asdict, dataclass
+from typing import Any, Literal
+
+from server.study import Study
+
+StepKind = Literal["consent", "instructions", "trial", "questionnaire", "done"]
+TrialKind = Literal["practice", "main"]
+
+
+@dataclass(frozen=True, slots=True)
+class Step:
+    """One step. Trial steps name the trial (kind, index within kind, 1-based number of all trials, total,
+    condition, robot, kitchen); questionnaire steps the questionnaire and the main trial it follows
+    (``None`` for end-of-study questionnaires)."""
+
+    kind: StepKind
+    trial_kind: TrialKind | None = None
+    index: int | None = None
+    number: int | None = None
+    total: int | None = None
+    condition: str | None = None
+    robot: str | None = None
+    kitchen: str | None = None
+    questionnaire: str | None = None
+    after_trial: int | None = None
+
+    def to_dict(self) -> dict[str, Any]:
+        return {k: v for k, v in asdict(self).items() if v is not None}
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> Step:
+        return cls(**data)
+
+
+def build_plan(study: Study, order: Sequence[str]) -> tuple[Step, ...]:
+    """The steps for a participant assigned ``order`` (condition ids) in ``study``."""
+    conditions = {c.id: c for c in study.conditions}
+    practice = [(p.kitchen.name, p.robot) for p in study.practice for _ in range(p.count)]
+    total = len(practice) + len(order)
+    steps: list[Step] = [Step("consent"), Step("instructions")]
+    for i, (kitchen, robot) in enumerate(practice):
+        steps.append(Step("trial", "practice", i, i + 1, total, f"{robot}@{kitchen}", robot, kitchen))
+    after_each = [q.id for q in study.questionnaires if q.when == "after_each_trial"]
+    for i, cid in enumerate(order):
+        condition = conditions[cid]
+        number = len(practice) + i + 1
+        steps.append(Step("trial", "main", i, number, total, cid, condition.robot, condition.kitchen))
+        steps += [Step("questionnaire", questionnaire=q, after_trial=i) for q in after_each]
+    steps += [Step("questionnaire", questionnaire=q.id) for q in study.questionnaires if q.when == "end_of_study"]
+    steps.append(Step("done"))
+    return tuple(steps)
+
+
+def plan_to_json(plan: Sequence[Step]) -> list[dict[str, Any]]:
+    return [step.to_dict() for step in plan]
+
+
+def plan_from_json(data: Sequence[dict[str, Any]]) -> tuple[Step, ...]:
+    return tuple(Step.from_dict(item) for item in data)

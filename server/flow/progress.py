@@ -1,0 +1,115 @@
+"""The participant's progress as an explicit state machine (STYLE 8): illegal transitions are refused.
+
+States (what the participant is shown now): ``consent`` (just joined) → ``instructions`` → ``practice``
+(one state per practice trial) → ``trial`` and ``questionnaire`` alternating → ``done``; declining
+consent leads to ``screened_out``. Transitions:
+
+=================  ============================  ====================================
+action             legal in                      leads to
+=================  ============================  ====================================
+accept_consent     consent                       the next step (instructions)
+decline_consent    consent                       screened_out
+finish_instructions instructions                 the next step
+end_trial          practice / trial (same trial) the next step (finished or abandoned)
+submit_questionnaire questionnaire (same id)     the next step
+=================  ============================  ====================================
+
+``done`` and ``screened_out`` are final. Any other action raises :class:`IllegalTransition` (HTTP 409).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import Enum
+
+from server.flow.plan import Step
+
+
+class Phase(str, Enum):
+    CONSENT = "consent"
+    INSTRUCTIONS = "instructions"
+    PRACTICE = "practice"
+    TRIAL = "trial"
+    QUESTIONNAIRE = "questionnaire"
+    DONE = "done"
+    SCREENED_OUT = "screened_out"
+
+
+class Move(str, Enum):
+    ACCEPT_CONSENT = "accept_consent"
+    DECLINE_CONSENT = "decline_consent"
+    FINISH_INSTRUCTIONS = "finish_instructions"
+    END_TRIAL = "end_trial"
+    SUBMIT_QUESTIONNAIRE = "submit_questionnaire"
+
+
+_LEGAL: dict[Phase, frozenset[Move]] = {
+    Phase.CONSENT: frozenset({Move.ACCEPT_CONSENT, Move.DECLINE_CONSENT}),
+    Phase.INSTRUCTIONS: frozenset({Move.FINISH_INSTRUCTIONS}),
+    Phase.PRACTICE: frozenset({Move.END_TRIAL}),
+    Phase.TRIAL: frozenset({Move.END_TRIAL}),
+    Phase.QUESTIONNAIRE: frozenset({Move.SUBMIT_QUESTIONNAIRE}),
+    Phase.DONE: frozenset(),
+    Phase.SCREENED_OUT: frozenset(),
+}
+
+STATUS_IN_PROGRESS = "in_progress"
+STATUS_COMPLETED = "completed"
+STATUS_SCREENED_OUT = "screened_out"
+
+
+class IllegalTransition(Exception):
+    """An action the participant's current state does not allow."""
+
+    def __init__(self, phase: Phase, move: Move, reason: str = "") -> None:
+        self.phase, self.move = phase, move
+        detail = f": {reason}" if reason else ""
+        super().__init__(f"cannot {move.value} in state {phase.value}{detail}")
+
+
+@dataclass(frozen=True, slots=True)
+class Progress:
+    """Where a participant is in their plan; :meth:`apply` returns the progress after a legal move."""
+
+    plan: tuple[Step, ...]
+    step: int
+    screened_out: bool = False
+
+    def __post_init__(self) -> None:
+        if not 0 <= self.step < len(self.plan):
+            raise ValueError(f"step {self.step} outside the plan of {len(self.plan)} steps")
+
+    @property
+    def current(self) -> Step:
+        return self.plan[self.step]
+
+    @property
+    def phase(self) -> Phase:
+        if self.screened_out:
+            return Phase.SCREENED_OUT
+        step = self.current
+        if step.kind == "trial":
+            return Phase.PRACTICE if step.trial_kind == "practice" else Phase.TRIAL
+        return Phase(step.kind)
+
+    @property
+    def status(self) -> str:
+        if self.screened_out:
+            return STATUS_SCREENED_OUT
+        return STATUS_COMPLETED if self.phase is Phase.DONE else STATUS_IN_PROGRESS
+
+    def apply(self, move: Move, *, trial: tuple[str, int] | None = None,
+              questionnaire: str | None = None) -> Progress:
+        """The progress after ``move``; ``trial`` is ``(kind, index)`` for ``end_trial``, ``questionnaire``
+        the id for ``submit_questionnaire`` (both must name the current step)."""
+        phase = self.phase
+        if move not in _LEGAL[phase]:
+            raise IllegalTransition(phase, move)
+        step = self.current
+        if move is Move.END_TRIAL and trial != (step.trial_kind, step.index):
+            raise IllegalTransition(phase, move, f"the current trial is {step.trial_kind} {step.index}")
+        if move is Move.SUBMIT_QUESTIONNAIRE and questionnaire != step.questionnaire:
+            raise IllegalTransition(phase, move, f"the current questionnaire is {step.questionnaire!r}")
+        if move is Move.DECLINE_CONSENT:
+            return Progress(self.plan, self.step, screened_out=True)
+        return Progress(self.plan, self.step + 1)

@@ -1,0 +1,50 @@
+"""Request and response bodies of the participant API (Create / Public schemas)."""
+
+from __future__ import annotations
+
+from typing import Annotated, Any
+
+from pydantic import BaseModel, ConfigDict, Field, StringConstraints
+
+ParamValue = Annotated[str, StringConstraints(max_length=200)]
+
+
+class JoinRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    recruiting: dict[Annotated[str, StringConstraints(max_length=64)], ParamValue] = Field(
+        default_factory=dict, max_length=20)
+    """The landing URL's query parameters; only the study's ``recruiting.url_parameters`` are kept."""
+    test_run: bool = False
+    """Mark this participant as a test run (not counted for assignment, excluded from exports)."""
+
+
+class JoinResponse(BaseModel):
+    token: str
+    """Send as ``Authorization: Bearer <token>`` (or ``?token=`` on the websocket). Shown once."""
+    participant_id: str
+    study_id: str
+    order_index: int
+    condition_order: list[str]
+    state: str
+    rejoined: bool
+
+
+class ConsentRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    accept: bool
+
+
+class QuestionnaireRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    questionnaire_id: Annotated[str, StringConstraints(max_length=64)]
+    answers: dict[Annotated[str, StringConstraints(max_length=64)], Any] = Field(max_length=100)
+    """Item id → integer on the item's scale (``null`` or absent for an unanswered optional item)."""
+
+
+class StudyPublic(BaseModel):
+    id: str
+    title: str
+    url_parameters: list[str]

@@ -1,0 +1,158 @@
+"""The participant operations behind the REST API and the game: each one transaction over the store.
+
+- :func:`join`: least-filled condition order (see :mod:`server.store.assignment`), plan, token. A second
+  join with the same recruiting participant id (the study's first URL parameter, e.g. ``PROLIFIC_PID``)
+  returns the same participant with a fresh token (the old one stops working): never two assignments.
+- :func:`move`: one state-machine transition, applied only if nobody moved the participant meanwhile.
+- :func:`submit_questionnaire`: answers checked, stored and the transition made, all or nothing.
+- :func:`end_trial`: the trial row ended and the participant moved past it, together.
+"""
+
+from __future__ import annotations
+
+import secrets
+import uuid
+from dataclasses import dataclass
+from typing import Any
+
+from sqlalchemy.orm import Session
+
+from server.catalog import LoadedStudy
+from server.errors import AnswerProblems, ApiError
+from server.flow.answers import check_answers
+from server.flow.plan import build_plan, plan_from_json, plan_to_json
+from server.flow.progress import IllegalTransition, Move, Progress
+from server.store import assignment, participants, trials
+from server.store.engine import Store
+from server.store.tables import AnswerRow, AssignmentRow, ParticipantRow
+from server.store.types import utcnow
+
+
+@dataclass(frozen=True)
+class Joined:
+    token: str
+    participant: ParticipantRow
+    assignment: AssignmentRow
+    rejoined: bool
+
+
+def progress_of(row: ParticipantRow) -> Progress:
+    return Progress(plan_from_json(row.plan), row.step, screened_out=row.status == "screened_out")
+
+
+def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run: bool) -> Joined:
+    study = loaded.study
+    names = study.recruiting.url_parameters
+    kept = {name: recruiting[name] for name in names if name in recruiting}
+    recruit_id = kept.get(names[0]) if names else None
+    token = secrets.token_urlsafe(32)
+    with store.transaction() as session:
+        assignment.lock_study(session, study.id)
+        if recruit_id:
+            existing = participants.by_recruit_id(session, study.id, recruit_id)
+            if existing is not None:
+                participants.rotate_token(session, existing.id, token)
+                found = participants.assignment_of(session, existing.id)
+                if found is None:
+                    raise ApiError(500, "internal", "participant without assignment")
+                return Joined(token, existing, found, rejoined=True)
+        counts = assignment.order_counts(session, study.id, len(loaded.orders), utcnow(),
+                                         study.assignment.in_progress_window_minutes)
+        index = assignment.least_filled(counts)
+        order = list(loaded.orders[index])
+        plan = build_plan(study, order)
+        row = participants.create(
+            session, study_id=study.id, public_id=uuid.uuid4().hex, token=token, recruit_id=recruit_id,
+            recruiting=kept, config_hash=study.config_hash(), plan=plan_to_json(plan),
+            state=Progress(plan, 0).phase.value, test_run=test_run or study.test_run, order_index=index,
+            condition_order=order)
+        found = participants.assignment_of(session, row.id)
+        if found is None:
+            raise ApiError(500, "internal", "assignment not stored")
+        return Joined(token, row, found, rejoined=False)
+
+
+def _apply(session: Session, row: ParticipantRow, progress: Progress, new: Progress, move_: Move) -> None:
+    moved = participants.advance(session, row.id, from_step=progress.step, to_step=new.step,
+                                 state=new.phase.value, status=new.status)
+    if not moved:
+        raise IllegalTransition(progress.phase, move_, "the participant was moved by another request")
+
+
+def move(store: Store, participant_id: int, move_: Move) -> Progress:
+    """Apply ``move_`` (consent, instructions) to the participant's current state."""
+    with store.transaction() as session:
+        row = _load(session, participant_id)
+        progress = progress_of(row)
+        new = progress.apply(move_)
+        _apply(session, row, progress, new, move_)
+        return new
+
+
+def submit_questionnaire(store: Store, loaded: LoadedStudy, participant_id: int, questionnaire_id: str,
+                         answers: dict[str, Any]) -> Progress:
+    with store.transaction() as session:
+        row = _load(session, participant_id)
+        progress = progress_of(row)
+        new = progress.apply(Move.SUBMIT_QUESTIONNAIRE, questionnaire=questionnaire_id)
+        questionnaire = next((q for q in loaded.study.questionnaires if q.id == questionnaire_id), None)
+        if questionnaire is None:
+            raise ApiError(409, "unknown_questionnaire", f"questionnaire {questionnaire_id!r} is not in the study")
+        problems = check_answers(questionnaire, answers)
+        if problems:
+            raise AnswerProblems(problems)
+        step = progress.current
+        trial = (trials.latest_attempt(session, row.id, "main", step.after_trial)
+                 if step.after_trial is not None else None)
+        now = utcnow()
+        for item in questionnaire.items:
+            session.add(AnswerRow(participant_id=row.id, questionnaire_id=questionnaire.id, step=progress.step,
+                                  after_trial=step.after_trial, trial_id=trial.id if trial else None,
+                                  item_id=item.id, value=answers.get(item.id), created_at=now))
+        _apply(session, row, progress, new, Move.SUBMIT_QUESTIONNAIRE)
+        return new
+
+
+def end_trial_in(session: Session, participant_id: int, trial_id: int, kind: str, index: int, *, status: str,
+                 reason: str, ticks: int | None = None, delivered: int | None = None,
+                 score: int | None = None) -> Progress | None:
+    """End the trial row and move the participant past the trial (inside ``session``'s transaction).
+
+    Returns the participant's new progress, or ``None`` if the trial had already ended.
+    """
+    if not trials.end(session, trial_id, status=status, reason=reason, ticks=ticks, delivered=delivered,
+                      score=score):
+        return None
+    row = _load(session, participant_id)
+    progress = progress_of(row)
+    try:
+        new = progress.apply(Move.END_TRIAL, trial=(kind, index))
+    except IllegalTransition:
+        return progress
+    _apply(session, row, progress, new, Move.END_TRIAL)
+    return new
+
+
+def end_trial(store: Store, participant_id: int, trial_id: int, kind: str, index: int,
+              **outcome: Any) -> Progress | None:
+    with store.transaction() as session:
+        return end_trial_in(session, participant_id, trial_id, kind, index, **outcome)
+
+
+def completion(loaded: LoadedStudy, row: ParticipantRow) -> dict[str, Any]:
+    """The end page's code and redirect; 409 until the participant is done or screened out."""
+    recruiting = loaded.study.recruiting
+    if row.status == "completed":
+        return {"kind": "completion", "code": recruiting.completion_code,
+                "redirect_url": recruiting.redirect("completion")}
+    if row.status == "screened_out":
+        return {"kind": "screen_out", "code": recruiting.screen_out_code,
+                "redirect_url": recruiting.redirect("screen_out")}
+    raise ApiError(409, "not_finished", f"the session is in state {row.state!r}, not finished")
+
+
+def _load(session: Session, participant_id: int) -> ParticipantRow:
+    row = session.get(ParticipantRow, participant_id, populate_existing=True)
+    if row is None:
+        raise ApiError(404, "not_found", "no such participant")
+    return row

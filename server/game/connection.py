@@ -1,0 +1,126 @@
+"""One participant's websocket, as an explicit state machine with an outbound queue.
+
+States: ``connecting`` → ``open`` (after ``hello``) → ``closing`` → ``closed``; any state may go to
+``closed`` when the socket breaks. Other transitions raise. Messages are numbered (``seq`` 1, 2, …) when
+queued and sent by one sender task, so a slow client never delays the game loop; a client that falls
+``MAX_QUEUE`` messages behind is disconnected (it can reconnect and resume).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import logging
+from enum import Enum
+from typing import Any
+
+from server.protocol.server import ServerMessage
+
+log = logging.getLogger(__name__)
+MAX_QUEUE = 256
+CLOSE_TIMEOUT_S = 2.0
+
+
+class ConnState(str, Enum):
+    CONNECTING = "connecting"
+    OPEN = "open"
+    CLOSING = "closing"
+    CLOSED = "closed"
+
+
+_NEXT: dict[ConnState, frozenset[ConnState]] = {
+    ConnState.CONNECTING: frozenset({ConnState.OPEN, ConnState.CLOSING, ConnState.CLOSED}),
+    ConnState.OPEN: frozenset({ConnState.CLOSING, ConnState.CLOSED}),
+    ConnState.CLOSING: frozenset({ConnState.CLOSED}),
+    ConnState.CLOSED: frozenset(),
+}
+
+
+class IllegalConnectionTransition(RuntimeError):
+    pass
+
+
+class Connection:
+    def __init__(self, websocket: Any) -> None:
+        self.websocket = websocket
+        self.state = ConnState.CONNECTING
+        self.sent = 0
+        self._queue: asyncio.Queue[str | None] = asyncio.Queue(MAX_QUEUE)
+        self._sender: asyncio.Task[None] | None = None
+        self.closed = asyncio.Event()
+        self.close_code = 1000
+
+    def _move(self, target: ConnState) -> None:
+        if target not in _NEXT[self.state]:
+            raise IllegalConnectionTransition(f"connection cannot go from {self.state.value} to {target.value}")
+        self.state = target
+        if target is ConnState.CLOSED:
+            self.closed.set()
+
+    def open(self) -> None:
+        self._move(ConnState.OPEN)
+        self._sender = asyncio.create_task(self._send_loop(), name="ws-sender")
+
+    @property
+    def is_open(self) -> bool:
+        return self.state is ConnState.OPEN
+
+    def send(self, message: ServerMessage) -> bool:
+        """Number and queue ``message``; ``False`` if the connection is not open (nothing is sent)."""
+        if self.state is not ConnState.OPEN:
+            return False
+        self.sent += 1
+        message.seq = self.sent
+        try:
+            self._queue.put_nowait(message.model_dump_json())
+        except asyncio.QueueFull:
+            log.warning("client too slow (%d messages queued); disconnecting it", MAX_QUEUE)
+            self.sent -= 1
+            self.begin_close(1013)
+            return False
+        return True
+
+    def begin_close(self, code: int = 1000) -> None:
+        """Stop accepting messages; the queued ones are sent, then the socket is closed with ``code``."""
+        if self.state in (ConnState.CLOSING, ConnState.CLOSED):
+            return
+        self.close_code = code
+        if self.state is ConnState.CONNECTING:
+            self._move(ConnState.CLOSING)
+            asyncio.get_running_loop().create_task(self._close_socket())
+            return
+        self._move(ConnState.CLOSING)
+        with contextlib.suppress(asyncio.QueueFull):
+            self._queue.put_nowait(None)
+        if self._queue.full() and self._sender is not None:
+            self._sender.cancel()
+
+    def broken(self) -> None:
+        """The socket failed or the client left: nothing more can be sent."""
+        if self.state is not ConnState.CLOSED:
+            self._move(ConnState.CLOSED)
+        if self._sender is not None and self._sender is not asyncio.current_task():
+            self._sender.cancel()
+
+    async def _send_loop(self) -> None:
+        try:
+            while True:
+                text = await self._queue.get()
+                if text is None:
+                    break
+                await self.websocket.send_text(text)
+        except asyncio.CancelledError:
+            pass
+        except Exception:  # noqa: BLE001 - a broken socket ends the connection
+            self.broken()
+            return
+        await self._close_socket()
+
+    async def _close_socket(self) -> None:
+        with contextlib.suppress(Exception):
+            await asyncio.wait_for(self.websocket.close(code=self.close_code), CLOSE_TIMEOUT_S)
+        if self.state is not ConnState.CLOSED:
+            self._move(ConnState.CLOSED)
+
+    async def wait_closed(self) -> None:
+        await self.closed.wait()

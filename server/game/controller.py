@@ -1,0 +1,125 @@
+"""The participant's control of the avatar: a chosen subtask, or interrupt actions (DOMAIN §4).
+
+- ``select(subtask)`` replaces the current subtask (and drops queued interrupts). Each tick the avatar
+  takes the first move of a shortest path over (cell, facing) to the nearest target of the subtask,
+  re-planned every tick, and interacts when it faces the target (``HumanModel.move_toward``). Targets are
+  judged on the participant's **modelled KB**, not the world: the avatar walks to where the participant
+  can know things are (a steak they have not seen is not a target).
+- The robot's cell is avoided only while the robot is in the participant's view, so the avatar never
+  routes around a robot the participant cannot see (if it bumps into one, it is then facing it).
+- ``interrupt(up/down/left/right/stay/interact)`` overrides the subtask for one tick, at the next tick, in
+  the order pressed (at most ``QUEUE_LIMIT`` waiting); the subtask then continues from the new pose.
+  ``interrupt(stop)`` cancels the subtask and the queued interrupts at once.
+- A subtask ends when it is done (``planner.subtasks.is_done`` on what the avatar held before and after the
+  step and the modelled KB), whoever's action finished it. The participant may choose any subtask; the
+  ones the model of the participant considers available (``available``) are a hint for the client.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from enum import Enum
+from typing import Any
+
+import numpy as np
+
+from planner.fov import view
+from planner.geometry import Action, Pos
+from planner.human import HumanModel
+from planner.kb import KnowledgeBase
+from planner.layout import Layout
+from planner.rules import Rules
+from planner.state import WorldState
+from planner.subtasks import Believed, Subtask, available, is_done, targets
+
+QUEUE_LIMIT = 3
+OFF_GRID: Pos = (-1, -1)
+
+
+class Interrupt(str, Enum):
+    UP = "up"
+    DOWN = "down"
+    LEFT = "left"
+    RIGHT = "right"
+    STAY = "stay"
+    INTERACT = "interact"
+    STOP = "stop"
+
+
+INTERRUPT_ACTION: dict[Interrupt, Action] = {
+    Interrupt.UP: Action.NORTH, Interrupt.DOWN: Action.SOUTH, Interrupt.LEFT: Action.WEST,
+    Interrupt.RIGHT: Action.EAST, Interrupt.STAY: Action.STAY, Interrupt.INTERACT: Action.INTERACT,
+}
+
+
+class ParticipantController:
+    def __init__(self, layout: Layout, rules: Rules, angle: float, subtask: Subtask | None = None,
+                 last: Subtask | None = None) -> None:
+        self.layout, self.rules, self.angle = layout, rules, angle
+        self.model = HumanModel(layout, rules)
+        self.subtask = subtask
+        self.last = last
+        self.queue: deque[Interrupt] = deque()
+
+    def select(self, subtask: Subtask) -> None:
+        self.subtask = self.last = subtask
+        self.queue.clear()
+
+    def interrupt(self, which: Interrupt) -> bool:
+        """Queue (or, for ``stop``, apply) an interrupt; ``False`` when the queue is full (nothing changes)."""
+        if which is Interrupt.STOP:
+            self.subtask = None
+            self.queue.clear()
+            return True
+        if len(self.queue) >= QUEUE_LIMIT:
+            return False
+        self.queue.append(which)
+        return True
+
+    def has_action(self) -> bool:
+        """Whether the avatar has something to do (the wait-for-participant clock steps only then)."""
+        return bool(self.queue) or self.subtask is not None
+
+    def decide(self, world: WorldState, kb: KnowledgeBase, rng: np.random.Generator) -> tuple[Action, str]:
+        """The avatar's action this tick and its source: ``interrupt``, ``subtask`` or ``idle``."""
+        if self.queue:
+            return INTERRUPT_ACTION[self.queue.popleft()], "interrupt"
+        if self.subtask is None:
+            return Action.STAY, "idle"
+        human = world.human
+        seen = view(self.layout, human.pos, human.facing, self.angle).cells
+        blocked = world.robot.pos if world.robot.pos in seen else OFF_GRID
+        cells = targets(self.layout, self.subtask, kb, self.rules)
+        action, _ = self.model.move_toward((human.pos, human.facing), cells, blocked, rng)
+        return action, "subtask"
+
+    def believed(self, world: WorldState, kb: KnowledgeBase) -> Believed:
+        return self.model.believed(world, kb)
+
+    def observe(self, before: WorldState, after: WorldState, kb: KnowledgeBase) -> bool:
+        """End the subtask if the last step finished it; whether it did."""
+        if self.subtask is None:
+            return False
+        if is_done(self.subtask, before.human.held, after.human.held, self.believed(after, kb), self.rules):
+            self.subtask = None
+            return True
+        return False
+
+    def available(self, world: WorldState, kb: KnowledgeBase) -> tuple[Subtask, ...]:
+        """The subtasks the model of the participant considers available (DOMAIN §4), judged on the KB."""
+        return available(self.believed(world, kb), self.rules, self.subtask or self.last)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"subtask": _value(self.subtask), "last": _value(self.last)}
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any], layout: Layout, rules: Rules, angle: float) -> ParticipantController:
+        return cls(layout, rules, angle, subtask=_subtask(data.get("subtask")), last=_subtask(data.get("last")))
+
+
+def _value(subtask: Subtask | None) -> str | None:
+    return None if subtask is None else subtask.value
+
+
+def _subtask(value: Any) -> Subtask | None:
+    return None if value is None else Subtask(value)

@@ -1,0 +1,96 @@
+"""One live trial's world, step by step: no clock, no I/O (the loop in :mod:`server.game.loop` drives it).
+
+Each tick: the participant's action comes from the controller (interrupt, subtask path, or stay), the
+robot's from its planner; the world steps; the participant's modelled KB is updated with the study's FOV
+angle and KB delay and the participant's own events (DOMAIN §3); the KB-gap components (paper §VII) and
+whether the robot is in the participant's FOV are computed for the tick record.
+
+Randomness: the avatar's tie-breaks draw from ``default_rng([seed, tick, 0])`` and the robot's from
+``default_rng([seed, tick, 1])``, so a trial resumed at tick t draws what it would have drawn.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from planner.events import Event
+from planner.fov import View, view
+from planner.geometry import Action
+from planner.kb import KnowledgeBase, initial_kb, update_kb
+from planner.layout import Layout
+from planner.rules import Rules
+from planner.state import WorldState, initial_state, is_done
+from planner.step import step
+from planner.subtasks import Subtask
+from planner.summary import gap_components, summarize
+from server.game.controller import ParticipantController
+
+
+@dataclass(frozen=True, slots=True)
+class TickOutcome:
+    """What one step did and what is logged for it (``world`` and ``kb`` after the step)."""
+
+    tick: int
+    human_action: Action
+    robot_action: Action
+    source: str
+    subtask: Subtask | None
+    events: tuple[Event, ...]
+    world: WorldState
+    kb: KnowledgeBase
+    kb_summary: dict[str, Any]
+    world_summary: dict[str, Any]
+    gap: dict[str, int]
+    robot_in_fov: bool
+    subtask_finished: bool
+
+
+class TrialEngine:
+    def __init__(self, layout: Layout, rules: Rules, *, angle: float, kb_delay: int, seed: int,
+                 world: WorldState | None = None, kb: KnowledgeBase | None = None,
+                 controller: ParticipantController | None = None) -> None:
+        self.layout, self.rules, self.angle, self.kb_delay, self.seed = layout, rules, angle, kb_delay, seed
+        self.world = world if world is not None else initial_state(layout, rules)
+        self.kb = kb if kb is not None else initial_kb(self.world)
+        self.controller = controller or ParticipantController(layout, rules, angle)
+        self.last_events: tuple[Event, ...] = ()
+
+    @property
+    def done(self) -> bool:
+        return is_done(self.world, self.rules)
+
+    @property
+    def tick(self) -> int:
+        return self.world.tick
+
+    def fov(self) -> View:
+        """The participant's view now (the one FOV function, ``planner.fov.view``)."""
+        human = self.world.human
+        return view(self.layout, human.pos, human.facing, self.angle)
+
+    def robot_rng(self, tick: int) -> np.random.Generator:
+        return np.random.default_rng([self.seed, tick, 1])
+
+    def advance(self, robot_action: Action) -> TickOutcome:
+        """Step the world once with the participant's action and ``robot_action``."""
+        if self.done:
+            raise RuntimeError("the trial is over")
+        before = self.world
+        rng = np.random.default_rng([self.seed, before.tick, 0])
+        subtask = self.controller.subtask
+        human_action, source = self.controller.decide(before, self.kb, rng)
+        world, events = step(self.layout, before, {"human": human_action, "robot": robot_action}, self.rules)
+        kb = update_kb(self.kb, self.layout, world, angle=self.angle, kb_delay=self.kb_delay,
+                       own_events=[e for e in events if e.agent == "human"])
+        finished = self.controller.observe(before, world, kb)
+        self.world, self.kb, self.last_events = world, kb, events
+        kb_sum, world_sum = summarize(kb, self.rules), summarize(world, self.rules)
+        return TickOutcome(
+            tick=world.tick, human_action=human_action, robot_action=robot_action, source=source,
+            subtask=subtask, events=events, world=world, kb=kb, kb_summary=kb_sum.to_dict(),
+            world_summary=world_sum.to_dict(), gap=gap_components(kb_sum, world_sum),
+            robot_in_fov=world.robot.pos in self.fov().cells, subtask_finished=finished,
+        )

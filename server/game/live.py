@@ -1,0 +1,290 @@
+"""One live trial: the participant's connection, their messages, and the game loop task.
+
+The clock (PRODUCT "Runtime shape"):
+
+- ``fixed_rate``: a step every ``1 / tick_rate_hz`` seconds; ``wait_for_participant``: a step only when
+  the avatar has something to do (a queued interrupt or a subtask), never faster than the tick rate.
+- **The world is paused while no participant is connected** (the researcher's choice: a dropped
+  connection must not cost the participant ticks); the next step comes one period after they return.
+- Tick lateness = actual start of a step − its scheduled start (logged per tick). A late step does not
+  cause a burst of catch-up steps.
+- The robot's decision for a state is requested as soon as the state exists, with a deadline of
+  ``decision_deadline_fraction`` of the period; a missed deadline makes the robot stay that tick and is
+  logged as a ``deadline_miss`` event.
+
+Client messages are applied between ticks (the loop and the handlers share one event loop thread), so an
+interrupt acts at the next tick. Every accepted message is answered by ``ack`` (``pong`` for heartbeats),
+every rejected one by a typed ``error``.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import logging
+import time
+from collections import deque
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from server.catalog import LoadedStudy
+from server.flow import service
+from server.game import snapshot
+from server.game.connection import Connection
+from server.game.engine import TickOutcome, TrialEngine
+from server.game.meta import TrialMeta
+from server.game.records import tick_row
+from server.protocol.client import Blur, Focus, Heartbeat, Idle, InterruptMessage, SelectSubtask
+from server.protocol.inbound import Inbound, ProtocolError
+from server.protocol.server import Ack, Error, Pong, State, TrialEnd
+from server.robots import RobotChoice, RobotPool
+from server.store.engine import Store
+from server.store.types import utcnow
+from server.store.writer import BatchWriter
+
+log = logging.getLogger(__name__)
+MAX_LOGGED_ERRORS = 50
+
+
+@dataclass(frozen=True)
+class GameDeps:
+    store: Store
+    writer: BatchWriter
+    pool: RobotPool
+    deadline_fraction: float
+    max_message_bytes: int
+    on_end: Callable[[LiveGame], None]
+
+
+class LiveGame:
+    def __init__(self, meta: TrialMeta, loaded: LoadedStudy, engine: TrialEngine, deps: GameDeps,
+                 resumed: bool) -> None:
+        self.meta, self.loaded, self.engine, self.deps, self.resumed = meta, loaded, engine, deps, resumed
+        timing = loaded.study.timing
+        self.mode, self.rate, self.period = timing.mode, timing.tick_rate_hz, 1.0 / timing.tick_rate_hz
+        self.connection: Connection | None = None
+        self.inbound = Inbound(deps.max_message_bytes)
+        self.connected = asyncio.Event()
+        self.wake = asyncio.Event()
+        self.finished = False
+        self.task: asyncio.Task[None] | None = None
+        self._decision: asyncio.Task[RobotChoice] | None = None
+        self._decision_tick = -1
+        self.last_choice: RobotChoice | None = None
+        self.lateness: deque[float] = deque(maxlen=5000)
+        self.misses = 0
+        self._errors_logged = 0
+
+    # -- connection ---------------------------------------------------------------------------------
+
+    def start(self) -> None:
+        self.task = asyncio.create_task(self.run(), name=f"trial-{self.meta.trial_id}")
+
+    def attach(self, conn: Connection) -> None:
+        """Make ``conn`` the participant's connection (replacing an older one) and send hello + state."""
+        replaced = self.connection
+        if replaced is not None:
+            replaced.send(Error(code="replaced", message="this trial was opened in another window"))
+            replaced.begin_close(4000)
+        self.connection = conn
+        self.inbound = Inbound(self.deps.max_message_bytes)
+        conn.open()
+        conn.send(snapshot.hello(self.meta, self.engine, mode=self.mode, rate=self.rate,
+                                 resumed=self.resumed or self.engine.tick > 0, limit=self.deps.max_message_bytes))
+        conn.send(self.state_message())
+        self.event("connect", {"replaced": replaced is not None, "resumed_at": self.engine.tick})
+        self.connected.set()
+        self.wake.set()
+
+    def detach(self, conn: Connection) -> bool:
+        """Forget ``conn`` if it is the current connection (the world pauses); whether it was."""
+        if conn is not self.connection:
+            return False
+        self.connection = None
+        self.connected.clear()
+        self.event("disconnect", {})
+        self.wake.set()
+        return True
+
+    def state_message(self) -> State:
+        return snapshot.state(self.engine, mode=self.mode, rate=self.rate, ack=self.inbound.last_seq)
+
+    # -- client messages ------------------------------------------------------------------------------
+
+    def handle(self, conn: Connection, text: str | None, data: bytes | None = None) -> None:
+        """Apply one client frame, answering ``ack`` / ``pong`` or a typed ``error`` (nothing changed)."""
+        if conn is not self.connection or not conn.is_open:
+            return
+        try:
+            message = self.inbound.check(text, data)
+            if self.finished:
+                raise ProtocolError("not_playing", "the trial is over", message.seq)
+            controller = self.engine.controller
+            if isinstance(message, SelectSubtask):
+                hint = controller.available(self.engine.world, self.engine.kb)
+                controller.select(message.subtask)
+                self.event("select_subtask", {"seq": message.seq, "subtask": message.subtask.value,
+                                              "available": message.subtask in hint})
+            elif isinstance(message, InterruptMessage):
+                before = controller.subtask
+                if not controller.interrupt(message.action):
+                    raise ProtocolError("queue_full", "three interrupts are already waiting", message.seq)
+                self.event("interrupt", {"seq": message.seq, "action": message.action.value,
+                                         "subtask": before.value if before else None})
+            elif isinstance(message, Heartbeat):
+                self.inbound.accept(message.seq)
+                conn.send(Pong(ack=message.seq, client_time=message.client_time, server_time=time.time() * 1000))
+                return
+            elif isinstance(message, Focus | Blur):
+                self.event(message.type, {"seq": message.seq})
+            elif isinstance(message, Idle):
+                self.event("idle", {"seq": message.seq, "idle_ms": message.idle_ms})
+        except ProtocolError as exc:
+            conn.send(Error(code=exc.code, message=exc.message, ref=exc.ref))  # type: ignore[arg-type]
+            if self._errors_logged < MAX_LOGGED_ERRORS:
+                self._errors_logged += 1
+                self.event("error", {"code": exc.code, "ref": exc.ref})
+            return
+        self.inbound.accept(message.seq)
+        conn.send(Ack(ack=message.seq, subtask=controller.subtask.value if controller.subtask else None,
+                      queued=len(controller.queue)))
+        self.wake.set()
+
+    # -- the loop -------------------------------------------------------------------------------------
+
+    async def run(self) -> None:
+        try:
+            await self._play()
+        except asyncio.CancelledError:
+            raise
+        except Exception:
+            log.exception("game loop of trial %d failed", self.meta.trial_id)
+            self.event("error", {"code": "internal", "where": "game_loop"})
+            if self.connection is not None:
+                self.connection.send(Error(code="internal", message="the game stopped; reload to resume"))
+                self.connection.begin_close(1011)
+            self.deps.on_end(self)
+
+    async def _play(self) -> None:
+        period = self.period
+        next_at: float | None = None
+        last_start: float | None = None
+        self._request_decision()
+        while not self.engine.done:
+            if not self.connected.is_set():
+                await self.connected.wait()
+                next_at = None
+                continue
+            now = time.monotonic()
+            if self.mode == "wait_for_participant":
+                if not self.engine.controller.has_action():
+                    self.wake.clear()
+                    await self.wake.wait()
+                    continue
+                scheduled = now if last_start is None else max(last_start + period, now)
+            else:
+                scheduled = next_at if next_at is not None else now + period
+            if scheduled > now:
+                await asyncio.sleep(scheduled - now)
+            if not self.connected.is_set():
+                continue
+            started = time.monotonic()
+            choice = await self._take_decision()
+            outcome = self.engine.advance(choice.action)
+            self._record(outcome, choice, max(started - scheduled, 0.0) * 1000)
+            if choice.error == "worker_lost":
+                await self._reopen_planner()
+            if not self.engine.done:
+                self._request_decision()
+            if self.connection is not None:
+                self.connection.send(self.state_message())
+            last_start = started
+            next_at = max(scheduled + period, time.monotonic())
+        world = self.engine.world
+        await self.end("finished", "delivered" if world.orders_left == 0 else "horizon")
+
+    def _request_decision(self) -> None:
+        world = self.engine.world
+        deadline = time.monotonic() + self.deps.deadline_fraction * self.period
+        self._decision = asyncio.create_task(self.deps.pool.decide(
+            self.meta.trial_id, world, self.engine.last_events, self.meta.seed, world.tick, deadline))
+        self._decision_tick = world.tick
+
+    async def _take_decision(self) -> RobotChoice:
+        if self._decision is None or self._decision_tick != self.engine.tick:
+            self._request_decision()
+        assert self._decision is not None
+        choice = await self._decision
+        self._decision = None
+        self.last_choice = choice
+        if choice.missed:
+            self.misses += 1
+            self.event("deadline_miss", {"budget_ms": round(self.deps.deadline_fraction * self.period * 1000, 1),
+                                         "waited_ms": round(choice.decision_ms or 0.0, 1)})
+        elif choice.error is not None:
+            self.event("error", {"code": "robot", "message": choice.error[:300]})
+        return choice
+
+    async def _reopen_planner(self) -> None:
+        try:
+            await self.deps.pool.open(self.meta.trial_id, self.meta.robot, self.engine.layout, self.engine.rules,
+                                      self.engine.world)
+        except Exception as exc:  # noqa: BLE001 - the robot stays until a worker is back
+            log.error("cannot re-open the planner of trial %d: %s", self.meta.trial_id, exc)
+
+    def _record(self, outcome: TickOutcome, choice: RobotChoice, lateness_ms: float) -> None:
+        self.lateness.append(lateness_ms)
+        self.deps.writer.add_tick(tick_row(self.meta.trial_id, outcome, choice, lateness_ms,
+                                           self.engine.controller.to_dict()))
+
+    def event(self, kind: str, payload: dict[str, Any]) -> None:
+        self.deps.writer.add_event({"participant_id": self.meta.participant_id, "trial_id": self.meta.trial_id,
+                                    "tick": self.engine.tick, "kind": kind, "payload": payload,
+                                    "created_at": utcnow()})
+
+    # -- ending ---------------------------------------------------------------------------------------
+
+    async def end(self, status: str, reason: str) -> None:
+        """End the trial (``finished`` or ``abandoned``): store everything, move the participant on, tell
+        the client, free the planner. Called by the loop itself or, for abandonment, by the registry."""
+        if self.finished:
+            return
+        self.finished = True
+        if self.task is not None and self.task is not asyncio.current_task():
+            self.task.cancel()
+        if self._decision is not None:
+            self._decision.cancel()
+        world = self.engine.world
+        self.event("trial_end", {"status": status, "reason": reason, "ticks": world.tick})
+        await self.deps.writer.flush()
+        delivered = self.engine.rules.orders - world.orders_left
+        progress = await asyncio.to_thread(
+            service.end_trial, self.deps.store, self.meta.participant_id, self.meta.trial_id, self.meta.kind,
+            self.meta.index, status=status, reason=reason, ticks=world.tick, delivered=delivered, score=world.score)
+        if self.connection is not None:
+            self.connection.send(TrialEnd(status=status, reason=reason, ticks=world.tick,  # type: ignore[arg-type]
+                                          delivered=delivered, score=world.score,
+                                          next=progress.phase.value if progress else "unknown"))
+            self.connection.begin_close(1000)
+        await self.deps.pool.close_trial(self.meta.trial_id)
+        self.deps.on_end(self)
+
+    async def suspend(self) -> None:
+        """Stop the loop without ending the trial (server shutdown, eviction): it can be resumed from the store."""
+        for task in (self.task, self._decision):
+            if task is not None and not task.done():
+                task.cancel()
+                with contextlib.suppress(asyncio.CancelledError, Exception):
+                    await task
+        if self.connection is not None:
+            self.connection.begin_close(1012)
+        await self.deps.pool.close_trial(self.meta.trial_id)
+
+    def spectator(self) -> dict[str, Any]:
+        return snapshot.spectator(self.meta, self.engine, {
+            "connected": self.connection is not None, "mode": self.mode, "tick_rate_hz": self.rate,
+            "decision": self.last_choice.info if self.last_choice else None,
+            "decision_ms": self.last_choice.decision_ms if self.last_choice else None,
+            "deadline_misses": self.misses, "lateness_ms": snapshot.percentiles(list(self.lateness)),
+        })

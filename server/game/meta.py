@@ -1,0 +1,28 @@
+"""The fixed facts of one live trial (from its row and the participant's plan step)."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+from typing import Any
+
+
+@dataclass(frozen=True, slots=True)
+class TrialMeta:
+    trial_id: int
+    attempt: int
+    participant_id: int
+    participant: str
+    """The participant's public id."""
+    study_id: str
+    kind: str
+    index: int
+    number: int
+    total: int
+    condition: str
+    robot: str
+    kitchen: str
+    seed: int
+    test_run: bool
+
+    def to_dict(self) -> dict[str, Any]:
+        return asdict(self)

@@ -1,0 +1,27 @@
+"""The row stored for each tick (see ``server.store.tables.TickRow`` for the columns' meaning)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from server.game.engine import TickOutcome
+from server.robots import RobotChoice
+from server.store.types import utcnow
+
+
+def tick_row(trial_id: int, outcome: TickOutcome, choice: RobotChoice, lateness_ms: float,
+             controller: dict[str, Any]) -> dict[str, Any]:
+    """Joint action, the subtask the participant's action came from, modelled KB and world summaries, the
+    KB-gap components and their sum, robot in the participant's FOV, lateness and decision time, the robot's
+    decision record, and the full world, KB and controller state (replay and resume read them)."""
+    return {
+        "trial_id": trial_id, "tick": outcome.tick, "recorded_at": utcnow(),
+        "human_action": outcome.human_action.value, "robot_action": outcome.robot_action.value,
+        "action_source": outcome.source, "subtask": outcome.subtask.value if outcome.subtask else None,
+        "kb_summary": outcome.kb_summary, "world_summary": outcome.world_summary, "kb_gap": outcome.gap,
+        "kb_gap_total": sum(outcome.gap.values()), "robot_in_fov": outcome.robot_in_fov,
+        "lateness_ms": round(lateness_ms, 3),
+        "decision_ms": None if choice.decision_ms is None else round(choice.decision_ms, 3),
+        "robot_missed": choice.missed, "robot_info": choice.info, "world_state": outcome.world.to_dict(),
+        "kb_state": outcome.kb.to_dict(), "controller": controller,
+    }

@@ -1,0 +1,211 @@
+"""The registry of live trials in this server process, created at start-up (no module-level state).
+
+- :meth:`GameRegistry.attach` connects a participant to the trial of their current step: the live one if
+  this process has it, else one prepared from the store (new, resumed or abandoned; see
+  :mod:`server.game.resume`), with its robot planner opened in the pool.
+- :meth:`GameRegistry.detach` pauses the trial and starts the reconnect grace timer. When it fires with
+  nobody back: ``abandon`` ends the trial as abandoned and moves the participant on; ``resume`` and
+  ``restart`` unload the trial, which stays ``running`` in the store until the participant returns.
+- A periodic sweep keeps connected trials' ``last_active_at`` fresh (other server processes judge
+  staleness by it) and abandons trials left running by a crash (``abandon`` studies only) once they have
+  been idle longer than both the grace window and three sweep intervals.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+from typing import Any
+
+from planner.kb import initial_kb
+from planner.state import WorldState
+from server.catalog import Catalog, LoadedStudy
+from server.flow.progress import Phase
+from server.flow.service import progress_of
+from server.game.connection import Connection
+from server.game.controller import ParticipantController
+from server.game.engine import TrialEngine
+from server.game.kb_codec import kb_from_dict
+from server.game.live import GameDeps, LiveGame
+from server.game.meta import TrialMeta
+from server.game.resume import Prepared, abandon_stale, prepare_trial
+from server.store import trials
+from server.store.tables import ParticipantRow
+from server.store.types import utcnow
+
+log = logging.getLogger(__name__)
+
+
+class NoTrial(Exception):
+    """The participant's current step is not a trial."""
+
+    def __init__(self, phase: Phase) -> None:
+        super().__init__(f"the participant is in state {phase.value}, not in a trial")
+        self.phase = phase
+
+
+class TrialAbandoned(Exception):
+    """The trial was abandoned when the participant came back after the grace window."""
+
+    def __init__(self, prepared: Prepared) -> None:
+        super().__init__("the trial was abandoned after the reconnect grace window")
+        self.prepared = prepared
+
+
+class GameRegistry:
+    def __init__(self, catalog: Catalog, deps: GameDeps, sweep_interval: float) -> None:
+        self.catalog = catalog
+        self.deps = GameDeps(deps.store, deps.writer, deps.pool, deps.deadline_fraction, deps.max_message_bytes,
+                             on_end=self._ended)
+        self.sweep_interval = sweep_interval
+        self.games: dict[int, LiveGame] = {}
+        self._by_participant: dict[int, LiveGame] = {}
+        self._locks: dict[int, asyncio.Lock] = {}
+        self._timers: dict[int, asyncio.TimerHandle] = {}
+        self._background: set[asyncio.Task[Any]] = set()
+        self._sweeper: asyncio.Task[None] | None = None
+
+    # -- lifecycle ------------------------------------------------------------------------------------
+
+    async def start(self) -> None:
+        await self.sweep()
+        self._sweeper = asyncio.create_task(self._sweep_forever(), name="trial-sweeper")
+
+    async def shutdown(self) -> None:
+        """Suspend every live trial (they stay ``running`` and resume from the store)."""
+        if self._sweeper is not None:
+            self._sweeper.cancel()
+        for handle in self._timers.values():
+            handle.cancel()
+        games = list(self.games.values())
+        for game in games:
+            await game.suspend()
+        self.games.clear()
+        self._by_participant.clear()
+        for task in list(self._background):
+            task.cancel()
+        if games:
+            await asyncio.to_thread(self._touch, [g.meta.trial_id for g in games])
+
+    def _touch(self, trial_ids: list[int]) -> None:
+        with self.deps.store.transaction() as session:
+            trials.touch_many(session, trial_ids, utcnow())
+
+    # -- participants ---------------------------------------------------------------------------------
+
+    async def attach(self, participant: ParticipantRow, conn: Connection) -> LiveGame:
+        loaded = self.catalog.get(participant.study_id)
+        progress = progress_of(participant)
+        if loaded is None or progress.phase not in (Phase.PRACTICE, Phase.TRIAL):
+            raise NoTrial(progress.phase)
+        step = progress.current
+        lock = self._locks.setdefault(participant.id, asyncio.Lock())
+        async with lock:
+            game = self._by_participant.get(participant.id)
+            if game is not None and not game.finished and (game.meta.kind, game.meta.index) == (
+                    step.trial_kind, step.index):
+                self._cancel_timer(game)
+                game.attach(conn)
+                return game
+            prepared = await asyncio.to_thread(prepare_trial, self.deps.store, loaded, participant.id, step)
+            if prepared.outcome == "abandoned":
+                raise TrialAbandoned(prepared)
+            game = self._build(loaded, participant, prepared)
+            await self.deps.pool.open(game.meta.trial_id, game.meta.robot, game.engine.layout, game.engine.rules,
+                                      game.engine.world)
+            self.games[game.meta.trial_id] = game
+            self._by_participant[participant.id] = game
+            game.event("trial_start" if prepared.outcome == "new" else "resume",
+                       {"attempt": game.meta.attempt, "tick": game.engine.tick, "seed": game.meta.seed})
+            game.start()
+            game.attach(conn)
+            return game
+
+    def _build(self, loaded: LoadedStudy, participant: ParticipantRow, prepared: Prepared) -> LiveGame:
+        row, study = prepared.trial, loaded.study
+        step = progress_of(participant).current
+        layout, rules = loaded.layout(row.kitchen), loaded.rules
+        angle, delay = study.world.fov_angle, study.world.kb_delay
+        last = prepared.last_tick
+        if last is not None:
+            engine = TrialEngine(layout, rules, angle=angle, kb_delay=delay, seed=row.seed,
+                                 world=WorldState.from_dict(last.world_state), kb=kb_from_dict(last.kb_state),
+                                 controller=ParticipantController.from_dict(last.controller, layout, rules, angle))
+        else:
+            world = WorldState.from_dict(row.initial_state)
+            engine = TrialEngine(layout, rules, angle=angle, kb_delay=delay, seed=row.seed, world=world,
+                                 kb=initial_kb(world))
+        meta = TrialMeta(trial_id=row.id, attempt=row.attempt, participant_id=participant.id,
+                         participant=participant.public_id, study_id=loaded.id, kind=row.kind, index=row.index,
+                         number=step.number or 0, total=step.total or 0, condition=row.condition_id,
+                         robot=row.robot, kitchen=row.kitchen, seed=row.seed, test_run=participant.test_run)
+        return LiveGame(meta, loaded, engine, self.deps, resumed=prepared.outcome == "resume")
+
+    def detach(self, game: LiveGame, conn: Connection) -> None:
+        if not game.detach(conn) or game.finished:
+            return
+        grace = game.loaded.study.reconnect.grace_seconds
+        self._cancel_timer(game)
+        loop = asyncio.get_running_loop()
+        self._timers[game.meta.trial_id] = loop.call_later(grace, lambda: self._spawn(self._expire(game)))
+        self._spawn(asyncio.to_thread(self._touch, [game.meta.trial_id]))
+
+    def _spawn(self, coroutine: Any) -> None:
+        task = asyncio.ensure_future(coroutine)
+        self._background.add(task)
+        task.add_done_callback(self._done)
+
+    def _done(self, task: asyncio.Task[Any]) -> None:
+        self._background.discard(task)
+        if not task.cancelled() and task.exception() is not None:
+            log.error("background task failed", exc_info=task.exception())
+
+    async def _expire(self, game: LiveGame) -> None:
+        """The grace window passed: apply the study's policy unless the participant came back (serialised
+        with :meth:`attach` by the participant's lock)."""
+        self._timers.pop(game.meta.trial_id, None)
+        async with self._locks.setdefault(game.meta.participant_id, asyncio.Lock()):
+            if game.connection is not None or game.finished:
+                return
+            if game.loaded.study.reconnect.after_grace == "abandon":
+                await game.end("abandoned", "grace_expired")
+                return
+            await game.suspend()
+            await self.deps.writer.flush()
+            self._ended(game)
+
+    def _cancel_timer(self, game: LiveGame) -> None:
+        handle = self._timers.pop(game.meta.trial_id, None)
+        if handle is not None:
+            handle.cancel()
+
+    def _ended(self, game: LiveGame) -> None:
+        self._cancel_timer(game)
+        if self.games.get(game.meta.trial_id) is game:
+            del self.games[game.meta.trial_id]
+        if self._by_participant.get(game.meta.participant_id) is game:
+            del self._by_participant[game.meta.participant_id]
+
+    def live(self) -> list[LiveGame]:
+        return sorted(self.games.values(), key=lambda g: g.meta.trial_id)
+
+    # -- sweeping -------------------------------------------------------------------------------------
+
+    async def _sweep_forever(self) -> None:
+        while True:
+            await asyncio.sleep(self.sweep_interval)
+            try:
+                await self.sweep()
+            except Exception:  # noqa: BLE001 - try again next interval
+                log.exception("trial sweep failed")
+
+    async def sweep(self) -> None:
+        connected = [g.meta.trial_id for g in self.games.values() if g.connection is not None]
+        if connected:
+            await asyncio.to_thread(self._touch, connected)
+        live = set(self.games)
+        for loaded in self.catalog:
+            idle = max(loaded.study.reconnect.grace_seconds, 3 * self.sweep_interval)
+            count = await asyncio.to_thread(abandon_stale, self.deps.store, loaded, idle, live)
+            if count:
+                log.info("abandoned %d stale trial(s) of study %s", count, loaded.id)

@@ -1,0 +1,89 @@
+"""Starting or resuming the trial a participant's current step asks for (one transaction).
+
+- No running attempt: a new attempt starts at tick 0 with a fresh seed.
+- A running attempt inactive for at most the study's ``reconnect.grace_seconds`` (counted from its last
+  stored activity: the last flushed tick, a disconnect, a server shutdown): it resumes from its last
+  stored tick — world, modelled KB and the participant's subtask — so after a crash at most the unflushed
+  last second is replayed, and no tick is stored twice (ticks are keyed by ``(trial_id, tick)``).
+- Inactive for longer, per ``reconnect.after_grace``: ``resume`` as above; ``restart`` marks the attempt
+  abandoned (reason ``restarted``) and starts a new attempt at tick 0; ``abandon`` marks it abandoned
+  (reason ``grace_expired``) and moves the participant to their next step.
+"""
+
+from __future__ import annotations
+
+import secrets
+from dataclasses import dataclass
+from datetime import timedelta
+from typing import Literal
+
+from sqlalchemy.orm import Session
+
+from planner.state import WorldState, initial_state
+from server.catalog import LoadedStudy
+from server.flow import service
+from server.flow.plan import Step
+from server.flow.progress import Progress
+from server.store import trials
+from server.store.engine import Store
+from server.store.tables import TickRow, TrialRow
+from server.store.types import utcnow
+
+Outcome = Literal["new", "resume", "abandoned"]
+
+
+@dataclass(frozen=True)
+class Prepared:
+    outcome: Outcome
+    trial: TrialRow
+    last_tick: TickRow | None = None
+    progress: Progress | None = None
+    """The participant's progress after an abandonment."""
+
+
+def prepare_trial(store: Store, loaded: LoadedStudy, participant_id: int, step: Step) -> Prepared:
+    if step.kind != "trial" or step.trial_kind is None or step.index is None:
+        raise ValueError("the participant's current step is not a trial")
+    study = loaded.study
+    with store.transaction() as session:
+        row = trials.latest_attempt(session, participant_id, step.trial_kind, step.index)
+        if row is None or row.status != trials.RUNNING:
+            return Prepared("new", _create(session, loaded, participant_id, step))
+        idle = utcnow() - row.last_active_at
+        policy = study.reconnect.after_grace
+        if idle <= timedelta(seconds=study.reconnect.grace_seconds) or policy == "resume":
+            return Prepared("resume", row, trials.last_tick(session, row.id))
+        if policy == "restart":
+            trials.end(session, row.id, status=trials.ABANDONED, reason="restarted")
+            return Prepared("new", _create(session, loaded, participant_id, step))
+        progress = service.end_trial_in(session, participant_id, row.id, step.trial_kind, step.index,
+                                        status=trials.ABANDONED, reason="grace_expired")
+        return Prepared("abandoned", row, progress=progress)
+
+
+def _create(session: Session, loaded: LoadedStudy, participant_id: int, step: Step) -> TrialRow:
+    if step.kitchen is None or step.robot is None or step.condition is None:
+        raise ValueError(f"trial step without kitchen, robot or condition: {step}")
+    world: WorldState = initial_state(loaded.layout(step.kitchen), loaded.rules)
+    return trials.create(session, study_id=loaded.id, participant_id=participant_id, kind=str(step.trial_kind),
+                         index=int(step.index or 0), condition_id=step.condition, kitchen=step.kitchen,
+                         robot=step.robot, seed=secrets.randbits(62), config_hash=loaded.study.config_hash(),
+                         initial_state=world.to_dict())
+
+
+def abandon_stale(store: Store, loaded: LoadedStudy, idle_seconds: float, live: set[int]) -> int:
+    """Abandon running trials of an ``abandon``-policy study idle for more than ``idle_seconds`` and not
+    live in this process (left by a crashed server or a participant who never came back); each participant
+    moves to their next step. Returns how many were abandoned."""
+    if loaded.study.reconnect.after_grace != "abandon":
+        return 0
+    before = utcnow() - timedelta(seconds=idle_seconds)
+    count = 0
+    with store.transaction() as session:
+        for row in trials.running_inactive_since(session, loaded.id, before):
+            if row.id in live:
+                continue
+            if service.end_trial_in(session, row.participant_id, row.id, row.kind, row.index,
+                                    status=trials.ABANDONED, reason="grace_expired") is not None:
+                count += 1
+    return count

@@ -1,0 +1,57 @@
+"""Server-side FOV masking: what the participant's browser may receive at a tick (DOMAIN §2).
+
+Only cells in the participant's view (``planner.fov.view`` from the avatar's pose, with the study's angle)
+are sent, each with its terrain, the object on it (counters) and its status (grills, boards, sinks); the
+robot is sent only if its cell is in view. Everything else about the world never leaves the server.
+"""
+
+from __future__ import annotations
+
+from planner.fov import view
+from planner.layout import Layout, Terrain
+from planner.rules import Rules
+from planner.state import AgentState, WorldState
+from server.protocol.server import AgentView, CellView, StationState, StationView, TerrainName
+
+TERRAIN_NAME: dict[Terrain, TerrainName] = {
+    Terrain.FLOOR: "floor", Terrain.COUNTER: "counter", Terrain.ONION: "onion", Terrain.MEAT: "meat",
+    Terrain.PLATE: "plate", Terrain.GRILL: "grill", Terrain.BOARD: "board", Terrain.SINK: "sink",
+    Terrain.SERVE: "serve",
+}
+
+
+def agent_view(agent: AgentState) -> AgentView:
+    return AgentView(x=agent.pos[0], y=agent.pos[1], facing=agent.facing.value, held=agent.held)
+
+
+def station_view(layout: Layout, world: WorldState, rules: Rules, kind: Terrain, index: int) -> StationView | None:
+    """The status of grill / board / sink ``index`` as the participant sees it when it is in view."""
+    working: StationState
+    done: StationState
+    if kind is Terrain.GRILL:
+        value, total, working, done = world.grills[index], rules.cook_time, "cooking", "ready"
+    elif kind is Terrain.BOARD:
+        value, total, working, done = world.boards[index], rules.chop_time, "chopping", "ready"
+    elif kind is Terrain.SINK:
+        value, total, working, done = world.sinks[index], rules.wash_time, "washing", "clean"
+    else:
+        return None
+    if value is None:
+        return StationView(state="empty", progress=0, total=total)
+    return StationView(state=done if value >= total else working, progress=min(value, total), total=total)
+
+
+def visible_world(layout: Layout, world: WorldState, rules: Rules,
+                  angle: float) -> tuple[list[CellView], AgentView | None]:
+    """The visible cells (reading order) and the robot if it is in view."""
+    seen = view(layout, world.human.pos, world.human.facing, angle).cells
+    objects = dict(world.objects)
+    cells = []
+    for pos in sorted(seen, key=lambda p: (p[1], p[0])):
+        kind = layout.terrain(pos)
+        entry = layout.stations.get(pos)
+        station = station_view(layout, world, rules, kind, entry[1]) if entry is not None else None
+        cells.append(CellView(x=pos[0], y=pos[1], terrain=TERRAIN_NAME[kind], object=objects.get(pos),
+                              station=station))
+    robot = agent_view(world.robot) if world.robot.pos in seen else None
+    return cells, robot

@@ -1,0 +1,150 @@
+"""Server → client messages (protocol v1). Every message carries ``v`` and a per-connection ``seq``
+(1, 2, 3, … in sending order).
+
+``state`` is the only per-tick message and holds **only what is in the participant's field of view** at that
+tick: the visible cells (terrain, the object on a visible counter, the status of a visible station) and the
+robot if its cell is visible. Cells out of view are simply absent; ``hello`` gives the kitchen's size but no
+terrain. A client may remember terrain it has seen; the server never sends what is not in view now.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, TypeAdapter
+
+TerrainName = Literal["floor", "counter", "onion", "meat", "plate", "grill", "board", "sink", "serve"]
+StationState = Literal["empty", "cooking", "ready", "chopping", "washing", "clean"]
+
+
+class ServerMessage(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    v: Literal[1] = 1
+    seq: int = 0
+
+
+class TrialInfo(BaseModel):
+    id: int
+    kind: Literal["practice", "main"]
+    index: int
+    """Index within its kind (practice 0, 1, …; main 0, 1, …)."""
+    number: int
+    """1-based position among all trials of the participant."""
+    total: int
+
+
+class Hello(ServerMessage):
+    """First message of every connection: the trial and the fixed facts the client needs to draw it."""
+
+    type: Literal["hello"] = "hello"
+    protocol: int = 1
+    trial: TrialInfo
+    width: int
+    height: int
+    subtasks: list[str]
+    interrupts: list[str]
+    mode: Literal["fixed_rate", "wait_for_participant"]
+    tick_rate_hz: float
+    fov_angle: float
+    horizon: int
+    orders: int
+    tick: int
+    resumed: bool
+    max_message_bytes: int
+
+
+class StationView(BaseModel):
+    state: StationState
+    progress: int
+    """Cook ticks, chop or wash presses so far."""
+    total: int
+    """Needed for ready / chopped / clean."""
+
+
+class CellView(BaseModel):
+    x: int
+    y: int
+    terrain: TerrainName
+    object: str | None = None
+    station: StationView | None = None
+
+
+class AgentView(BaseModel):
+    x: int
+    y: int
+    facing: Literal["north", "south", "east", "west"]
+    held: str | None
+
+
+class Hud(BaseModel):
+    tick: int
+    horizon: int
+    ticks_left: int
+    seconds_left: float | None
+    """``ticks_left`` at the tick rate; ``None`` in wait-for-participant mode."""
+    orders_left: int
+    score: int
+
+
+class State(ServerMessage):
+    type: Literal["state"] = "state"
+    tick: int
+    you: AgentView
+    robot: AgentView | None
+    cells: list[CellView]
+    hud: Hud
+    subtask: str | None
+    available: list[str]
+    queued: int
+    ack: int
+    """The highest client ``seq`` accepted so far on this connection (0 if none)."""
+
+
+class Ack(ServerMessage):
+    """The reply to an accepted ``select_subtask``, ``interrupt``, ``focus``, ``blur`` or ``idle``."""
+
+    type: Literal["ack"] = "ack"
+    ack: int
+    subtask: str | None
+    queued: int
+
+
+class Pong(ServerMessage):
+    type: Literal["pong"] = "pong"
+    ack: int
+    client_time: float
+    server_time: float
+    """Server clock, ms since the Unix epoch."""
+
+
+ErrorCode = Literal["bad_frame", "too_large", "bad_json", "invalid_message", "unknown_type",
+                    "unsupported_version", "bad_seq", "queue_full", "not_playing", "replaced", "no_trial",
+                    "unauthorized", "internal"]
+
+
+class Error(ServerMessage):
+    """A rejected message (nothing changed) or a connection-level problem."""
+
+    type: Literal["error"] = "error"
+    code: ErrorCode
+    message: str
+    ref: int | None = None
+    """The ``seq`` of the rejected message when it could be read."""
+
+
+class TrialEnd(ServerMessage):
+    """The trial is over; the server closes the connection after this. ``next`` is the participant's state
+    now (``GET /api/session`` tells what to show)."""
+
+    type: Literal["trial_end"] = "trial_end"
+    status: Literal["finished", "abandoned"]
+    reason: str
+    ticks: int
+    delivered: int
+    score: int
+    next: str
+
+
+AnyServerMessage = Annotated[Hello | State | Ack | Pong | Error | TrialEnd, Field(discriminator="type")]
+server_adapter: TypeAdapter[AnyServerMessage] = TypeAdapter(AnyServerMessage)

@@ -1,0 +1,76 @@
+"""Robot planners in the server process, on one dedicated thread (``robot_workers = 0``; tests, debugging).
+
+Same semantics as the worker processes: requests are served one at a time in order, a late decision is
+discarded at its deadline (the thread finishes it in the background, so the next request waits for it).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import time
+from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
+from typing import Any
+
+from planner.events import Event
+from planner.geometry import Action
+from planner.layout import Layout
+from planner.rules import Rules
+from planner.state import WorldState
+from server.robots.choice import RobotChoice, run_decision
+from server.robots.pool import choice_from_reply
+
+
+class InProcessRobots:
+    def __init__(self, factory: Callable[..., Any]) -> None:
+        self.factory = factory
+        self._policies: dict[int, Any] = {}
+        self._executor: ThreadPoolExecutor | None = None
+
+    async def start(self) -> None:
+        self._executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="robot")
+
+    async def shutdown(self) -> None:
+        if self._executor is not None:
+            self._executor.shutdown(wait=True, cancel_futures=True)
+            self._executor = None
+        self._policies.clear()
+
+    def _run(self, fn: Callable[..., Any], *args: Any) -> asyncio.Future[Any]:
+        if self._executor is None:
+            raise RuntimeError("the robot pool is not started")
+        return asyncio.get_running_loop().run_in_executor(self._executor, fn, *args)
+
+    async def open(self, trial_id: int, robot: str, layout: Layout, rules: Rules, world: WorldState) -> None:
+        def build() -> None:
+            policy = self.factory(robot, layout, rules)
+            policy.reset(world)
+            self._policies[trial_id] = policy
+
+        await self._run(build)
+
+    async def decide(self, trial_id: int, world: WorldState, events: Sequence[Event], seed: int, tick: int,
+                     deadline: float) -> RobotChoice:
+        def call() -> tuple[str, Any]:
+            policy = self._policies.get(trial_id)
+            if policy is None:
+                return ("lost", f"trial {trial_id} has no planner")
+            try:
+                return ("ok", run_decision(policy, world, tuple(events), seed, tick, deadline))
+            except Exception as exc:  # noqa: BLE001 - a planner failure makes the robot stay
+                return ("error", f"{type(exc).__name__}: {exc}")
+
+        start = time.perf_counter()
+        future = self._run(call)
+        try:
+            status, payload = await asyncio.wait_for(asyncio.shield(future), max(deadline - time.monotonic(), 0.0))
+        except TimeoutError:
+            return RobotChoice(Action.STAY,
+                               decision_ms=(time.perf_counter() - start) * 1000, missed=True)
+        return choice_from_reply(status, payload, (time.perf_counter() - start) * 1000)
+
+    async def close_trial(self, trial_id: int) -> None:
+        self._policies.pop(trial_id, None)
+
+    def describe(self) -> dict[str, Any]:
+        return {"mode": "in_process", "workers": 0, "trials": sorted(self._policies)}

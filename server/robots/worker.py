@@ -1,0 +1,61 @@
+"""The body of one robot worker process: a loop over requests on a pipe, holding its trials' planners.
+
+Requests (pickled tuples): ``("open", req, trial_id, robot, layout, rules, world)`` builds the planner with
+the factory and resets it; ``("decide", req, trial_id, world, events, seed, tick, deadline)`` answers the
+action; ``("close", req, trial_id)`` drops the planner; ``("stop",)`` ends the process. Replies are
+``(req, "ok", payload)`` or ``(req, "error", message)``. Requests are served one at a time, so a trial's
+planner is never used concurrently. The process ignores SIGINT (the server shuts it down) and exits when
+the pipe closes (the server died).
+"""
+
+from __future__ import annotations
+
+import signal
+from multiprocessing.connection import Connection
+from typing import Any
+
+from server.robots.choice import load_factory, run_decision
+
+
+def worker_main(conn: Connection, factory_path: str) -> None:
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    factory = load_factory(factory_path)
+    policies: dict[int, Any] = {}
+    while True:
+        try:
+            message = conn.recv()
+        except (EOFError, OSError):
+            break
+        if message[0] == "stop":
+            break
+        op, req = message[0], message[1]
+        try:
+            payload = _serve(op, message, policies, factory)
+        except Exception as exc:  # noqa: BLE001 - report every planner failure to the server
+            reply: tuple[Any, ...] = (req, "error", f"{type(exc).__name__}: {exc}")
+        else:
+            reply = (req, "ok", payload)
+        try:
+            conn.send(reply)
+        except (BrokenPipeError, OSError):
+            break
+    conn.close()
+
+
+def _serve(op: str, message: tuple[Any, ...], policies: dict[int, Any], factory: Any) -> Any:
+    if op == "open":
+        _, _, trial_id, robot, layout, rules, world = message
+        policy = factory(robot, layout, rules)
+        policy.reset(world)
+        policies[trial_id] = policy
+        return None
+    if op == "decide":
+        _, _, trial_id, world, events, seed, tick, deadline = message
+        policy = policies.get(trial_id)
+        if policy is None:
+            raise LookupError(f"trial {trial_id} has no planner in this worker")
+        return run_decision(policy, world, events, seed, tick, deadline)
+    if op == "close":
+        policies.pop(message[2], None)
+        return None
+    raise ValueError(f"unknown request {op!r}")

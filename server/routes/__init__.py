@@ -1,0 +1,1 @@
+"""Thin routers: validate the request, call one service function, shape the answer."""

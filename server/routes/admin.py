@@ -1,0 +1,131 @@
+"""The admin API under ``/api/admin/`` (bearer token from ``STEAKHOUSE_ADMIN_TOKEN``; 401 without it).
+
+Studies with the fill of each condition order, participants with progress and flags, setting flags,
+live trials (summary and the full spectator view), stored trials and their ticks and events for replay,
+and the robot worker pool.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Any
+
+from fastapi import APIRouter, Depends, Query
+from pydantic import BaseModel, ConfigDict, Field
+
+from server.deps import ServicesDep, require_admin
+from server.errors import ApiError
+from server.store import participants, trials
+from server.store.overview import order_breakdown, participant_public, public_ids, trial_public
+from server.store.tables import TrialRow
+from server.store.types import utcnow
+
+router = APIRouter(prefix="/api/admin", tags=["admin"], dependencies=[Depends(require_admin)])
+
+
+class FlagsRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    test_run: bool | None = None
+    excluded: bool | None = None
+    reason: str | None = Field(default=None, max_length=1000)
+
+
+@router.get("/studies")
+def studies(services: ServicesDep) -> list[dict[str, Any]]:
+    out = []
+    now = utcnow()
+    with services.store.transaction() as session:
+        for loaded in services.catalog:
+            study = loaded.study
+            fill = order_breakdown(session, study.id, len(loaded.orders), now,
+                                   study.assignment.in_progress_window_minutes)
+            for cell, order in zip(fill, loaded.orders, strict=True):
+                cell["conditions"] = list(order)  # type: ignore[assignment]
+            out.append({"id": study.id, "title": study.title, "config_hash": study.config_hash(),
+                        "conditions": [c.id for c in study.conditions], "orders": fill,
+                        "timing": study.timing.model_dump(), "notes": study.notes,
+                        "live_trials": sum(1 for g in services.registry.games.values() if g.meta.study_id == study.id)})
+    return out
+
+
+@router.get("/participants")
+def list_participants(services: ServicesDep, study_id: Annotated[str | None, Query(max_length=64)] = None,
+                      ) -> list[dict[str, Any]]:
+    with services.store.transaction() as session:
+        return [participant_public(p, a) for p, a in participants.list_participants(session, study_id)]
+
+
+@router.post("/participants/{participant_id}/flags")
+def set_flags(participant_id: str, body: FlagsRequest, services: ServicesDep) -> dict[str, Any]:
+    if body.excluded and not (body.reason or "").strip():
+        raise ApiError(422, "reason_required", "excluding a participant needs a reason")
+    with services.store.transaction() as session:
+        row = participants.by_public_id(session, participant_id)
+        if row is None:
+            raise ApiError(404, "not_found", "no such participant")
+        participants.set_flags(session, row.id, test_run=body.test_run, excluded=body.excluded, reason=body.reason)
+        session.refresh(row)
+        return participant_public(row, participants.assignment_of(session, row.id))
+
+
+@router.get("/live")
+def live(services: ServicesDep) -> list[dict[str, Any]]:
+    return [{**g.meta.to_dict(), "tick": g.engine.tick, "connected": g.connection is not None,
+             "deadline_misses": g.misses, "lateness_ms": g.spectator()["lateness_ms"]}
+            for g in services.registry.live()]
+
+
+@router.get("/live/{trial_id}")
+def live_trial(trial_id: int, services: ServicesDep) -> dict[str, Any]:
+    game = services.registry.games.get(trial_id)
+    if game is None:
+        raise ApiError(404, "not_live", "no live trial with this id in this server process")
+    return game.spectator()
+
+
+@router.get("/trials")
+def list_trials(services: ServicesDep, study_id: Annotated[str | None, Query(max_length=64)] = None,
+                participant_id: Annotated[str | None, Query(max_length=64)] = None) -> list[dict[str, Any]]:
+    with services.store.transaction() as session:
+        pid = None
+        if participant_id is not None:
+            row = participants.by_public_id(session, participant_id)
+            if row is None:
+                return []
+            pid = row.id
+        rows = trials.list_trials(session, participant_id=pid, study_id=study_id)
+        names = public_ids(session, {r.participant_id for r in rows})
+        return [trial_public(r, names.get(r.participant_id)) for r in rows]
+
+
+@router.get("/trials/{trial_id}")
+def trial_replay(trial_id: int, services: ServicesDep, start: Annotated[int, Query(ge=0)] = 0,
+                 limit: Annotated[int, Query(ge=1, le=10_000)] = 10_000) -> dict[str, Any]:
+    """A stored trial for replay: its row, the kitchen grid, the initial state and the ticks from ``start``."""
+    with services.store.transaction() as session:
+        row = session.get(TrialRow, trial_id)
+        if row is None:
+            raise ApiError(404, "not_found", "no such trial")
+        names = public_ids(session, {row.participant_id})
+        ticks = trials.ticks(session, trial_id, start, limit)
+        loaded = services.catalog.get(row.study_id)
+        layout = loaded.layouts.get(row.kitchen) if loaded else None
+        return {
+            "trial": trial_public(row, names.get(row.participant_id)),
+            "layout": {"name": row.kitchen, "rows": layout.text().splitlines()} if layout else None,
+            "initial_state": row.initial_state,
+            "ticks": [{c.name: getattr(t, c.name) for c in t.__table__.columns if c.name != "trial_id"}
+                      for t in ticks],
+        }
+
+
+@router.get("/trials/{trial_id}/events")
+def trial_events(trial_id: int, services: ServicesDep) -> list[dict[str, Any]]:
+    with services.store.transaction() as session:
+        return [{"id": e.id, "tick": e.tick, "kind": e.kind, "payload": e.payload,
+                 "created_at": e.created_at.isoformat()} for e in trials.events(session, trial_id)]
+
+
+@router.get("/robots")
+def robots(services: ServicesDep) -> dict[str, Any]:
+    return services.pool.describe()

@@ -1,0 +1,80 @@
+"""The participant's REST API (token-scoped after join); every state change answers the new session view.
+
+``POST /api/studies/{study_id}/join`` → token and condition order; ``GET /api/session``;
+``POST /api/session/consent``; ``POST /api/session/instructions_done``; ``POST /api/session/questionnaire``;
+``GET /api/session/completion``. Illegal transitions answer 409, invalid answers 422.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Any
+
+from fastapi import APIRouter, Depends
+
+from server.catalog import LoadedStudy
+from server.deps import ParticipantDep, ServicesDep, participant_study, path_study
+from server.flow import service
+from server.flow.progress import Move
+from server.flow.schemas import ConsentRequest, JoinRequest, JoinResponse, QuestionnaireRequest, StudyPublic
+from server.flow.views import session_view
+from server.services import Services
+from server.store import participants
+from server.store.tables import ParticipantRow
+
+router = APIRouter(prefix="/api", tags=["participant"])
+StudyDep = Annotated[LoadedStudy, Depends(participant_study)]
+
+
+@router.get("/studies/{study_id}")
+def study_info(loaded: Annotated[LoadedStudy, Depends(path_study)]) -> StudyPublic:
+    study = loaded.study
+    return StudyPublic(id=study.id, title=study.title, url_parameters=list(study.recruiting.url_parameters))
+
+
+@router.post("/studies/{study_id}/join")
+def join(loaded: Annotated[LoadedStudy, Depends(path_study)], body: JoinRequest,
+         services: ServicesDep) -> JoinResponse:
+    joined = service.join(services.store, loaded, body.recruiting, body.test_run)
+    return JoinResponse(token=joined.token, participant_id=joined.participant.public_id, study_id=loaded.id,
+                        order_index=joined.assignment.order_index,
+                        condition_order=list(joined.assignment.condition_order),
+                        state=joined.participant.state, rejoined=joined.rejoined)
+
+
+def _view(services: Services, loaded: LoadedStudy, participant_id: int) -> dict[str, Any]:
+    with services.store.transaction() as session:
+        row = session.get(ParticipantRow, participant_id)
+        order = participants.assignment_of(session, participant_id)
+    if row is None:
+        raise LookupError(participant_id)
+    return session_view(loaded, row, order)
+
+
+@router.get("/session")
+def get_session(participant: ParticipantDep, loaded: StudyDep, services: ServicesDep) -> dict[str, Any]:
+    return _view(services, loaded, participant.id)
+
+
+@router.post("/session/consent")
+def consent(body: ConsentRequest, participant: ParticipantDep, loaded: StudyDep,
+            services: ServicesDep) -> dict[str, Any]:
+    service.move(services.store, participant.id, Move.ACCEPT_CONSENT if body.accept else Move.DECLINE_CONSENT)
+    return _view(services, loaded, participant.id)
+
+
+@router.post("/session/instructions_done")
+def instructions_done(participant: ParticipantDep, loaded: StudyDep, services: ServicesDep) -> dict[str, Any]:
+    service.move(services.store, participant.id, Move.FINISH_INSTRUCTIONS)
+    return _view(services, loaded, participant.id)
+
+
+@router.post("/session/questionnaire")
+def questionnaire(body: QuestionnaireRequest, participant: ParticipantDep, loaded: StudyDep,
+                  services: ServicesDep) -> dict[str, Any]:
+    service.submit_questionnaire(services.store, loaded, participant.id, body.questionnaire_id, body.answers)
+    return _view(services, loaded, participant.id)
+
+
+@router.get("/session/completion")
+def completion(participant: ParticipantDep, loaded: StudyDep) -> dict[str, Any]:
+    return service.completion(loaded, participant)

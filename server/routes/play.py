@@ -1,0 +1,69 @@
+"""``/ws/play?token=…``: the participant's game connection. Starts or resumes the trial of their current
+step; one connection per participant (a newer one replaces the older, which gets ``error: replaced``).
+
+Refusals before the game starts are typed too: ``error`` with code ``unauthorized`` (close 4401) or
+``no_trial`` (close 4409, the participant is not at a trial step); a trial abandoned after the grace
+window answers ``trial_end`` with status ``abandoned``.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import logging
+
+from fastapi import APIRouter, WebSocket
+
+from server.deps import ServicesDep, find_participant, participant_token
+from server.game.connection import Connection
+from server.game.registry import NoTrial, TrialAbandoned
+from server.protocol.server import Error, ServerMessage, TrialEnd
+
+router = APIRouter()
+log = logging.getLogger(__name__)
+
+
+async def _refuse(websocket: WebSocket, message: ServerMessage, code: int) -> None:
+    message.seq = 1
+    with contextlib.suppress(Exception):
+        await websocket.send_text(message.model_dump_json())
+        await websocket.close(code=code)
+
+
+@router.websocket("/ws/play")
+async def play(websocket: WebSocket, services: ServicesDep) -> None:
+    await websocket.accept()
+    token = participant_token(websocket)
+    participant = await asyncio.to_thread(find_participant, services.store, token) if token else None
+    if participant is None:
+        await _refuse(websocket, Error(code="unauthorized", message="a valid participant token is required"), 4401)
+        return
+    conn = Connection(websocket)
+    registry = services.registry
+    try:
+        game = await registry.attach(participant, conn)
+    except NoTrial as exc:
+        await _refuse(websocket, Error(code="no_trial", message=str(exc)), 4409)
+        return
+    except TrialAbandoned as exc:
+        row, progress = exc.prepared.trial, exc.prepared.progress
+        await _refuse(websocket, TrialEnd(status="abandoned", reason="grace_expired", ticks=row.ticks,
+                                          delivered=row.delivered, score=row.score,
+                                          next=progress.phase.value if progress else "unknown"), 1000)
+        return
+    except Exception:
+        log.exception("cannot start the trial of participant %s", participant.public_id)
+        await _refuse(websocket, Error(code="internal", message="the trial could not start; try again later"),
+                      1011)
+        return
+    try:
+        while True:
+            frame = await websocket.receive()
+            if frame["type"] == "websocket.disconnect":
+                break
+            game.handle(conn, frame.get("text"), frame.get("bytes"))
+    except Exception as exc:  # noqa: BLE001 - a broken socket is a disconnect
+        log.debug("websocket of trial %d ended: %s", game.meta.trial_id, exc)
+    finally:
+        conn.broken()
+        registry.detach(game, conn)

@@ -1,0 +1,97 @@
+"""Server settings, read once at start-up from the environment (prefix ``STEAKHOUSE_``) and validated.
+
+``DATABASE_URL`` is honoured as well as ``STEAKHOUSE_DATABASE_URL`` (the usual name on hosting platforms).
+A ``postgres://`` or ``postgresql://`` URL is read as PostgreSQL through psycopg 3. Relative SQLite paths are
+relative to the working directory; the file's folder is created when the store opens.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Literal
+
+from pydantic import AliasChoices, Field, SecretStr, field_validator
+from pydantic_settings import BaseSettings, SettingsConfigDict
+
+from study_config import STUDY_DIR
+
+DEFAULT_DATABASE_URL = "sqlite:///./data/steakhouse.sqlite3"
+DEFAULT_STUDIES = (STUDY_DIR / "demo.yaml", STUDY_DIR / "paper_study.yaml")
+_REPO_STATIC = Path(__file__).resolve().parents[1] / "static"
+
+
+class Settings(BaseSettings):
+    """Everything the server needs to start; invalid values stop it with a clear message."""
+
+    model_config = SettingsConfigDict(env_prefix="STEAKHOUSE_", extra="ignore", frozen=True)
+
+    host: str = "127.0.0.1"
+    """Interface ``steakhouse serve`` listens on (``0.0.0.0`` in the container)."""
+    port: int = Field(default=8000, ge=0, le=65535)
+    """TCP port of ``steakhouse serve``."""
+    database_url: str = Field(
+        default=DEFAULT_DATABASE_URL,
+        validation_alias=AliasChoices("STEAKHOUSE_DATABASE_URL", "DATABASE_URL", "database_url"),
+    )
+    """SQLAlchemy URL of the store: a SQLite file by default, PostgreSQL for real deployments."""
+    study_files: tuple[Path, ...] = DEFAULT_STUDIES
+    """Study YAML files served; each is validated at start and an invalid one stops the server."""
+    admin_token: SecretStr | None = None
+    """Bearer token of the admin API; when unset a random one is generated at start and logged."""
+    robot_workers: int | None = Field(default=None, ge=0, le=256)
+    """Robot planner worker processes (default: the CPU count); 0 runs planners in the server process."""
+    robot_factory: str = "planner.robots:make_robot"
+    """``module:function`` building a robot policy from ``(name, layout, rules)`` (tests and benchmarks)."""
+    decision_deadline_fraction: float = Field(default=0.8, gt=0.0, le=1.0)
+    """A robot decision must arrive within this fraction of the tick period; later ones are discarded."""
+    flush_interval_s: float = Field(default=0.5, gt=0.0, le=1.0)
+    """The background writer commits tick and event rows at least this often (a crash loses at most this)."""
+    max_message_bytes: int = Field(default=4096, ge=256, le=1 << 20)
+    """Client websocket messages above this size are answered with a ``too_large`` error."""
+    ws_max_frame_bytes: int = Field(default=1 << 20, ge=1024)
+    """Frames above this are refused by the websocket layer itself (connection closed with 1009)."""
+    static_dir: Path | None = None
+    """Folder of the browser client served at ``/`` (default: ``./static`` or the repository's ``static/``)."""
+    sweep_interval_s: float = Field(default=30.0, gt=0.0)
+    """How often trials left running by a vanished participant or a crashed server are checked."""
+    log_level: Literal["debug", "info", "warning", "error"] = "info"
+
+    @field_validator("database_url")
+    @classmethod
+    def _normalise_url(cls, url: str) -> str:
+        url = url.strip()
+        for prefix in ("postgres://", "postgresql://"):
+            if url.startswith(prefix):
+                return "postgresql+psycopg://" + url[len(prefix):]
+        if not (url.startswith("sqlite") or url.startswith("postgresql")):
+            raise ValueError("only sqlite:/// and postgresql:// URLs are supported")
+        return url
+
+    @field_validator("study_files")
+    @classmethod
+    def _need_studies(cls, files: tuple[Path, ...]) -> tuple[Path, ...]:
+        if not files:
+            raise ValueError("at least one study file is needed")
+        return files
+
+    @field_validator("robot_factory")
+    @classmethod
+    def _factory_path(cls, value: str) -> str:
+        module, _, attr = value.partition(":")
+        if not module or not attr:
+            raise ValueError("use module:function, e.g. planner.robots:make_robot")
+        return value
+
+    @property
+    def workers(self) -> int:
+        """The number of robot worker processes actually used."""
+        return self.robot_workers if self.robot_workers is not None else (os.cpu_count() or 1)
+
+    def static_root(self) -> Path | None:
+        """The client folder to serve, or ``None`` when there is no client with files."""
+        candidates = [self.static_dir] if self.static_dir is not None else [Path("static"), _REPO_STATIC]
+        for folder in candidates:
+            if folder is not None and folder.is_dir() and any(folder.iterdir()):
+                return folder.resolve()
+        return None

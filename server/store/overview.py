@@ -1,0 +1,66 @@
+"""Read-only summaries for the admin API: how each condition order is filled, participant listings."""
+
+from __future__ import annotations
+
+from datetime import datetime, timedelta
+from typing import Any
+
+from sqlalchemy import select
+from sqlalchemy.orm import Session
+
+from server.store.tables import AssignmentRow, ParticipantRow, TrialRow
+
+
+def order_breakdown(session: Session, study_id: str, n_orders: int, now: datetime,
+                    window_minutes: float) -> list[dict[str, int]]:
+    """Per order: participants that count for assignment (``counted``), and all assigned by status/flag."""
+    since = now - timedelta(minutes=window_minutes)
+    rows = session.execute(
+        select(AssignmentRow.order_index, ParticipantRow.status, ParticipantRow.test_run, ParticipantRow.excluded,
+               ParticipantRow.created_at)
+        .join(ParticipantRow, ParticipantRow.id == AssignmentRow.participant_id)
+        .where(AssignmentRow.study_id == study_id))
+    table = [{"index": i, "counted": 0, "completed": 0, "in_progress": 0, "screened_out": 0, "test_runs": 0,
+              "excluded": 0, "assigned": 0} for i in range(n_orders)]
+    for index, status, test_run, excluded, created in rows:
+        if not 0 <= index < n_orders:
+            continue
+        cell = table[index]
+        cell["assigned"] += 1
+        cell["test_runs"] += int(test_run)
+        cell["excluded"] += int(excluded)
+        if status in ("completed", "in_progress", "screened_out"):
+            cell[status] += 1
+        if not test_run and not excluded and (
+                status == "completed" or (status == "in_progress" and created >= since)):
+            cell["counted"] += 1
+    return table
+
+
+def participant_public(row: ParticipantRow, order: AssignmentRow | None) -> dict[str, Any]:
+    return {
+        "participant_id": row.public_id, "study_id": row.study_id, "state": row.state, "status": row.status,
+        "step": row.step, "steps": len(row.plan), "order_index": order.order_index if order else None,
+        "condition_order": list(order.condition_order) if order else [], "recruiting": row.recruiting,
+        "test_run": row.test_run, "excluded": row.excluded, "exclusion_reason": row.exclusion_reason,
+        "created_at": row.created_at.isoformat(),
+        "finished_at": row.finished_at.isoformat() if row.finished_at else None,
+    }
+
+
+def trial_public(row: TrialRow, participant: str | None = None) -> dict[str, Any]:
+    return {
+        "trial_id": row.id, "study_id": row.study_id, "participant_id": participant, "kind": row.kind,
+        "index": row.index, "attempt": row.attempt, "condition": row.condition_id, "kitchen": row.kitchen,
+        "robot": row.robot, "seed": row.seed, "config_hash": row.config_hash, "status": row.status,
+        "end_reason": row.end_reason, "ticks": row.ticks, "delivered": row.delivered, "score": row.score,
+        "started_at": row.started_at.isoformat(), "ended_at": row.ended_at.isoformat() if row.ended_at else None,
+    }
+
+
+def public_ids(session: Session, participant_ids: set[int]) -> dict[int, str]:
+    if not participant_ids:
+        return {}
+    rows = session.execute(select(ParticipantRow.id, ParticipantRow.public_id)
+                           .where(ParticipantRow.id.in_(participant_ids)))
+    return {pid: public for pid, public in rows}

@@ -1,0 +1,100 @@
+"""Trial rows and their stored ticks: create an attempt, end it once, read ticks for replay and resume.
+
+Status is ``running`` until the trial ends: ``finished`` (all orders delivered, or the horizon reached) or
+``abandoned`` (the participant did not return within the grace window, or the trial was restarted).
+Ending is guarded by ``WHERE status = 'running'``, so a trial ends exactly once.
+"""
+
+from __future__ import annotations
+
+from datetime import datetime
+from typing import Any
+
+from sqlalchemy import case, func, select, update
+from sqlalchemy.orm import Session
+
+from server.store.tables import EventRow, TickRow, TrialRow
+from server.store.types import utcnow
+
+RUNNING, FINISHED, ABANDONED = "running", "finished", "abandoned"
+
+
+def create(session: Session, *, study_id: str, participant_id: int, kind: str, index: int, condition_id: str,
+           kitchen: str, robot: str, seed: int, config_hash: str, initial_state: dict[str, Any]) -> TrialRow:
+    """A new running attempt at trial ``(kind, index)`` (attempt = previous attempts + 1)."""
+    previous = session.scalar(select(func.max(TrialRow.attempt)).where(
+        TrialRow.participant_id == participant_id, TrialRow.kind == kind, TrialRow.index == index)) or 0
+    now = utcnow()
+    row = TrialRow(study_id=study_id, participant_id=participant_id, kind=kind, index=index,
+                   attempt=previous + 1, condition_id=condition_id, kitchen=kitchen, robot=robot, seed=seed,
+                   config_hash=config_hash, status=RUNNING, started_at=now, last_active_at=now, ticks=0,
+                   delivered=0, score=0, initial_state=initial_state)
+    session.add(row)
+    session.flush()
+    return row
+
+
+def latest_attempt(session: Session, participant_id: int, kind: str, index: int) -> TrialRow | None:
+    return session.scalar(
+        select(TrialRow)
+        .where(TrialRow.participant_id == participant_id, TrialRow.kind == kind, TrialRow.index == index)
+        .order_by(TrialRow.attempt.desc())
+        .limit(1)
+    )
+
+
+def end(session: Session, trial_id: int, *, status: str, reason: str, ticks: int | None = None,
+        delivered: int | None = None, score: int | None = None) -> bool:
+    """Mark a running trial ``finished`` or ``abandoned``; ``False`` if it had already ended."""
+    values: dict[str, Any] = {"status": status, "end_reason": reason, "ended_at": utcnow()}
+    for name, value in (("ticks", ticks), ("delivered", delivered), ("score", score)):
+        if value is not None:
+            values[name] = value
+    result = session.execute(update(TrialRow).where(TrialRow.id == trial_id, TrialRow.status == RUNNING)
+                             .values(**values))
+    return bool(result.rowcount)  # type: ignore[attr-defined]
+
+
+def touch(session: Session, trial_id: int, when: datetime, ticks: int | None = None) -> None:
+    """Record activity (a flushed tick, a disconnect) used to judge the reconnect grace window; the time
+    only moves forward."""
+    values: dict[str, Any] = {
+        "last_active_at": case((TrialRow.last_active_at < when, when), else_=TrialRow.last_active_at)}
+    if ticks is not None:
+        values["ticks"] = case((TrialRow.ticks < ticks, ticks), else_=TrialRow.ticks)
+    session.execute(update(TrialRow).where(TrialRow.id == trial_id).values(**values))
+
+
+def touch_many(session: Session, trial_ids: list[int], when: datetime) -> None:
+    for trial_id in trial_ids:
+        touch(session, trial_id, when)
+
+
+def last_tick(session: Session, trial_id: int) -> TickRow | None:
+    return session.scalar(select(TickRow).where(TickRow.trial_id == trial_id)
+                          .order_by(TickRow.tick.desc()).limit(1))
+
+
+def ticks(session: Session, trial_id: int, start: int = 0, limit: int = 10_000) -> list[TickRow]:
+    return list(session.scalars(select(TickRow).where(TickRow.trial_id == trial_id, TickRow.tick >= start)
+                                .order_by(TickRow.tick).limit(limit)))
+
+
+def events(session: Session, trial_id: int) -> list[EventRow]:
+    return list(session.scalars(select(EventRow).where(EventRow.trial_id == trial_id).order_by(EventRow.id)))
+
+
+def running_inactive_since(session: Session, study_id: str, before: datetime) -> list[TrialRow]:
+    """Running trials of a study with no activity since ``before`` (candidates for the grace-window sweep)."""
+    return list(session.scalars(select(TrialRow).where(TrialRow.study_id == study_id, TrialRow.status == RUNNING,
+                                                       TrialRow.last_active_at < before)))
+
+
+def list_trials(session: Session, *, participant_id: int | None = None, study_id: str | None = None,
+                limit: int = 1000) -> list[TrialRow]:
+    query = select(TrialRow).order_by(TrialRow.id.desc()).limit(limit)
+    if participant_id is not None:
+        query = query.where(TrialRow.participant_id == participant_id)
+    if study_id is not None:
+        query = query.where(TrialRow.study_id == study_id)
+    return list(session.scalars(query))

@@ -1,0 +1,92 @@
+"""The participant's state machine accepts exactly the legal transitions."""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from server.catalog import load_one
+from server.flow.plan import build_plan
+from server.flow.progress import IllegalTransition, Move, Phase, Progress
+from study_config import STUDY_DIR
+
+
+@pytest.fixture(scope="module")
+def plan():
+    loaded = load_one(STUDY_DIR / "paper_study.yaml")
+    return build_plan(loaded.study, loaded.orders[1])
+
+
+def walk(plan) -> list[Phase]:
+    progress = Progress(plan, 0)
+    phases = [progress.phase]
+    while progress.phase is not Phase.DONE:
+        step = progress.current
+        if progress.phase is Phase.CONSENT:
+            progress = progress.apply(Move.ACCEPT_CONSENT)
+        elif progress.phase is Phase.INSTRUCTIONS:
+            progress = progress.apply(Move.FINISH_INSTRUCTIONS)
+        elif progress.phase in (Phase.PRACTICE, Phase.TRIAL):
+            progress = progress.apply(Move.END_TRIAL, trial=(step.trial_kind, step.index))
+        else:
+            progress = progress.apply(Move.SUBMIT_QUESTIONNAIRE, questionnaire=step.questionnaire)
+        phases.append(progress.phase)
+    return phases
+
+
+def test_the_paper_study_goes_consent_instructions_practice_then_trials_and_questionnaires(plan):
+    assert walk(plan) == [Phase.CONSENT, Phase.INSTRUCTIONS, Phase.PRACTICE] + [
+        Phase.TRIAL, Phase.QUESTIONNAIRE] * 4 + [Phase.DONE]
+    trials = [s for s in plan if s.kind == "trial"]
+    assert [(s.trial_kind, s.index, s.number, s.total) for s in trials] == [
+        ("practice", 0, 1, 5), ("main", 0, 2, 5), ("main", 1, 3, 5), ("main", 2, 4, 5), ("main", 3, 5, 5)]
+    assert trials[0].robot == "stay" and trials[0].kitchen == "practice"
+
+
+def test_declining_consent_screens_out_for_good(plan):
+    out = Progress(plan, 0).apply(Move.DECLINE_CONSENT)
+    assert out.phase is Phase.SCREENED_OUT and out.status == "screened_out"
+    for move in Move:
+        with pytest.raises(IllegalTransition):
+            out.apply(move)
+
+
+def test_a_trial_or_questionnaire_must_be_the_current_one(plan):
+    at_practice = Progress(plan, 2)
+    with pytest.raises(IllegalTransition, match="current trial"):
+        at_practice.apply(Move.END_TRIAL, trial=("main", 0))
+    at_questionnaire = Progress(plan, 4)
+    assert at_questionnaire.phase is Phase.QUESTIONNAIRE
+    with pytest.raises(IllegalTransition, match="current questionnaire"):
+        at_questionnaire.apply(Move.SUBMIT_QUESTIONNAIRE, questionnaire="other")
+
+
+@given(step=st.integers(0, 11), move=st.sampled_from(list(Move)))
+def test_only_legal_moves_change_the_state(plan, step, move):
+    progress = Progress(plan, step)
+    current = progress.current
+    legal = {
+        Phase.CONSENT: {Move.ACCEPT_CONSENT, Move.DECLINE_CONSENT},
+        Phase.INSTRUCTIONS: {Move.FINISH_INSTRUCTIONS},
+        Phase.PRACTICE: {Move.END_TRIAL}, Phase.TRIAL: {Move.END_TRIAL},
+        Phase.QUESTIONNAIRE: {Move.SUBMIT_QUESTIONNAIRE}, Phase.DONE: set(),
+    }[progress.phase]
+    kwargs = {"trial": (current.trial_kind, current.index), "questionnaire": current.questionnaire}
+    if move in legal:
+        after = progress.apply(move, **kwargs)
+        assert after.step == step + (0 if move is Move.DECLINE_CONSENT else 1)
+    else:
+        with pytest.raises(IllegalTransition):
+            progress.apply(move, **kwargs)
+
+
+def test_end_of_study_questionnaires_come_once_after_the_last_trial(study_file):
+    loaded = load_one(study_file(robots=["stay", "fov_aware"], questionnaires=[
+        {"id": "each", "items": [{"id": "a", "text": "A", "scale": {"min": 1, "max": 3}}]},
+        {"id": "final", "when": "end_of_study", "items": [{"id": "b", "text": "B", "scale": {"min": 1, "max": 3}}]}]))
+    plan = build_plan(loaded.study, loaded.orders[0])
+    kinds = [(s.kind, s.questionnaire, s.after_trial) for s in plan]
+    assert kinds == [("consent", None, None), ("instructions", None, None), ("trial", None, None),
+                     ("questionnaire", "each", 0), ("trial", None, None), ("questionnaire", "each", 1),
+                     ("questionnaire", "final", None), ("done", None, None)]

@@ -1,0 +1,249 @@
+"""Helpers for the server tests: study files, real servers (in a thread or in a process), a scripted
+participant speaking the REST API and the websocket protocol.
+
+Importable from the test files because ``tests/server/conftest.py`` puts this folder on ``sys.path``
+(spawned robot worker processes inherit it, so test robot factories live next door).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import os
+import signal
+import socket
+import subprocess
+import sys
+import threading
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import httpx
+import uvicorn
+import yaml
+from websockets.asyncio.client import ClientConnection, connect
+
+REPO = Path(__file__).resolve().parents[2]
+RECV_TIMEOUT = 10.0
+
+
+def _merge(base: dict[str, Any], extra: dict[str, Any]) -> dict[str, Any]:
+    out = dict(base)
+    for key, value in extra.items():
+        out[key] = _merge(out[key], value) if isinstance(value, dict) and isinstance(out.get(key), dict) else value
+    return out
+
+
+def write_study(folder: Path, study_id: str = "tiny", **overrides: Any) -> Path:
+    """A small study: one kitchen (``practice``), the ``stay`` robot, one order, 30 Hz, one questionnaire."""
+    data: dict[str, Any] = {
+        "id": study_id, "title": "Test study", "kitchens": ["practice"], "robots": ["stay"], "factors": ["robot"],
+        "timing": {"tick_rate_hz": 30}, "world": {"orders": 1, "horizon": 300, "kb_delay": 1},
+        "questionnaires": [{"id": "q", "items": [
+            {"id": "a", "text": "A", "scale": {"min": 1, "max": 5}},
+            {"id": "b", "text": "B", "scale": {"min": 1, "max": 5}, "required": False}]}],
+        "reconnect": {"grace_seconds": 60},
+    }
+    path = folder / f"{study_id}.yaml"
+    path.write_text(yaml.safe_dump(_merge(data, overrides)), encoding="utf-8")
+    return path
+
+
+def free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return int(sock.getsockname()[1])
+
+
+class ThreadServer:
+    """The app on a real uvicorn server in a background thread of this process (a real TCP socket)."""
+
+    def __init__(self, app: Any) -> None:
+        self.app = app
+        self.server = uvicorn.Server(uvicorn.Config(app, host="127.0.0.1", port=0, log_level="warning",
+                                                    ws_max_size=1 << 20, lifespan="on"))
+        self.thread = threading.Thread(target=self.server.run, name="test-server", daemon=True)
+
+    def __enter__(self) -> ThreadServer:
+        self.thread.start()
+        deadline = time.monotonic() + 30
+        while not self.server.started:
+            if not self.thread.is_alive() or time.monotonic() > deadline:
+                raise RuntimeError("the test server did not start")
+            time.sleep(0.02)
+        port = self.server.servers[0].sockets[0].getsockname()[1]
+        self.url = f"http://127.0.0.1:{port}"
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.server.should_exit = True
+        self.thread.join(timeout=30)
+
+    @property
+    def services(self) -> Any:
+        return self.app.state.services
+
+
+class ProcessServer:
+    """``steakhouse serve`` in a child process (for SIGKILL and multi-process tests)."""
+
+    def __init__(self, *, study: Path, database_url: str, workers: int = 1, env: dict[str, str] | None = None,
+                 log: Path | None = None) -> None:
+        self.port = free_port()
+        self.url = f"http://127.0.0.1:{self.port}"
+        self.args = [sys.executable, "-m", "server.cli", "serve", "--port", str(self.port), "--study", str(study),
+                     "--database-url", database_url, "--workers", str(workers), "--log-level", "warning"]
+        self.env = {**os.environ, "STEAKHOUSE_ADMIN_TOKEN": "admin-secret", "STEAKHOUSE_FLUSH_INTERVAL_S": "0.2",
+                    **(env or {})}
+        self.env["PYTHONPATH"] = os.pathsep.join([str(REPO), str(Path(__file__).parent)])
+        self.log = log
+        self.process: subprocess.Popen[bytes] | None = None
+
+    def start(self) -> ProcessServer:
+        return self.launch().wait_ready()
+
+    def launch(self) -> ProcessServer:
+        """Start the process without waiting (several servers can start side by side)."""
+        out = open(self.log, "ab") if self.log else subprocess.DEVNULL  # noqa: SIM115 - closed in stop()
+        self._out = out
+        self.process = subprocess.Popen(self.args, cwd=REPO, env=self.env, stdout=out, stderr=out)
+        return self
+
+    def wait_ready(self) -> ProcessServer:
+        assert self.process is not None
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline:
+            if self.process.poll() is not None:
+                raise RuntimeError(f"server exited with {self.process.returncode}")
+            try:
+                if httpx.get(self.url + "/healthz", timeout=1).status_code == 200:
+                    return self
+            except httpx.HTTPError:
+                pass
+            time.sleep(0.05)
+        raise RuntimeError("server did not become healthy")
+
+    def kill(self) -> None:
+        """SIGKILL: no shutdown code runs, like a crash."""
+        if self.process is not None and self.process.poll() is None:
+            os.kill(self.process.pid, signal.SIGKILL)
+            self.process.wait(timeout=10)
+        self._close()
+
+    def stop(self) -> None:
+        if self.process is not None and self.process.poll() is None:
+            self.process.send_signal(signal.SIGTERM)
+            try:
+                self.process.wait(timeout=15)
+            except subprocess.TimeoutExpired:
+                os.kill(self.process.pid, signal.SIGKILL)
+                self.process.wait(timeout=10)
+        self._close()
+
+    def _close(self) -> None:
+        out = getattr(self, "_out", None)
+        if out is not None and out is not subprocess.DEVNULL:
+            out.close()
+        self._out = None
+
+
+class Player:
+    """A participant: the REST calls of the flow, then websockets to play."""
+
+    def __init__(self, base_url: str) -> None:
+        self.base = base_url
+        self.http = httpx.AsyncClient(base_url=base_url, timeout=30)
+        self.token = ""
+
+    async def close(self) -> None:
+        await self.http.aclose()
+
+    @property
+    def headers(self) -> dict[str, str]:
+        return {"Authorization": f"Bearer {self.token}"}
+
+    async def join(self, study_id: str = "tiny", **recruiting: str) -> dict[str, Any]:
+        response = await self.http.post(f"/api/studies/{study_id}/join", json={"recruiting": recruiting})
+        response.raise_for_status()
+        body: dict[str, Any] = response.json()
+        self.token = body["token"]
+        return body
+
+    async def post(self, path: str, body: Any = None) -> httpx.Response:
+        return await self.http.post(path, json=body, headers=self.headers)
+
+    async def session(self) -> dict[str, Any]:
+        response = await self.http.get("/api/session", headers=self.headers)
+        response.raise_for_status()
+        return response.json()  # type: ignore[no-any-return]
+
+    async def ready(self, study_id: str = "tiny", **recruiting: str) -> None:
+        """Join, consent and read the instructions: the next step is a trial."""
+        await self.join(study_id, **recruiting)
+        (await self.post("/api/session/consent", {"accept": True})).raise_for_status()
+        (await self.post("/api/session/instructions_done")).raise_for_status()
+
+    async def socket(self) -> Socket:
+        return await Socket.open(self.base.replace("http", "ws", 1) + f"/ws/play?token={self.token}")
+
+
+class Socket:
+    """A websocket speaking protocol v1: numbered sends, a log of everything received."""
+
+    def __init__(self, ws: ClientConnection) -> None:
+        self.ws = ws
+        self.seq = 0
+        self.received: list[dict[str, Any]] = []
+
+    @classmethod
+    async def open(cls, url: str) -> Socket:
+        return cls(await connect(url, max_size=1 << 22))
+
+    async def send(self, type_: str, **fields: Any) -> int:
+        self.seq += 1
+        await self.ws.send(json.dumps({"v": 1, "seq": self.seq, "type": type_, **fields}))
+        return self.seq
+
+    async def send_raw(self, text: str | bytes) -> None:
+        await self.ws.send(text)
+
+    async def recv(self, timeout: float = RECV_TIMEOUT) -> dict[str, Any]:
+        message: dict[str, Any] = json.loads(await asyncio.wait_for(self.ws.recv(), timeout))
+        self.received.append(message)
+        return message
+
+    async def until(self, predicate: Callable[[dict[str, Any]], bool], timeout: float = RECV_TIMEOUT) -> dict[str, Any]:
+        deadline = time.monotonic() + timeout
+        while True:
+            message = await self.recv(max(deadline - time.monotonic(), 0.01))
+            if predicate(message):
+                return message
+
+    async def close(self) -> None:
+        await self.ws.close()
+
+
+def next_subtask(state: dict[str, Any]) -> str | None:
+    """A scripted participant's choice: when idle, the first subtask the model considers available."""
+    over = state["hud"]["orders_left"] == 0 or state["hud"]["ticks_left"] == 0
+    if state["subtask"] is None and state["available"] and not over:
+        return str(state["available"][0])
+    return None
+
+
+async def play_to_end(sock: Socket, *, on_state: Callable[[dict[str, Any]], Any] | None = None,
+                      timeout: float = 60.0) -> dict[str, Any]:
+    """Play by choosing subtasks until ``trial_end``; returns it."""
+    deadline = time.monotonic() + timeout
+    while True:
+        message = await sock.recv(max(deadline - time.monotonic(), 0.01))
+        if message["type"] == "trial_end":
+            return message
+        if message["type"] == "state":
+            if on_state is not None:
+                await on_state(message)
+            choice = next_subtask(message)
+            if choice is not None:
+                await sock.send("select_subtask", subtask=choice)
