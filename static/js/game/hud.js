@@ -1,0 +1,91 @@
+/**
+ * The heads-up display above the kitchen: round, orders left, time left, score, the current task and
+ * what the cook holds; and the connection pill (connected with its round-trip time, reconnecting, …).
+ * Text nodes are only touched when their value changes, so 30 updates a second cost nothing.
+ */
+
+import { h } from "../dom.js";
+import { heldLabel, subtaskLabel } from "../labels.js";
+
+function stat(label, id) {
+  const value = h("span", { class: "hud-value", id });
+  return { node: h("div", { class: "hud-item" }, h("span", { class: "hud-label" }, label), value), value };
+}
+
+export function formatTime(seconds) {
+  const s = Math.max(0, Math.ceil(seconds));
+  return `${Math.floor(s / 60)}:${String(s % 60).padStart(2, "0")}`;
+}
+
+export class Hud {
+  constructor() {
+    this.round = h("span", { class: "hud-round", id: "hud-round" });
+    this.items = {
+      orders: stat("Orders left", "hud-orders"),
+      time: stat("Time left", "hud-time"),
+      score: stat("Score", "hud-score"),
+      task: stat("Your task", "hud-task"),
+      held: stat("Holding", "hud-held"),
+    };
+    this.pill = h("span", { class: "link-pill", id: "link-status", role: "status", "aria-live": "polite" });
+    this.latency = h("span", { class: "latency", id: "latency", title: "Round trip to the server" });
+    this.note = h("span", { class: "hud-note", id: "hud-note", "aria-live": "polite" });
+    this.node = h("div", { class: "hud", role: "group", "aria-label": "Game status" },
+      this.round, Object.values(this.items).map((i) => i.node), h("div", { class: "hud-link" }, this.note, this.pill, this.latency));
+  }
+
+  setText(el, text) {
+    if (el.textContent !== text) el.textContent = text;
+  }
+
+  setRound(trial) {
+    const text = `Round ${trial.number} of ${trial.total}`;
+    this.setText(this.round, trial.kind === "practice" ? `Practice · ${text}` : text);
+  }
+
+  update(state) {
+    const hud = state.hud;
+    this.setText(this.items.orders.value, String(hud.orders_left));
+    this.setText(this.items.time.value,
+      hud.seconds_left === null || hud.seconds_left === undefined ? `${hud.ticks_left} steps` : formatTime(hud.seconds_left));
+    this.setText(this.items.score.value, String(hud.score));
+    this.setTask(state.subtask);
+    this.setText(this.items.held.value, heldLabel(state.you.held));
+    this.items.time.node.classList.toggle("hud-urgent", hud.seconds_left !== null && hud.seconds_left <= 10);
+  }
+
+  setTask(subtask) {
+    this.setText(this.items.task.value, subtask ? subtaskLabel(subtask) : "none");
+    this.items.task.node.dataset.subtask = subtask || "";
+  }
+
+  setLink(link, info = {}) {
+    const text = {
+      connecting: "Connecting…",
+      open: "Connected",
+      reconnecting: info.attempt > 3 ? "Reconnecting… check your internet connection" : "Reconnecting…",
+      ended: "Round over",
+      replaced: "Open in another window",
+      unauthorized: "Session not found",
+      no_trial: "Not in a round",
+      closed: "Disconnected",
+    }[link] || link;
+    this.setText(this.pill, text);
+    this.pill.dataset.link = link;
+    if (link !== "open") this.setText(this.latency, "");
+  }
+
+  /** A short message next to the connection pill that fades after a few seconds. */
+  notice(text, kind = "info") {
+    this.setText(this.note, text);
+    this.note.dataset.kind = kind;
+    window.clearTimeout(this.noteTimer);
+    this.noteTimer = window.setTimeout(() => this.setText(this.note, ""), 3000);
+  }
+
+  setLatency(ms) {
+    const rounded = Math.round(ms);
+    this.setText(this.latency, `${rounded} ms`);
+    this.latency.dataset.quality = rounded < 150 ? "good" : rounded < 400 ? "fair" : "poor";
+  }
+}

@@ -1,0 +1,87 @@
+/**
+ * The participant client: reads the link (landing), then shows the page for the participant's state as
+ * the server reports it (GET /api/session): consent → instructions → practice / trial rounds and
+ * questionnaires → the end page. The server's state machine is the single source of truth; after every
+ * action the page is chosen again from the state the server answers.
+ */
+
+import { h, setProgress } from "./dom.js";
+import { enter, readLink } from "./landing.js";
+import { consentPage } from "./pages/consent.js";
+import { instructionsPage } from "./pages/instructions.js";
+import { trialPage } from "./pages/trial.js";
+import { questionnairePage } from "./pages/questionnaire.js";
+import { finishPage } from "./pages/finish.js";
+import { messagePage } from "./pages/common.js";
+
+const root = document.getElementById("app");
+const PAGES = {
+  consent: consentPage,
+  instructions: instructionsPage,
+  practice: trialPage,
+  trial: trialPage,
+  questionnaire: questionnairePage,
+  done: finishPage,
+  screened_out: finishPage,
+};
+
+let cleanup = null;
+let ctx = null;
+
+async function route(session) {
+  if (cleanup) cleanup();
+  cleanup = null;
+  let current = session;
+  if (!current) {
+    try {
+      current = await ctx.api.session();
+    } catch (exc) {
+      failure(exc);
+      return;
+    }
+  }
+  ctx.session = current;
+  document.body.dataset.state = current.state;
+  setProgress(current.state === "done" || current.state === "screened_out" ? "" :
+    `Step ${current.step + 1} of ${current.steps}`);
+  const page = PAGES[current.state];
+  if (!page) {
+    messagePage(root, "Unexpected state", `The study is in a state this page does not know (${current.state}).`);
+    return;
+  }
+  cleanup = page(root, ctx) || null;
+}
+
+function retryButton() {
+  return h("button", { type: "button", class: "primary", onclick: () => window.location.reload() }, "Try again");
+}
+
+function failure(exc) {
+  if (exc.status === 404) {
+    messagePage(root, "This study is not available", "Please check the link you were given, or contact the researcher.");
+  } else if (exc.status === 401) {
+    messagePage(root, "Your session was not found", "Please open the link you were given again.", retryButton());
+  } else if (exc.status === 0) {
+    messagePage(root, "The server could not be reached", "Check your internet connection and try again.", retryButton());
+  } else {
+    messagePage(root, "Something went wrong", `The study could not be loaded (${exc.message}).`, retryButton());
+  }
+}
+
+async function boot() {
+  const link = readLink();
+  if (!link.study) {
+    messagePage(root, "This link is incomplete",
+      ["The address should name a study, for example /?study=demo.", "Please use the full link you were given."]);
+    return;
+  }
+  try {
+    const entered = await enter(link);
+    ctx = { api: entered.api, link, route, session: entered.session };
+    await route(entered.session);
+  } catch (exc) {
+    failure(exc);
+  }
+}
+
+boot();

@@ -1,0 +1,61 @@
+/**
+ * The end page, for participants who finished (`done`) and for those who declined consent
+ * (`screened_out`): thanks, the study's code (with a copy button) and, when the study configures one,
+ * the redirect back to the recruiting platform after a short countdown (with a link to go at once).
+ */
+
+import { h, show } from "../dom.js";
+
+export const REDIRECT_SECONDS = 5;
+
+export function finishPage(root, ctx) {
+  const { session } = ctx;
+  const completion = session.completion || {};
+  const finished = session.state === "done";
+  const title = h("h1", { id: "finish-title", tabindex: "-1" },
+    finished ? "Thank you — you have finished the study" : "Thank you for your interest");
+  const parts = [title];
+  parts.push(h("p", {}, finished
+    ? "Your answers and games have been saved."
+    : "You chose not to take part, so the study ends here. No game data were recorded."));
+
+  if (completion.code) {
+    const code = h("output", { class: "code", id: "completion-code" }, completion.code);
+    const status = h("span", { class: "muted", role: "status" });
+    const copy = h("button", { type: "button", class: "secondary", id: "copy-code", onclick: async () => {
+      try {
+        await navigator.clipboard.writeText(completion.code);
+        status.textContent = "Copied.";
+      } catch {
+        status.textContent = "Select the code and copy it by hand.";
+      }
+    } }, "Copy code");
+    parts.push(h("p", {}, finished ? "Your completion code:" : "Your code:"),
+               h("div", { class: "code-row" }, code, copy, status));
+  }
+
+  let timer = 0;
+  if (completion.redirect_url) {
+    let left = REDIRECT_SECONDS;
+    const count = h("span", { id: "redirect-seconds" }, String(left));
+    const link = h("a", { href: completion.redirect_url, id: "redirect-link", rel: "noreferrer" }, "Go now");
+    parts.push(h("p", { id: "redirect-note" }, "You will be taken back to the recruiting site in ", count,
+      " seconds. ", link));
+    timer = window.setInterval(() => {
+      left -= 1;
+      count.textContent = String(Math.max(left, 0));
+      if (left <= 0) {
+        window.clearInterval(timer);
+        window.location.assign(completion.redirect_url);
+      }
+    }, 1000);
+  } else {
+    parts.push(h("p", { class: "muted" }, completion.code
+      ? "Enter this code on the recruiting site, then you can close this window."
+      : "You can close this window now."));
+  }
+
+  show(root, h("section", { class: "card narrow", id: "finish", dataset: { kind: completion.kind || "" },
+                            "aria-labelledby": "finish-title" }, parts), title);
+  return () => window.clearInterval(timer);
+}

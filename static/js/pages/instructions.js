@@ -1,0 +1,47 @@
+/**
+ * Instructions: the study's text (Markdown), then a picture of what the black cells mean drawn by the
+ * game's own painter (the whole kitchen beside the participant's view), a legend of everything in the
+ * kitchen, and the keys. "Start practice" finishes the step.
+ */
+
+import { h, show } from "../dom.js";
+import { renderMarkdown } from "../markdown.js";
+import { INTERRUPTS } from "../labels.js";
+import { examplePicture, legend, loadExample } from "../game/picture.js";
+import { actionError } from "./common.js";
+
+export function instructionsPage(root, ctx) {
+  const error = h("p", { class: "error", role: "alert", id: "instructions-error" });
+  const next = h("button", { type: "button", class: "primary", id: "instructions-done" }, "I have read this: continue");
+  const picture = h("div", { class: "picture", id: "instructions-picture" }, h("p", { class: "muted" }, "Loading the picture…"));
+  next.addEventListener("click", async () => {
+    next.disabled = true;
+    try {
+      ctx.route(await ctx.api.instructionsDone());
+    } catch (exc) {
+      if (!actionError(exc, error, ctx)) next.disabled = false;
+    }
+  });
+
+  show(root, h("section", { class: "card prose wide", id: "instructions", "aria-label": "Instructions" },
+    renderMarkdown(ctx.session.instructions),
+    h("h2", {}, "What the black cells mean"),
+    h("p", {}, "You see what is in front of you, in a cone as in the picture below, and the cells right beside " +
+      "you. Everything else is drawn black — even things you saw a moment ago, because they may have changed. " +
+      "Turn or walk to look again. The robot may be in a black cell."),
+    picture,
+    h("h2", {}, "What is in the kitchen"),
+    legend(),
+    h("h2", {}, "Keys"),
+    h("table", { class: "keys-table" },
+      h("thead", {}, h("tr", {}, h("th", { scope: "col" }, "Action"), h("th", { scope: "col" }, "Keys"))),
+      h("tbody", {}, INTERRUPTS.map((i) => h("tr", {}, h("td", {}, i.label),
+        h("td", {}, i.keys.map((k, n) => [n ? " or " : "", h("kbd", {}, k)])))))),
+    h("p", {}, "A move turns you toward that direction and steps there if the cell is free floor. Interrupts act " +
+      "on the next step; afterwards your task continues from where you are. Stop cancels the task."),
+    h("div", { class: "actions" }, next), error));
+
+  loadExample().then((example) => picture.replaceChildren(examplePicture(example))).catch(() => {
+    picture.replaceChildren(h("p", { class: "muted" }, "The picture could not be loaded; the text above explains it."));
+  });
+}

@@ -1,0 +1,148 @@
+"""Fixtures of the browser tests: Debian's Chromium driven by Playwright, and a real study server (uvicorn
+on 127.0.0.1, a free port, stopped after the module) serving ``static/`` and the study files in
+``tests/static/studies/``.
+
+Without ``chromium`` on the PATH the browser tests are skipped with the reason, except when ``CI=true``:
+then they fail. Every page records console errors and uncaught exceptions; a test fails if any occurred.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import sys
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+import httpx
+import pytest
+
+HERE = Path(__file__).resolve().parent
+REPO = HERE.parents[1]
+STUDIES = HERE / "studies"
+SCREENSHOTS = REPO / "test-output" / "screenshots"
+ADMIN_TOKEN = "browser-admin-secret"
+CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",
+                 "--disable-sync", "--no-first-run"]
+RECRUIT_SITE = "https://recruit.example/"
+
+sys.path.insert(0, str(REPO / "tests" / "server"))
+sys.path.insert(0, str(HERE))
+
+from steakhouse_testing import ThreadServer  # noqa: E402
+
+
+def chromium_or_skip() -> str:
+    path = shutil.which("chromium")
+    if path is None:
+        reason = "Debian's chromium is not installed (run `make browser` or tests/tools/ensure_chromium.sh)"
+        if os.environ.get("CI", "").lower() == "true":
+            pytest.fail(f"CI requires the browser tests: {reason}")
+        pytest.skip(reason)
+    return path
+
+
+@pytest.fixture(scope="module")
+def browser() -> Iterator[Any]:
+    path = chromium_or_skip()
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as playwright:
+        launched = playwright.chromium.launch(executable_path=path, headless=True, args=CHROMIUM_ARGS)
+        try:
+            yield launched
+        finally:
+            launched.close()
+
+
+class StudyServer:
+    """The running server, with helpers to read what the store holds (admin API and store queries)."""
+
+    def __init__(self, thread: ThreadServer) -> None:
+        self.thread = thread
+        self.url = thread.url
+        self.admin = httpx.Client(base_url=thread.url, headers={"Authorization": f"Bearer {ADMIN_TOKEN}"},
+                                  timeout=10)
+
+    @property
+    def services(self) -> Any:
+        return self.thread.services
+
+    def link(self, study: str = "browser_flow", **params: str) -> str:
+        query = "&".join(f"{k}={v}" for k, v in {"study": study, **params}.items())
+        return f"{self.url}/?{query}"
+
+    def get(self, path: str, **params: Any) -> Any:
+        response = self.admin.get(path, params=params)
+        response.raise_for_status()
+        return response.json()
+
+    def participant(self, public_id: str) -> dict[str, Any]:
+        found = [p for p in self.get("/api/admin/participants") if p["participant_id"] == public_id]
+        assert len(found) == 1, found
+        return found[0]
+
+    def trials(self, public_id: str) -> list[dict[str, Any]]:
+        return list(self.get("/api/admin/trials", participant_id=public_id))
+
+    def live(self, trial_id: int) -> dict[str, Any]:
+        return dict(self.get(f"/api/admin/live/{trial_id}"))
+
+    def events(self, trial_id: int) -> list[dict[str, Any]]:
+        return list(self.get(f"/api/admin/trials/{trial_id}/events"))
+
+
+@pytest.fixture(scope="module")
+def study_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[StudyServer]:
+    from server.app import create_app
+    from server.settings import Settings
+
+    folder = tmp_path_factory.mktemp("browser-store")
+    settings = Settings(database_url=f"sqlite:///{folder / 'store.sqlite3'}",
+                        study_files=tuple(sorted(STUDIES.glob("*.yaml"))), robot_workers=0,
+                        admin_token=ADMIN_TOKEN, flush_interval_s=0.1, static_dir=REPO / "static")
+    with ThreadServer(create_app(settings)) as thread:
+        server = StudyServer(thread)
+        try:
+            yield server
+        finally:
+            server.admin.close()
+
+
+class PageProblems(list[str]):
+    """Console errors and uncaught exceptions of one page."""
+
+
+@pytest.fixture
+def new_page(browser: Any) -> Iterator[Callable[..., tuple[Any, PageProblems]]]:
+    """``new_page(viewport=(1280, 720), scale=1)``: a page in a fresh browser context (a new participant)
+    with the recruiting site stubbed; fails the test if the page logged a console error."""
+    contexts: list[tuple[Any, PageProblems]] = []
+
+    def make(viewport: tuple[int, int] = (1280, 720), scale: float = 1) -> tuple[Any, PageProblems]:
+        context = browser.new_context(viewport={"width": viewport[0], "height": viewport[1]},
+                                      device_scale_factor=scale)
+        context.route(f"{RECRUIT_SITE}**", lambda route: route.fulfill(
+            status=200, content_type="text/html", body="<!doctype html><title>Recruiting site</title><p>Welcome back"))
+        page = context.new_page()
+        problems = PageProblems()
+        page.on("console", lambda msg: problems.append(f"console.{msg.type}: {msg.text}")
+                if msg.type == "error" else None)
+        page.on("pageerror", lambda exc: problems.append(f"uncaught: {exc}"))
+        contexts.append((context, problems))
+        return page, problems
+
+    yield make
+    failures = [p for _, problems in contexts for p in problems]
+    for context, _ in contexts:
+        context.close()
+    assert failures == [], failures
+
+
+def screenshot(page: Any, name: str, *, full_page: bool = False) -> Path:
+    """Save what the page shows to ``test-output/screenshots/<name>.png`` for a person to look at."""
+    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+    path = SCREENSHOTS / f"{name}.png"
+    page.screenshot(path=str(path), full_page=full_page)
+    return path

@@ -1,0 +1,59 @@
+"""Checks of the client's files against the server and the planner, without a browser: the instructions'
+example view is the planner's FOV, and every protocol name (subtask, interrupt, terrain, object) has a
+label and a drawing, so a new one cannot silently fall back to a placeholder."""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+from typing import get_args
+
+from planner.fov import visible_cells
+from planner.geometry import Direction
+from planner.layout import parse_layout
+from planner.objects import OBJECTS
+from planner.subtasks import SUBTASKS
+from server.game.controller import Interrupt
+from server.protocol.server import TerrainName
+
+STATIC = Path(__file__).resolve().parents[2] / "static"
+
+
+def source(name: str) -> str:
+    return (STATIC / name).read_text(encoding="utf-8")
+
+
+def test_the_instructions_example_shows_exactly_the_planners_field_of_view():
+    example = json.loads(source("data/example_view.json"))
+    rows = [list(row) for row in example["rows"]]
+    you, robot = example["you"], example["robot"]
+    rows[you["y"]][you["x"]] = "2"
+    rows[robot["y"]][robot["x"]] = "1"
+    layout = parse_layout("\n".join("".join(r) for r in rows) + "\n", name="example")
+    seen = visible_cells(layout, (you["x"], you["y"]), Direction(you["facing"]), example["fov_angle"])
+    assert {tuple(c) for c in example["visible"]} == seen
+    assert (robot["x"], robot["y"]) not in seen, "the picture's point: the robot is hidden behind the cook"
+
+
+def test_every_subtask_and_interrupt_has_a_button_label():
+    labels = source("js/labels.js")
+    block = labels[labels.index("export const SUBTASKS"):labels.index("export function subtaskLabel")]
+    assert set(re.findall(r"^  (\w+): \{ label:", block, flags=re.MULTILINE)) == {s.value for s in SUBTASKS}
+    groups = labels[labels.index("SUBTASK_GROUPS"):labels.index("export const SUBTASKS")]
+    grouped = re.findall(r'"(\w+)"', groups)
+    assert sorted(grouped) == sorted(s.value for s in SUBTASKS), "each subtask in exactly one group"
+    interrupts = labels[labels.index("export const INTERRUPTS"):labels.index("export const OBJECTS")]
+    assert set(re.findall(r'id: "(\w+)"', interrupts)) == {i.value for i in Interrupt}
+
+
+def test_every_terrain_and_object_has_a_drawing():
+    stations = source("js/game/stations.js")
+    table = stations[stations.index("const TERRAIN = {"):stations.index("};", stations.index("const TERRAIN = {"))]
+    assert set(re.findall(r"^  (\w+): draw", table, flags=re.MULTILINE)) == set(get_args(TerrainName))
+    items = source("js/game/items.js")
+    table = items[items.index("const DRAW = {"):items.index("};", items.index("const DRAW = {"))]
+    assert set(re.findall(r"^  (\w+):", table, flags=re.MULTILINE)) == set(OBJECTS)
+    labels = source("js/labels.js")
+    objects = labels[labels.index("export const OBJECTS"):labels.index("export function heldLabel")]
+    assert set(re.findall(r"^  (\w+):", objects, flags=re.MULTILINE)) == set(OBJECTS)
