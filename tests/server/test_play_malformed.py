@@ -71,7 +71,10 @@ def test_each_malformed_message_gets_a_typed_error_and_changes_nothing(live_serv
     for (frame, code, ref), reply in zip(BAD, replies, strict=True):
         assert reply["type"] == "error", f"{frame[:40]!r} was not rejected"
         assert (reply["code"], reply["ref"]) == (code, ref), f"{frame[:40]!r}: {reply}"
-    assert before["subtask"] == "pickup_onion", "no rejected message may change the subtask"
+    # On a loaded machine the avatar may already have done what it was asked (it holds the onion and the
+    # subtask ended by itself); any other subtask would mean a rejected message changed it.
+    done_as_asked = before["subtask"] is None and before["you"]["held"] == "onion"
+    assert before["subtask"] == "pickup_onion" or done_as_asked, "no rejected message may change the subtask"
     assert probe_ack["ack"] == probe and probe_ack["queued"] == 1, "no rejected interrupt may be queued"
     assert later["ack"] == probe
     assert end["status"] == "finished"
