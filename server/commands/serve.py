@@ -4,16 +4,54 @@ Options override the ``STEAKHOUSE_*`` environment (see :mod:`server.settings`); 
 shipped ``demo.yaml`` and ``paper_study.yaml`` are served; without ``--database-url`` (or ``DATABASE_URL``)
 the store is the SQLite file ``./data/steakhouse.sqlite3``, created with its folder. Invalid settings or
 study files stop the command with every problem listed (exit 1).
+
+Participant tokens never reach the log: the websocket takes ``?token=…`` (browsers cannot set headers
+there) and uvicorn logs the path with its query (``"WebSocket /ws/play?token=…" [accepted]`` at info, and
+HTTP requests in its access log), so the command installs :class:`RedactTokens` on uvicorn's loggers.
 """
 
 from __future__ import annotations
 
 import argparse
 import logging
+import re
 import sys
 from typing import Any
 
 from server.cli import UsageError
+
+
+UVICORN_LOGGERS = ("uvicorn.error", "uvicorn.access")
+_TOKEN = re.compile(r"([?&]token=)[^&\s\"']*")
+
+
+class RedactTokens(logging.Filter):
+    """Replaces the value of every ``token=`` query parameter in a log record by ``[redacted]``.
+
+    The message and each string argument are redacted separately, so the argument tuple keeps its shape
+    (uvicorn's access formatter unpacks it).
+    """
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        if isinstance(record.msg, str):
+            record.msg = redact(record.msg)
+        if isinstance(record.args, tuple):
+            record.args = tuple(redact(a) if isinstance(a, str) else a for a in record.args)
+        elif isinstance(record.args, dict):
+            record.args = {k: redact(v) if isinstance(v, str) else v for k, v in record.args.items()}
+        return True
+
+
+def redact(text: str) -> str:
+    return _TOKEN.sub(r"\1[redacted]", text)
+
+
+def install_redaction(names: tuple[str, ...] = UVICORN_LOGGERS) -> None:
+    """Put one :class:`RedactTokens` on each named logger (idempotent)."""
+    for name in names:
+        logger = logging.getLogger(name)
+        if not any(isinstance(f, RedactTokens) for f in logger.filters):
+            logger.addFilter(RedactTokens())
 
 
 def register(subparsers: Any) -> None:
@@ -65,6 +103,7 @@ def serve(args: argparse.Namespace) -> int:
     except (LayoutError, DuplicateStudyError) as exc:
         print(f"{exc}\nthe server did not start", file=sys.stderr)
         return 1
+    install_redaction()
     uvicorn.run(app, host=settings.host, port=settings.port, log_level=settings.log_level,
                 ws_max_size=settings.ws_max_frame_bytes, timeout_graceful_shutdown=5)
     return 0

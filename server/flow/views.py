@@ -1,7 +1,8 @@
 """What ``GET /api/session`` answers: the participant's state and what to show next.
 
 Never the condition's robot or kitchen names beyond the assigned order given at join: the pages show
-"round 2 of 5", not which robot is playing.
+"round 2 of 5", not which robot is playing. ``fov_angle`` (the study's field of view, the same in every trial)
+lets the instructions draw the cone the participant will have.
 """
 
 from __future__ import annotations
@@ -32,6 +33,7 @@ def session_view(loaded: LoadedStudy, row: ParticipantRow, order: AssignmentRow 
         "order_index": order.order_index if order else None,
         "condition_order": list(order.condition_order) if order else [],
         "test_run": row.test_run,
+        "fov_angle": study.world.fov_angle,
     }
     if phase is Phase.CONSENT:
         view["consent"] = study.consent
@@ -39,7 +41,9 @@ def session_view(loaded: LoadedStudy, row: ParticipantRow, order: AssignmentRow 
         view["instructions"] = study.instructions
     elif phase in (Phase.PRACTICE, Phase.TRIAL):
         view["trial"] = {"kind": step.trial_kind, "index": step.index, "number": step.number,
-                         "total": step.total, "websocket": "/ws/play"}
+                         "total": step.total, "kind_number": (step.index or 0) + 1,
+                         "kind_total": sum(1 for s in progress.plan if s.trial_kind == step.trial_kind),
+                         "websocket": "/ws/play"}
     elif phase is Phase.QUESTIONNAIRE:
         questionnaire = next(q for q in study.questionnaires if q.id == step.questionnaire)
         view["questionnaire"] = {

@@ -18,6 +18,8 @@ class TrialMeta:
     index: int
     number: int
     total: int
+    kind_total: int
+    """Trials of this kind (practice or main) in the participant's plan."""
     condition: str
     robot: str
     kitchen: str

@@ -123,7 +123,8 @@ class GameRegistry:
 
     def _build(self, loaded: LoadedStudy, participant: ParticipantRow, prepared: Prepared) -> LiveGame:
         row, study = prepared.trial, loaded.study
-        step = progress_of(participant).current
+        progress = progress_of(participant)
+        step = progress.current
         layout, rules = loaded.layout(row.kitchen), loaded.rules
         angle, delay = study.world.fov_angle, study.world.kb_delay
         last = prepared.last_tick
@@ -137,8 +138,10 @@ class GameRegistry:
                                  kb=initial_kb(world))
         meta = TrialMeta(trial_id=row.id, attempt=row.attempt, participant_id=participant.id,
                          participant=participant.public_id, study_id=loaded.id, kind=row.kind, index=row.index,
-                         number=step.number or 0, total=step.total or 0, condition=row.condition_id,
-                         robot=row.robot, kitchen=row.kitchen, seed=row.seed, test_run=participant.test_run)
+                         number=step.number or 0, total=step.total or 0,
+                         kind_total=sum(1 for s in progress.plan if s.trial_kind == row.kind),
+                         condition=row.condition_id, robot=row.robot, kitchen=row.kitchen, seed=row.seed,
+                         test_run=participant.test_run)
         return LiveGame(meta, loaded, engine, self.deps, resumed=prepared.outcome == "resume")
 
     def detach(self, game: LiveGame, conn: Connection) -> None:

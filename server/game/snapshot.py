@@ -23,7 +23,7 @@ def hello(meta: TrialMeta, engine: TrialEngine, *, mode: str, rate: float, resum
     layout, rules = engine.layout, engine.rules
     return Hello(
         trial=TrialInfo(id=meta.trial_id, kind=cast(TrialKind, meta.kind), index=meta.index, number=meta.number,
-                        total=meta.total),
+                        total=meta.total, kind_number=meta.index + 1, kind_total=meta.kind_total),
         width=layout.width, height=layout.height, subtasks=[s.value for s in SUBTASKS],
         interrupts=[i.value for i in Interrupt], mode=cast(Mode, mode), tick_rate_hz=rate, fov_angle=engine.angle,
         horizon=rules.horizon, orders=rules.orders, tick=engine.tick, resumed=resumed, max_message_bytes=limit)

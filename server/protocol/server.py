@@ -30,8 +30,13 @@ class TrialInfo(BaseModel):
     index: int
     """Index within its kind (practice 0, 1, …; main 0, 1, …)."""
     number: int
-    """1-based position among all trials of the participant."""
+    """1-based position among all trials of the participant (practice and main together)."""
     total: int
+    """All trials of the participant (practice and main together)."""
+    kind_number: int
+    """1-based position among the trials of its kind ("Practice 1 of 1", "Round 2 of 4")."""
+    kind_total: int
+    """Trials of its kind."""
 
 
 class Hello(ServerMessage):

@@ -1,18 +1,24 @@
 """The admin API under ``/api/admin/`` (bearer token from ``STEAKHOUSE_ADMIN_TOKEN``; 401 without it).
 
-Studies with the fill of each condition order, participants with progress and flags, setting flags,
-live trials (summary and the full spectator view), stored trials and their ticks and events for replay,
-and the robot worker pool.
+Studies with the fill of each condition order and their recruiting links, participants with progress, flags
+and questionnaire answers, setting flags, live trials (summary and the full spectator view with the scene the
+dashboard draws), stored trials, their ticks and events, and their frames for the replay viewer, and the robot
+worker pool. The logic lives in ``server.admin`` and ``server.store``; these routes only wire it.
 """
 
 from __future__ import annotations
 
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Depends, Query
+from fastapi import APIRouter, Depends, Query, Request
 from pydantic import BaseModel, ConfigDict, Field
 
-from server.deps import ServicesDep, require_admin
+from server.admin.answers import participant_answers
+from server.admin.links import study_links
+from server.admin.live import live_view
+from server.admin.replay import replay
+from server.catalog import LoadedStudy
+from server.deps import ServicesDep, path_study, require_admin
 from server.errors import ApiError
 from server.store import participants, trials
 from server.store.overview import order_breakdown, participant_public, public_ids, trial_public
@@ -48,6 +54,11 @@ def studies(services: ServicesDep) -> list[dict[str, Any]]:
     return out
 
 
+@router.get("/studies/{study_id}/links")
+def links(request: Request, loaded: Annotated[LoadedStudy, Depends(path_study)]) -> dict[str, Any]:
+    return study_links(loaded, str(request.base_url))
+
+
 @router.get("/participants")
 def list_participants(services: ServicesDep, study_id: Annotated[str | None, Query(max_length=64)] = None,
                       ) -> list[dict[str, Any]]:
@@ -68,6 +79,15 @@ def set_flags(participant_id: str, body: FlagsRequest, services: ServicesDep) ->
         return participant_public(row, participants.assignment_of(session, row.id))
 
 
+@router.get("/participants/{participant_id}/answers")
+def answers(participant_id: str, services: ServicesDep) -> dict[str, Any]:
+    with services.store.transaction() as session:
+        row = participants.by_public_id(session, participant_id)
+        if row is None:
+            raise ApiError(404, "not_found", "no such participant")
+        return participant_answers(session, row, services.catalog.get(row.study_id))
+
+
 @router.get("/live")
 def live(services: ServicesDep) -> list[dict[str, Any]]:
     return [{**g.meta.to_dict(), "tick": g.engine.tick, "connected": g.connection is not None,
@@ -80,7 +100,7 @@ def live_trial(trial_id: int, services: ServicesDep) -> dict[str, Any]:
     game = services.registry.games.get(trial_id)
     if game is None:
         raise ApiError(404, "not_live", "no live trial with this id in this server process")
-    return game.spectator()
+    return live_view(game)
 
 
 @router.get("/trials")
@@ -117,6 +137,20 @@ def trial_replay(trial_id: int, services: ServicesDep, start: Annotated[int, Que
             "ticks": [{c.name: getattr(t, c.name) for c in t.__table__.columns if c.name != "trial_id"}
                       for t in ticks],
         }
+
+
+@router.get("/trials/{trial_id}/frames")
+def trial_frames(trial_id: int, services: ServicesDep, start: Annotated[int, Query(ge=0)] = 0,
+                 limit: Annotated[int, Query(ge=1, le=5_000)] = 2_000) -> dict[str, Any]:
+    """A stored trial drawn tick by tick for the replay viewer (see ``server.admin.replay``)."""
+    with services.store.transaction() as session:
+        row = session.get(TrialRow, trial_id)
+        if row is None:
+            raise ApiError(404, "not_found", "no such trial")
+        names = public_ids(session, {row.participant_id})
+        stored = trials.ticks(session, trial_id, max(start, 1), limit)
+        frames = replay(services.catalog.get(row.study_id), row, stored, start=start, limit=limit)
+        return {"trial": trial_public(row, names.get(row.participant_id)), **frames}
 
 
 @router.get("/trials/{trial_id}/events")

@@ -21,14 +21,14 @@ import pytest
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parents[1]
 STUDIES = HERE / "studies"
-SCREENSHOTS = REPO / "test-output" / "screenshots"
 ADMIN_TOKEN = "browser-admin-secret"
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",
                  "--disable-sync", "--no-first-run"]
-RECRUIT_SITE = "https://recruit.example/"
 
 sys.path.insert(0, str(REPO / "tests" / "server"))
 sys.path.insert(0, str(HERE))
+
+from steakhouse_browser import RECRUIT_SITE, screenshot  # noqa: E402  (re-exported for old imports)
 
 from steakhouse_testing import ThreadServer  # noqa: E402
 
@@ -138,11 +138,3 @@ def new_page(browser: Any) -> Iterator[Callable[..., tuple[Any, PageProblems]]]:
     for context, _ in contexts:
         context.close()
     assert failures == [], failures
-
-
-def screenshot(page: Any, name: str, *, full_page: bool = False) -> Path:
-    """Save what the page shows to ``test-output/screenshots/<name>.png`` for a person to look at."""
-    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
-    path = SCREENSHOTS / f"{name}.png"
-    page.screenshot(path=str(path), full_page=full_page)
-    return path

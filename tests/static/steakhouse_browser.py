@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import io
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 from planner.geometry import Direction
@@ -15,6 +16,16 @@ from planner.layout import Layout, parse_layout
 from study_config import STUDY_DIR
 
 TIMEOUT_MS = 15_000
+SCREENSHOTS = Path(__file__).resolve().parents[2] / "test-output" / "screenshots"
+RECRUIT_SITE = "https://recruit.example/"
+
+
+def screenshot(page: Any, name: str, *, full_page: bool = False) -> Path:
+    """Save what the page shows to ``test-output/screenshots/<name>.png`` for a person to look at."""
+    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+    path = SCREENSHOTS / f"{name}.png"
+    page.screenshot(path=str(path), full_page=full_page)
+    return path
 
 # One dish, start to finish, with a robot that stays put (the order planner.subtasks makes possible).
 ONE_DISH = ("pickup_meat", "drop_meat", "pickup_onion", "drop_onion", "chop_onion", "pickup_plate", "drop_plate",

@@ -10,7 +10,7 @@ import pytest
 from sqlalchemy import select
 from steakhouse_browser import ONE_DISH, play_by_clicking, press_until_focused, wait_drawn
 
-from conftest import RECRUIT_SITE, screenshot
+from steakhouse_browser import RECRUIT_SITE, screenshot
 from server.store.tables import AnswerRow, ParticipantRow
 
 pytestmark = pytest.mark.browser

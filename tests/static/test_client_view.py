@@ -9,7 +9,7 @@ import pytest
 from steakhouse_browser import (canvas_image, cell_pixels, drawn, kitchen, press_until_focused, start_first_round,
                                 wait_drawn)
 
-from conftest import screenshot
+from steakhouse_browser import screenshot
 from planner.fov import visible_cells
 
 pytestmark = pytest.mark.browser

@@ -12,6 +12,14 @@ function stat(label, id) {
   return { node: h("div", { class: "hud-item" }, h("span", { class: "hud-label" }, label), value), value };
 }
 
+/**
+ * "Practice 1 of 1" or "Round 2 of 4": the trial's place among the trials of its kind (`kind_number`,
+ * `kind_total` of the protocol's trial info), so practice rounds never shift the numbering of the real ones.
+ */
+export function roundLabel(trial) {
+  return `${trial.kind === "practice" ? "Practice" : "Round"} ${trial.kind_number} of ${trial.kind_total}`;
+}
+
 export function formatTime(seconds) {
   const s = Math.max(0, Math.ceil(seconds));
   return `${Math.floor(s / 60)}:${String(s % 60).padStart(2, "0")}`;
@@ -39,8 +47,7 @@ export class Hud {
   }
 
   setRound(trial) {
-    const text = `Round ${trial.number} of ${trial.total}`;
-    this.setText(this.round, trial.kind === "practice" ? `Practice · ${text}` : text);
+    this.setText(this.round, roundLabel(trial));
   }
 
   update(state) {

@@ -57,4 +57,5 @@ export const COLORS = {
   barCook: OKABE_ITO.orange,
   barChop: OKABE_ITO.yellow,
   barWash: OKABE_ITO.sky,
+  fovEdge: OKABE_ITO.yellow,
 };

@@ -2,14 +2,17 @@
  * The instructions page's pictures, drawn by the game's own painter: the example kitchen as a whole
  * and as the cook sees it (black outside the field of view), and a legend of every station, object and
  * agent. The example's visible cells are data (static/data/example_view.json), checked against the
- * planner's FOV function by the tests, so the picture shows the same rule the game applies.
+ * planner's FOV function by the tests, so the picture shows the same rule the game applies. A study with
+ * another angle gets the cells from `inView`, the planner's rule (planner/fov.py `in_view`) for this picture
+ * only — the game itself never computes a view in the browser; the tests compare the two for every cell,
+ * facing and a range of angles.
  */
 
 import { h } from "../dom.js";
 import { STATIONS } from "../labels.js";
 import { paintState } from "./renderer.js";
 import { drawCell } from "./stations.js";
-import { drawAgent } from "./agents.js";
+import { drawAgent, FACING } from "./agents.js";
 import { drawObject } from "./items.js";
 
 const TERRAIN = { X: "counter", " ": "floor", O: "onion", M: "meat", D: "plate", P: "grill", B: "board", W: "sink",
@@ -21,8 +24,37 @@ export async function loadExample() {
   return response.json();
 }
 
-/** The whole example kitchen as a `state`-shaped scene, and the same scene limited to what is in view. */
-export function exampleScenes(example) {
+/**
+ * Whether `cell` is in view from `origin` facing `facing` with a field of view of `angle` degrees: the own
+ * cell, the two cells beside it, and every cell within half the angle of the facing (DOMAIN §2).
+ */
+export function inView(origin, facing, cell, angle) {
+  if (angle >= 360) return true;
+  const vx = cell[0] - origin[0];
+  const vy = cell[1] - origin[1];
+  if (vx === 0 && vy === 0) return true;
+  const [dx, dy] = FACING[facing];
+  const dot = vx * dx + vy * dy;
+  if (Math.abs(vx) + Math.abs(vy) === 1 && dot === 0) return true;
+  return dot >= Math.hypot(vx, vy) * Math.cos(((angle / 2) * Math.PI) / 180) - 1e-9;
+}
+
+/** The example's cells in view at `angle` (the stored ones at the example's own angle). */
+export function exampleVisible(example, angle = example.fov_angle) {
+  if (angle === example.fov_angle) return example.visible;
+  const you = [example.you.x, example.you.y];
+  const out = [];
+  example.rows.forEach((row, y) => [...row].forEach((_, x) => {
+    if (inView(you, example.you.facing, [x, y], angle)) out.push([x, y]);
+  }));
+  return out;
+}
+
+/**
+ * The whole example kitchen as a `state`-shaped scene, and the same scene limited to what is in view with
+ * a field of view of `angle` degrees (default: the example's own).
+ */
+export function exampleScenes(example, angle = example.fov_angle) {
   const objects = new Map(example.objects.map((o) => [`${o.x},${o.y}`, o.object]));
   const stations = new Map(example.stations.map((s) => [`${s.x},${s.y}`, s]));
   const cells = [];
@@ -32,13 +64,14 @@ export function exampleScenes(example) {
     cells.push({ x, y, terrain: TERRAIN[ch] || "floor", object: objects.get(key) || null,
                  station: station ? { state: station.state, progress: station.progress, total: station.total } : null });
   }));
-  const seen = new Set(example.visible.map(([x, y]) => `${x},${y}`));
+  const seen = new Set(exampleVisible(example, angle).map(([x, y]) => `${x},${y}`));
   const robotSeen = seen.has(`${example.robot.x},${example.robot.y}`);
   return {
     width: example.rows[0].length,
     height: example.rows.length,
     whole: { cells, you: example.you, robot: example.robot },
     view: { cells: cells.filter((c) => seen.has(`${c.x},${c.y}`)), you: example.you, robot: robotSeen ? example.robot : null },
+    robotSeen,
   };
 }
 
@@ -54,8 +87,9 @@ function sceneCanvas(width, height, state, cssCell, label) {
   return canvas;
 }
 
-export function examplePicture(example, cssCell = 40) {
-  const scenes = exampleScenes(example);
+export function examplePicture(example, cssCell = 40, angle = example.fov_angle) {
+  const scenes = exampleScenes(example, angle);
+  const robot = scenes.robotSeen ? "the robot is in view." : "everything behind and beside you is black, including the robot.";
   return h("div", { class: "picture-pair" },
     h("figure", {},
       sceneCanvas(scenes.width, scenes.height, scenes.whole, cssCell,
@@ -63,8 +97,9 @@ export function examplePicture(example, cssCell = 40) {
       h("figcaption", {}, "The whole kitchen (you never see this)")),
     h("figure", {},
       sceneCanvas(scenes.width, scenes.height, scenes.view, cssCell,
-                  "What you see: you face east; everything behind and beside you is black, including the robot."),
-      h("figcaption", {}, "What you see: facing right, everything else is black")));
+                  `What you see with a ${angle}° field of view: you face east; ${robot}`),
+      h("figcaption", {}, angle >= 360 ? "What you see: everything, in this study"
+        : "What you see: facing right, everything else is black")));
 }
 
 function icon(draw, cssSize = 44) {

@@ -7,22 +7,28 @@
  * The grid is fitted to its container at a whole number of device pixels per cell (devicePixelRatio
  * aware), so lines stay crisp at any zoom. Drawing happens in requestAnimationFrame, only when a new
  * message arrived or the size changed, so input handling never waits for it.
+ *
+ * The admin dashboard draws the whole kitchen with the same painter and passes an overlay: the
+ * participant's field of view, shown as a translucent mask over the cells outside it (see `paintOverlay`).
+ * The participant's client never passes one.
  */
 
-import { OUT_OF_VIEW } from "./palette.js";
+import { COLORS, OUT_OF_VIEW } from "./palette.js";
 import { drawCell } from "./stations.js";
 import { drawAgent } from "./agents.js";
 import { heldLabel } from "../labels.js";
 
 export class KitchenView {
-  constructor(canvas, container, { maxCell = 96 } = {}) {
+  constructor(canvas, container, { maxCell = 96, label = null } = {}) {
     this.canvas = canvas;
     this.container = container;
     this.ctx = canvas.getContext("2d", { alpha: false });
     this.maxCell = maxCell;
+    this.label = label;
     this.width = 0;
     this.height = 0;
     this.state = null;
+    this.overlay = null;
     this.frame = 0;
     this.resizer = new ResizeObserver(() => this.invalidate());
     this.resizer.observe(container);
@@ -36,9 +42,13 @@ export class KitchenView {
     this.invalidate();
   }
 
-  /** Show the state of one tick (a `state` message); the previous one is forgotten entirely. */
-  update(state) {
+  /**
+   * Show the state of one tick (a `state` message); the previous one is forgotten entirely. `overlay`
+   * (admin only): `{fov: [[x, y], …]}` masks the cells outside the participant's view.
+   */
+  update(state, overlay = null) {
     this.state = state;
+    this.overlay = overlay;
     this.invalidate();
   }
 
@@ -70,7 +80,7 @@ export class KitchenView {
     }
     this.canvas.style.width = `${w / dpr}px`;
     this.canvas.style.height = `${h / dpr}px`;
-    paintState(this.ctx, this.width, this.height, this.state, cell);
+    paintState(this.ctx, this.width, this.height, this.state, cell, this.overlay);
     this.place(w / dpr, h / dpr);
     this.describe(this.state, cell, dpr);
   }
@@ -101,6 +111,12 @@ export class KitchenView {
     d.held = state.you.held || "";
     d.robot = state.robot ? `${state.robot.x},${state.robot.y},${state.robot.facing}` : "";
     d.visible = String(state.cells.length);
+    if (this.overlay) d.fov = String(this.overlay.fov.length);
+    if (this.label) {
+      const text = this.label(state, this.width, this.height);
+      if (this.canvas.getAttribute("aria-label") !== text) this.canvas.setAttribute("aria-label", text);
+      return;
+    }
     const robot = state.robot ? "The robot is in view." : "The robot is out of view.";
     const label = `Kitchen, ${this.width} by ${this.height} cells. You face ${state.you.facing}, holding ` +
       `${heldLabel(state.you.held)}. ${robot} Black cells are outside your view.`;
@@ -117,9 +133,10 @@ export class KitchenView {
 
 /**
  * Paint one state message on a grid of `width` × `height` cells of `cell` device pixels: black
- * everywhere, then the listed cells, the robot if present, and the participant's cook.
+ * everywhere, then the listed cells, the `overlay` if any, the robot if present, and the participant's
+ * cook. With an overlay the agents stay unmasked, and a robot outside the field of view gets a dashed ring.
  */
-export function paintState(ctx, width, height, state, cell) {
+export function paintState(ctx, width, height, state, cell, overlay = null) {
   ctx.setTransform(1, 0, 0, 1, 0, 0);
   ctx.fillStyle = OUT_OF_VIEW;
   ctx.fillRect(0, 0, cell * width, cell * height);
@@ -128,13 +145,56 @@ export function paintState(ctx, width, height, state, cell) {
     if (c.x < 0 || c.y < 0 || c.x >= width || c.y >= height) continue;
     clipped(ctx, c.x * cell, c.y * cell, cell, () => drawCell(ctx, c, c.x * cell, c.y * cell, cell));
   }
+  if (overlay) paintOverlay(ctx, width, height, overlay, cell);
   if (state.robot) {
     const r = state.robot;
     clipped(ctx, r.x * cell, r.y * cell, cell, () => drawAgent(ctx, "robot", r, r.x * cell, r.y * cell, cell));
+    if (overlay && !overlay.fov.some(([x, y]) => x === r.x && y === r.y)) hiddenRing(ctx, r.x * cell, r.y * cell, cell);
   }
   if (state.you) {
     const you = state.you;
     clipped(ctx, you.x * cell, you.y * cell, cell, () => drawAgent(ctx, "human", you, you.x * cell, you.y * cell, cell));
+  }
+}
+
+/** A dashed white ring around an agent the participant cannot see. */
+function hiddenRing(ctx, x0, y0, s) {
+  ctx.save();
+  ctx.setLineDash([Math.max(3, s / 10), Math.max(2, s / 14)]);
+  ctx.lineWidth = Math.max(1.5, s / 24);
+  ctx.strokeStyle = "#FFFFFF";
+  ctx.beginPath();
+  ctx.arc(x0 + s / 2, y0 + s / 2, s * 0.46, 0, Math.PI * 2);
+  ctx.stroke();
+  ctx.restore();
+}
+
+/**
+ * The participant's field of view over a fully drawn kitchen: every cell outside `overlay.fov` under a
+ * translucent black mask (`overlay.alpha`, default 0.6, so what the participant cannot see stays readable
+ * but dim), and the border of the field of view traced in yellow.
+ */
+export function paintOverlay(ctx, width, height, overlay, cell) {
+  const seen = new Set(overlay.fov.map(([x, y]) => y * width + x));
+  const inside = (x, y) => x >= 0 && y >= 0 && x < width && y < height && seen.has(y * width + x);
+  ctx.fillStyle = `rgba(0, 0, 0, ${overlay.alpha ?? 0.6})`;
+  for (let y = 0; y < height; y += 1) {
+    for (let x = 0; x < width; x += 1) {
+      if (!inside(x, y)) ctx.fillRect(x * cell, y * cell, cell, cell);
+    }
+  }
+  const line = Math.max(2, Math.round(cell / 16));
+  ctx.fillStyle = overlay.edge || COLORS.fovEdge;
+  for (let y = 0; y < height; y += 1) {
+    for (let x = 0; x < width; x += 1) {
+      if (!inside(x, y)) continue;
+      const x0 = x * cell;
+      const y0 = y * cell;
+      if (!inside(x, y - 1)) ctx.fillRect(x0, y0, cell, line);
+      if (!inside(x, y + 1)) ctx.fillRect(x0, y0 + cell - line, cell, line);
+      if (!inside(x - 1, y)) ctx.fillRect(x0, y0, line, cell);
+      if (!inside(x + 1, y)) ctx.fillRect(x0 + cell - line, y0, line, cell);
+    }
   }
 }
 

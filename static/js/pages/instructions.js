@@ -1,7 +1,8 @@
 /**
  * Instructions: the study's text (Markdown), then a picture of what the black cells mean drawn by the
- * game's own painter (the whole kitchen beside the participant's view), a legend of everything in the
- * kitchen, and the keys. "Start practice" finishes the step.
+ * game's own painter (the whole kitchen beside the participant's view with the study's field-of-view angle,
+ * `session.fov_angle`), a legend of everything in the kitchen, and the keys. "Start practice" finishes the
+ * step.
  */
 
 import { h, show } from "../dom.js";
@@ -10,7 +11,15 @@ import { INTERRUPTS } from "../labels.js";
 import { examplePicture, legend, loadExample } from "../game/picture.js";
 import { actionError } from "./common.js";
 
+function coneText(angle) {
+  if (angle >= 360) return "In this study you see the whole kitchen, so no cell is black.";
+  return `You see what is in front of you, in a cone of ${angle}° as in the picture below, and the cells right ` +
+    "beside you. Everything else is drawn black — even things you saw a moment ago, because they may have " +
+    "changed. Turn or walk to look again. The robot may be in a black cell.";
+}
+
 export function instructionsPage(root, ctx) {
+  const angle = Number(ctx.session.fov_angle) || 120;
   const error = h("p", { class: "error", role: "alert", id: "instructions-error" });
   const next = h("button", { type: "button", class: "primary", id: "instructions-done" }, "I have read this: continue");
   const picture = h("div", { class: "picture", id: "instructions-picture" }, h("p", { class: "muted" }, "Loading the picture…"));
@@ -26,9 +35,7 @@ export function instructionsPage(root, ctx) {
   show(root, h("section", { class: "card prose wide", id: "instructions", "aria-label": "Instructions" },
     renderMarkdown(ctx.session.instructions),
     h("h2", {}, "What the black cells mean"),
-    h("p", {}, "You see what is in front of you, in a cone as in the picture below, and the cells right beside " +
-      "you. Everything else is drawn black — even things you saw a moment ago, because they may have changed. " +
-      "Turn or walk to look again. The robot may be in a black cell."),
+    h("p", { id: "fov-text", dataset: { angle: String(angle) } }, coneText(angle)),
     picture,
     h("h2", {}, "What is in the kitchen"),
     legend(),
@@ -41,7 +48,7 @@ export function instructionsPage(root, ctx) {
       "on the next step; afterwards your task continues from where you are. Stop cancels the task."),
     h("div", { class: "actions" }, next), error));
 
-  loadExample().then((example) => picture.replaceChildren(examplePicture(example))).catch(() => {
+  loadExample().then((example) => picture.replaceChildren(examplePicture(example, 40, angle))).catch(() => {
     picture.replaceChildren(h("p", { class: "muted" }, "The picture could not be loaded; the text above explains it."));
   });
 }

@@ -9,7 +9,7 @@
 import { h, show } from "../dom.js";
 import { GameConnection, Link } from "../game/connection.js";
 import { KitchenView } from "../game/renderer.js";
-import { Hud } from "../game/hud.js";
+import { Hud, roundLabel } from "../game/hud.js";
 import { Controls } from "../game/controls.js";
 import { Activity } from "../game/activity.js";
 import { listenKeys } from "../game/keys.js";
@@ -57,8 +57,8 @@ function intro(root, trial, onStart) {
   const button = h("button", { type: "button", class: "primary", id: "start-round", onclick: onStart },
     practice ? "Start practice" : "Start round");
   show(root, h("section", { class: "card narrow", "aria-labelledby": "round-title" },
-    h("h1", { id: "round-title", tabindex: "-1" }, practice ? "Practice round" : `Round ${trial.number} of ${trial.total}`),
-    practice ? h("p", { class: "muted" }, `Round ${trial.number} of ${trial.total}`) : null,
+    h("h1", { id: "round-title", tabindex: "-1" }, practice ? "Practice round" : roundLabel(trial)),
+    practice ? h("p", { class: "muted", id: "round-number" }, roundLabel(trial)) : null,
     practice
       ? h("p", {}, "Try the controls: choose tasks with the buttons on the right, interrupt with the keys or the " +
           "buttons under the kitchen. This round is for practice; its result does not count.")

@@ -1,0 +1,34 @@
+"""A participant's questionnaire answers for the admin: one entry per questionnaire step they submitted, in
+the order they answered, each item with its text and scale from the study (when the study still has it) and
+the stored value (``None`` for an optional item left out)."""
+
+from __future__ import annotations
+
+from itertools import groupby
+from typing import Any
+
+from sqlalchemy import select
+from sqlalchemy.orm import Session
+
+from server.catalog import LoadedStudy
+from server.store.tables import AnswerRow, ParticipantRow
+
+
+def participant_answers(session: Session, row: ParticipantRow, loaded: LoadedStudy | None) -> dict[str, Any]:
+    answers = session.scalars(select(AnswerRow).where(AnswerRow.participant_id == row.id)
+                              .order_by(AnswerRow.step, AnswerRow.id)).all()
+    questionnaires = {q.id: q for q in loaded.study.questionnaires} if loaded else {}
+    out = []
+    for (step, questionnaire_id), group in groupby(answers, key=lambda a: (a.step, a.questionnaire_id)):
+        stored = list(group)
+        known = questionnaires.get(questionnaire_id)
+        texts = {i.id: i for i in known.items} if known else {}
+        items = []
+        for answer in stored:
+            item = texts.get(answer.item_id)
+            items.append({"id": answer.item_id, "value": answer.value, "text": item.text if item else None,
+                          "scale": {"min": item.scale.min, "max": item.scale.max} if item else None})
+        out.append({"questionnaire_id": questionnaire_id, "title": known.title if known else None, "step": step,
+                    "after_trial": stored[0].after_trial, "trial_id": stored[0].trial_id,
+                    "answered_at": stored[0].created_at.isoformat(), "items": items})
+    return {"participant_id": row.public_id, "study_id": row.study_id, "questionnaires": out}

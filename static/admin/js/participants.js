@@ -1,0 +1,154 @@
+/**
+ * Participants: who joined which study, their order and progress, their flags, and their questionnaire
+ * answers. Flags go through the admin API: mark / unmark as a test run, exclude with a reason (required),
+ * include again. The list refreshes every 10 s unless an exclusion form is open.
+ */
+
+import { h, show } from "../../js/dom.js";
+import { badge, errorText, pageFrame, poll, table, when } from "./ui.js";
+
+const STATES = { consent: "consent", instructions: "instructions", practice: "practice", trial: "trial",
+                 questionnaire: "questionnaire", done: "done", screened_out: "screened out" };
+
+function progress(p) {
+  const bar = h("progress", { max: String(Math.max(p.steps - 1, 1)), value: String(p.step), "aria-label": `Step ${p.step + 1} of ${p.steps}` });
+  return h("div", { class: "progress-cell" }, bar, h("span", {}, `${STATES[p.state] || p.state} · step ${p.step + 1}/${p.steps}`));
+}
+
+function flags(p) {
+  const out = [];
+  if (p.test_run) out.push(badge("test run", "test"));
+  if (p.excluded) out.push(badge("excluded", "excluded"), h("span", { class: "reason" }, p.exclusion_reason || ""));
+  return out.length ? out : h("span", { class: "muted" }, "–");
+}
+
+function answersBlock(data) {
+  if (!data.questionnaires.length) return h("p", { class: "muted" }, "No answers yet.");
+  return data.questionnaires.map((q) => h("div", { class: "answers" },
+    h("h4", {}, q.title || q.questionnaire_id,
+      h("span", { class: "muted" }, q.after_trial === null ? " · end of study" : ` · after round ${q.after_trial + 1}`,
+        ` · ${when(q.answered_at)}`)),
+    table([
+      ["Item", (i) => i.text || i.id],
+      ["Answer", (i) => (i.value === null ? h("span", { class: "muted" }, "no answer") : String(i.value)), "num"],
+      ["Scale", (i) => (i.scale ? `${i.scale.min}–${i.scale.max}` : "–"), "num"],
+    ], q.items)));
+}
+
+export function participantsPage(root, { api, params, go }) {
+  const studyId = params.get("study") || "";
+  const select = h("select", { id: "participants-study", "aria-label": "Study" }, h("option", { value: "" }, "All studies"));
+  select.addEventListener("change", () => go(select.value ? `#/participants?study=${encodeURIComponent(select.value)}` : "#/participants"));
+  const refresh = h("button", { type: "button", class: "small secondary", id: "participants-refresh" }, "Refresh");
+  const frame = pageFrame("Participants", { id: "participants", controls: [select, refresh] });
+  show(root, frame.node);
+  const open = new Map();
+  let editing = null;
+
+  api.studies().then((studies) => {
+    for (const s of studies) select.append(h("option", { value: s.id, selected: s.id === studyId }, `${s.title} (${s.id})`));
+  }).catch(() => {});
+
+  async function setFlags(p, body, problem) {
+    try {
+      await api.setFlags(p.participant_id, body);
+      editing = null;
+      await load();
+    } catch (exc) {
+      problem.textContent = errorText(exc);
+    }
+  }
+
+  function excludeForm(p, problem) {
+    const reason = h("input", { type: "text", id: `reason-${p.participant_id}`, class: "reason-input", maxlength: "1000",
+                                placeholder: "Reason (required)", "aria-label": "Reason for excluding" });
+    const form = h("form", { class: "exclude-form" }, reason,
+      h("button", { type: "submit", class: "small primary" }, "Exclude"),
+      h("button", { type: "button", class: "small secondary", onclick: () => { editing = null; load(); } }, "Cancel"));
+    form.addEventListener("submit", (event) => {
+      event.preventDefault();
+      if (!reason.value.trim()) {
+        problem.textContent = "Give a reason for excluding this participant.";
+        reason.focus();
+        return;
+      }
+      setFlags(p, { excluded: true, reason: reason.value.trim() }, problem);
+    });
+    window.setTimeout(() => reason.focus(), 0);
+    return form;
+  }
+
+  function actions(p) {
+    const problem = h("span", { class: "error inline", role: "alert" });
+    const id = p.participant_id;
+    const buttons = [
+      h("button", { type: "button", class: "small secondary", dataset: { action: "test-run" },
+                    onclick: () => setFlags(p, { test_run: !p.test_run }, problem) }, p.test_run ? "Not a test run" : "Mark test run"),
+      p.excluded
+        ? h("button", { type: "button", class: "small secondary", dataset: { action: "include" },
+                        onclick: () => setFlags(p, { excluded: false }, problem) }, "Include again")
+        : h("button", { type: "button", class: "small secondary", dataset: { action: "exclude" },
+                        onclick: () => { editing = id; render(last); } }, "Exclude…"),
+      h("button", { type: "button", class: "small secondary", dataset: { action: "answers" }, "aria-expanded": String(open.has(id)),
+                    onclick: () => toggleAnswers(p) }, open.has(id) ? "Hide answers" : "Answers"),
+      h("a", { href: `#/trials?participant=${encodeURIComponent(id)}` }, "Trials"),
+    ];
+    return h("div", { class: "row-actions" }, editing === id ? excludeForm(p, problem) : buttons, problem);
+  }
+
+  async function toggleAnswers(p) {
+    if (open.has(p.participant_id)) open.delete(p.participant_id);
+    else {
+      try {
+        open.set(p.participant_id, await api.answers(p.participant_id));
+      } catch (exc) {
+        frame.status.textContent = errorText(exc);
+      }
+    }
+    render(last);
+  }
+
+  let last = [];
+  function render(people) {
+    last = people;
+    const columns = [
+      ["Participant", (p) => h("code", {}, p.participant_id)],
+      ["Study", (p) => p.study_id],
+      ["Order", (p) => (p.order_index === null ? "–" : h("span", { title: p.condition_order.join(" → ") }, String(p.order_index + 1)))],
+      ["Progress", progress],
+      ["Status", (p) => p.status.replace("_", " ")],
+      ["Recruiting id", (p) => Object.values(p.recruiting)[0] || h("span", { class: "muted" }, "–")],
+      ["Joined", (p) => when(p.created_at)],
+      ["Flags", flags],
+      ["", actions],
+    ];
+    const rows = [];
+    for (const p of people) {
+      rows.push(p);
+      if (open.has(p.participant_id)) rows.push({ answersOf: p.participant_id });
+    }
+    const node = h("div", { class: "table-wrap" }, h("table", { class: "data", id: "participants-table" },
+      h("thead", {}, h("tr", {}, columns.map(([head]) => h("th", { scope: "col" }, head)))),
+      h("tbody", {}, rows.map((row) => (row.answersOf
+        ? h("tr", { class: "answers-row", id: `answers-${row.answersOf}` },
+          h("td", { colspan: String(columns.length) }, answersBlock(open.get(row.answersOf))))
+        : h("tr", { dataset: { participant: row.participant_id, excluded: String(row.excluded), testRun: String(row.test_run) } },
+          columns.map(([, cell]) => h("td", {}, cell(row)))))))));
+    frame.body.replaceChildren(people.length ? node : h("p", { class: "muted" }, "No participant has joined yet."));
+  }
+
+  async function load() {
+    try {
+      render(await api.participants(studyId || undefined));
+      frame.status.textContent = "";
+    } catch (exc) {
+      frame.status.textContent = errorText(exc);
+    }
+  }
+
+  refresh.addEventListener("click", () => load());
+  const stop = poll(async () => {
+    if (editing === null) await load();
+  }, 10000);
+  return stop;
+}
