@@ -23,7 +23,7 @@ from server.catalog import Catalog, load_catalog
 from server.game.live import GameDeps
 from server.game.registry import GameRegistry
 from server.robots import make_pool
-from server.routes import admin, health, participant, play
+from server.routes import admin, admin_exports, health, participant, play
 from server.routes.static import client_files
 from server.services import Services
 from server.settings import Settings
@@ -69,7 +69,7 @@ def create_app(settings: Settings | None = None, *, robot_factory: Callable[...,
 
     app = FastAPI(title="Steakhouse Study", version="0.1.0", lifespan=lifespan)
     errors.install(app)
-    for module in (health, participant, play, admin):
+    for module in (health, participant, play, admin, admin_exports):
         app.include_router(module.router)
     static = settings.static_root()
     if static is not None:

@@ -80,9 +80,11 @@ def test_csv_needs_the_role_flags(csv_file, capsys) -> None:
     assert "--csv needs --within, --subject, --out" in capsys.readouterr().err
 
 
-def test_study_is_not_wired_yet(capsys) -> None:
+def test_study_needs_out_and_takes_no_design_flags(capsys) -> None:
     assert main(["analyze", "--study", "steakhouse-2024"]) == 2
-    assert "analysis of a stored study needs the store, not built yet" in capsys.readouterr().err
+    assert "--study needs --out" in capsys.readouterr().err
+    assert main(["analyze", "--study", "s", "--out", "o", "--within", "a,b"]) == 2
+    assert "--study uses within = robot,kitchen and subject = participant; drop --within" in capsys.readouterr().err
 
 
 def test_csv_and_study_are_mutually_exclusive(csv_file, capsys) -> None:

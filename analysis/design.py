@@ -1,0 +1,59 @@
+"""The study design as the export needs it, read from the resolved configuration stored with the study.
+
+Conditions are the robot × kitchen cross in study order (the first factor varies slowest, as in
+``server.study.conditions``; condition ids are ``robot@kitchen``). Questionnaire items are split into those
+answered after each main trial (one value per condition: measures of the cell) and those answered once at
+the end of the study (one value per participant).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from analysis.dictionary import Column, item_column, item_columns
+
+
+@dataclass(frozen=True, slots=True)
+class Design:
+    robots: tuple[str, ...]
+    kitchens: tuple[str, ...]
+    conditions: tuple[tuple[str, str], ...]
+    """(robot, kitchen) pairs in study order."""
+    trial_items: tuple[tuple[str, str, str], ...]
+    """(questionnaire, item, text) answered after each main trial."""
+    end_items: tuple[tuple[str, str, str], ...]
+    """(questionnaire, item, text) answered once at the end of the study."""
+
+    @classmethod
+    def from_config(cls, config: dict[str, Any]) -> Design:
+        robots = tuple(str(r) for r in config.get("robots", ()))
+        kitchens = tuple(str(k["name"] if isinstance(k, dict) else k) for k in config.get("kitchens", ()))
+        factors = tuple(config.get("factors", ("robot", "kitchen")))
+        if factors[:1] == ("kitchen",):
+            conditions = tuple((r, k) for k in kitchens for r in robots)
+        else:
+            conditions = tuple((r, k) for r in robots for k in kitchens)
+        trial_items: list[tuple[str, str, str]] = []
+        end_items: list[tuple[str, str, str]] = []
+        for questionnaire in config.get("questionnaires", ()):
+            target = end_items if questionnaire.get("when") == "end_of_study" else trial_items
+            for item in questionnaire.get("items", ()):
+                target.append((str(questionnaire["id"]), str(item["id"]), str(item.get("text", ""))))
+        return cls(robots, kitchens, conditions, tuple(trial_items), tuple(end_items))
+
+    def condition_of(self, condition_id: str) -> tuple[str, str] | None:
+        """``(robot, kitchen)`` of a condition id, or ``None`` when the id is malformed."""
+        robot, sep, kitchen = condition_id.partition("@")
+        return (robot, kitchen) if sep else None
+
+    @property
+    def trial_item_columns(self) -> list[Column]:
+        return item_columns(self.trial_items)
+
+    @property
+    def end_item_columns(self) -> list[Column]:
+        return item_columns(self.end_items)
+
+    def item_names(self, items: tuple[tuple[str, str, str], ...]) -> list[str]:
+        return [item_column(q, i) for q, i, _ in items]

@@ -1,0 +1,221 @@
+"""The data dictionary: every column of every exported file, with its type and meaning.
+
+The export builds its tables in the column order given here, so a column cannot be exported undocumented.
+Columns that depend on the study (questionnaire items, the wide file's ``<measure>__<robot>__<kitchen>``)
+are generated from the study's stored configuration.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+from analysis.measures import CONDUCT_COUNTS, GAP_COMPONENTS, TRIAL_MEASURES
+
+
+@dataclass(frozen=True, slots=True)
+class Column:
+    name: str
+    type: str
+    description: str
+
+
+INT, NUM, TEXT, FLAG, TIME = "integer", "number", "text", "0/1", "timestamp (UTC, ISO 8601)"
+WIDE_SEPARATOR = "__"
+
+MEASURES: dict[str, Column] = {c.name: c for c in (
+    Column("ticks", INT, "world steps played; the horizon when the orders were not all delivered (censored)"),
+    Column("finished", FLAG, "1 when every order was delivered before the horizon"),
+    Column("delivered", INT, "dishes delivered"),
+    Column("score", INT, "score at the end (delivery reward per dish)"),
+    Column("kb_gap_mean", NUM, "mean KB gap per tick: number of components (grill, board, sink, robot's held "
+                               "object) where the participant's modelled KB differs from the world (DOMAIN §6)"),
+    Column("kb_gap_ticks_pct", NUM, "% of ticks with a KB gap in any component"),
+    *(Column(f"kb_gap_{c}_pct", NUM, f"% of ticks where the {c.replace('_', ' ')} component of the KB differs "
+                                     f"from the world (= its mean gap per tick × 100)") for c in GAP_COMPONENTS),
+    Column("interrupts", INT, "interrupt actions the participant sent and the server accepted (up, down, left, "
+                              "right, stay, interact, stop)"),
+    Column("selections", INT, "subtasks the participant chose"),
+    Column("interrupts_per_selection", NUM, "100 × interrupts / (interrupts + selections); empty when both are 0"),
+    Column("robot_in_fov_pct", NUM, "% of ticks with the robot's cell in the participant's field of view"),
+    Column("subtask_switches", INT, "times the participant replaced an unfinished, uncancelled subtask by another "
+                                    "(see docs/analysis.md)"),
+    Column("redundant_actions", INT, "pickups of meat / onion / dirty plate while every station for it was "
+                                     "occupied and one had been loaded by the robot (see docs/analysis.md)"),
+    Column("decision_ms_mean", NUM, "mean robot decision time in ms (request to answer, as the game loop saw it)"),
+    Column("decision_ms_p95", NUM, "95th percentile of the robot decision time in ms"),
+    Column("lateness_ms_mean", NUM, "mean tick lateness in ms (actual − scheduled start of a step)"),
+    Column("lateness_ms_p99", NUM, "99th percentile of the tick lateness in ms"),
+    Column("deadline_misses", INT, "ticks where the robot's decision missed its deadline (the robot stayed)"),
+    Column("disconnects", INT, "times the participant's connection dropped during the trial"),
+    Column("blurs", INT, "times the game tab lost focus during the trial"),
+    Column("idle_events", INT, "idle reports from the participant's browser during the trial"),
+    Column("errors", INT, "error events during the trial (rejected messages, robot errors)"),
+)}
+
+_PARTICIPANT = Column("participant", TEXT, "participant's public id (random; not the recruiting id)")
+_TRIAL_ID = Column("trial_id", INT, "trial attempt id in the store (trials.csv, ticks.csv)")
+_ROBOT = Column("robot", TEXT, "robot planner of the condition (within factor)")
+_KITCHEN = Column("kitchen", TEXT, "kitchen of the condition (within factor)")
+
+TICK_COLUMNS: tuple[Column, ...] = (
+    _PARTICIPANT, _TRIAL_ID,
+    Column("kind", TEXT, "practice or main"),
+    Column("index", INT, "trial index within its kind (0-based, in the participant's order)"),
+    Column("attempt", INT, "attempt number at this trial (a restarted trial has several)"),
+    _ROBOT, _KITCHEN,
+    Column("tick", INT, "world step (1, 2, …)"),
+    Column("human_action", TEXT, "the participant's avatar action in this step"),
+    Column("robot_action", TEXT, "the robot's action in this step"),
+    Column("action_source", TEXT, "where the avatar action came from: subtask, interrupt or idle"),
+    Column("subtask", TEXT, "the participant's subtask when the step began (empty: none)"),
+    Column("subtask_switch", FLAG, "1 when the participant switched subtask at this tick"),
+    Column("redundant_action", FLAG, "1 when the participant started work the robot had already done"),
+    Column("human_held", TEXT, "what the participant's avatar holds after the step"),
+    Column("robot_held", TEXT, "what the robot holds after the step"),
+    Column("grill", TEXT, "grill status(es) after the step: empty / cooking / ready, '|' between stations"),
+    Column("board", TEXT, "board status(es): empty / chopping / ready"),
+    Column("sink", TEXT, "sink status(es): empty / washing / clean"),
+    Column("kb_robot_held", TEXT, "what the participant's modelled KB says the robot holds"),
+    Column("kb_grill", TEXT, "grill status(es) in the participant's modelled KB"),
+    Column("kb_board", TEXT, "board status(es) in the participant's modelled KB"),
+    Column("kb_sink", TEXT, "sink status(es) in the participant's modelled KB"),
+    Column("kb_gap_total", INT, "KB gap at this tick: number of differing components (0-4)"),
+    *(Column(f"kb_gap_{c}", FLAG, f"1 when the KB's {c.replace('_', ' ')} differs from the world")
+      for c in GAP_COMPONENTS),
+    Column("robot_in_fov", FLAG, "1 when the robot's cell is in the participant's field of view"),
+    Column("lateness_ms", NUM, "tick lateness in ms"),
+    Column("decision_ms", NUM, "robot decision time in ms (empty: no decision)"),
+    Column("robot_missed", FLAG, "1 when the robot's decision missed its deadline"),
+    Column("recorded_at", TIME, "when the step was played"),
+)
+
+TRIAL_COLUMNS: tuple[Column, ...] = (
+    _PARTICIPANT, _TRIAL_ID, *TICK_COLUMNS[2:5],
+    Column("condition", TEXT, "condition id robot@kitchen"), _ROBOT, _KITCHEN,
+    Column("seed", INT, "the trial's random seed"),
+    Column("status", TEXT, "finished, abandoned or running"),
+    Column("end_reason", TEXT, "delivered, horizon, grace_expired or restarted"),
+    Column("started_at", TIME, "start of the attempt"),
+    Column("ended_at", TIME, "end of the attempt"),
+    Column("config_hash", TEXT, "hash of the resolved study configuration the trial ran under"),
+    Column("in_cells", FLAG, "1 when this attempt is the one in cells.csv (main trial, finished, latest "
+                             "attempt, participant neither test run nor excluded)"),
+    Column("participant_test_run", FLAG, "1 when the participant is flagged as a test run"),
+    Column("participant_excluded", FLAG, "1 when the participant is excluded by the experimenter"),
+    *(MEASURES[m] for m in TRIAL_MEASURES),
+    Column("ticks_stored", INT, "tick rows stored for the attempt (equals ticks unless data were lost)"),
+    *(MEASURES[m] for m in CONDUCT_COUNTS),
+)
+
+CELL_COLUMNS: tuple[Column, ...] = (
+    _PARTICIPANT, _ROBOT, _KITCHEN,
+    Column("condition", TEXT, "condition id robot@kitchen"),
+    _TRIAL_ID,
+    Column("position", INT, "position of the condition in the participant's order (1 = first main trial)"),
+    *(MEASURES[m] for m in TRIAL_MEASURES),
+)
+
+ANSWER_COLUMNS: tuple[Column, ...] = (
+    _PARTICIPANT,
+    Column("questionnaire", TEXT, "questionnaire id"),
+    Column("item", TEXT, "item id"),
+    Column("value", INT, "answer on the item's scale (empty: not answered, optional item)"),
+    Column("after_trial", INT, "main trial index the questionnaire followed (empty: end of study)"),
+    Column("condition", TEXT, "condition of that trial"), _ROBOT, _KITCHEN,
+    _TRIAL_ID,
+    Column("answered_at", TIME, "when the answer was submitted"),
+    Column("test_run", FLAG, "1 when the participant is flagged as a test run"),
+    Column("excluded", FLAG, "1 when the participant is excluded by the experimenter"),
+)
+
+PARTICIPANT_COLUMNS: tuple[Column, ...] = (
+    _PARTICIPANT,
+    Column("recruit_id", TEXT, "recruiting platform id (the study's first URL parameter, e.g. PROLIFIC_PID)"),
+    Column("recruiting", TEXT, "all recruiting URL parameters (JSON)"),
+    Column("order_index", INT, "counterbalancing order assigned (index into the study's orders)"),
+    Column("condition_order", TEXT, "the assigned condition ids, ';' between them"),
+    Column("status", TEXT, "in_progress, completed or screened_out"),
+    Column("state", TEXT, "current step of the participant flow"),
+    Column("step", INT, "current step number"),
+    Column("steps", INT, "number of steps in the participant's plan"),
+    Column("test_run", FLAG, "1 when flagged as a test run"),
+    Column("excluded", FLAG, "1 when excluded by the experimenter"),
+    Column("exclusion_reason", TEXT, "the experimenter's reason"),
+    Column("created_at", TIME, "when the participant joined"),
+    Column("finished_at", TIME, "when the participant finished or was screened out"),
+    Column("practice_trials_finished", INT, "practice trials finished"),
+    Column("main_trials_finished", INT, "main trials finished"),
+    Column("cells", INT, "rows of this participant in cells.csv"),
+    Column("complete", FLAG, "1 when the participant has a cell in every condition and is not flagged"),
+)
+
+EXCLUDED_COLUMNS: tuple[Column, ...] = (
+    _PARTICIPANT,
+    Column("category", TEXT, "test_run, excluded (by the experimenter) or incomplete (missing cells)"),
+    Column("reason", TEXT, "why the participant is not in the complete-case analysis"),
+    Column("in_cells", FLAG, "1 when the participant's available cells are still in cells.csv"),
+)
+
+
+def item_column(questionnaire: str, item: str) -> str:
+    """An answer's column name in cells.csv and wide.csv: ``<questionnaire id>.<item id>``."""
+    return f"{questionnaire}.{item}"
+
+
+def wide_column(measure: str, robot: str, kitchen: str) -> str:
+    return f"{measure}{WIDE_SEPARATOR}{robot}{WIDE_SEPARATOR}{kitchen}"
+
+
+def item_columns(items: Iterable[tuple[str, str, str]]) -> list[Column]:
+    """Columns for ``(questionnaire, item, text)`` triples."""
+    return [Column(item_column(q, i), INT, f"answer to {q}.{i}: “{text}”") for q, i, text in items]
+
+
+def wide_columns(measures: Sequence[Column], conditions: Sequence[tuple[str, str]],
+                 end_items: Sequence[Column]) -> list[Column]:
+    columns = [
+        _PARTICIPANT,
+        Column("order_index", INT, "counterbalancing order assigned"),
+        Column("complete", FLAG, "1 when the participant has a cell in every condition"),
+    ]
+    for measure in measures:
+        for robot, kitchen in conditions:
+            columns.append(Column(wide_column(measure.name, robot, kitchen), measure.type,
+                                  f"{measure.description} — robot {robot}, kitchen {kitchen}"))
+    return columns + list(end_items)
+
+
+FILE_NOTES: dict[str, str] = {
+    "ticks.csv": "one row per stored world step of every trial attempt (practice included, flagged participants "
+                 "included: join trials.csv on trial_id for the flags)",
+    "trials.csv": "one row per trial attempt, practice and main, every participant, with its measures",
+    "cells.csv": "the ANOVA input: one row per participant × condition (main trials only; participants "
+                 "flagged as test run or excluded are left out and listed in excluded.csv)",
+    "wide.csv": "one row per participant of cells.csv, one column per measure × condition (for JASP / SPSS)",
+    "answers.csv": "one row per questionnaire item answered, every participant",
+    "participants.csv": "one row per participant of the study, with flags and progress",
+    "excluded.csv": "participants not in the complete-case analysis, with the reason",
+}
+
+
+def render_markdown(files: dict[str, Sequence[Column]], study_id: str, exported_at: str) -> str:
+    """``data_dictionary.md``: a section per file with a table of its columns."""
+    lines = [f"# Data dictionary: study {study_id}", "", f"Exported {exported_at}.", "",
+             "Empty cells are missing values. Flags are 0/1. Times are UTC (ISO 8601). Measures are defined in "
+             "docs/analysis.md (DOMAIN §6).", ""]
+    for name, columns in files.items():
+        lines += [f"## {name}", "", FILE_NOTES.get(name, ""), "", "| column | type | description |", "|---|---|---|"]
+        lines += [f"| {c.name} | {c.type} | {_md_cell(c.description)} |" for c in columns]
+        lines.append("")
+    return "\n".join(lines)
+
+
+def rows(files: dict[str, Sequence[Column]]) -> list[dict[str, str]]:
+    """``data_dictionary.csv``: one row per file and column."""
+    return [{"file": name, "column": c.name, "type": c.type, "description": c.description}
+            for name, columns in files.items() for c in columns]
+
+
+def _md_cell(text: str) -> str:
+    return text.replace("|", "\\|")

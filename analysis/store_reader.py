@@ -1,0 +1,244 @@
+"""Reading a study from the store: SQLAlchemy Core queries of the store's tables, never the running server.
+
+The table definitions come from ``server.store.tables`` (the schema only: no app, route, game or flow
+code is imported; PRODUCT "Data flows one way"). Everything is returned as frozen records, so the measures
+and the export are pure functions of what is stored. Large columns the analysis does not need (the full KB
+state, the robot's decision record) are never loaded.
+
+A study can be exported while a server keeps writing to it, so the reads of one export must see one
+snapshot: :func:`open_engine` gives engines whose transactions are snapshots (SQLite: an explicit deferred
+``BEGIN``, which in WAL mode reads one version of the file and takes no write lock; PostgreSQL:
+``REPEATABLE READ``), and the caller reads everything on one connection.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from datetime import datetime
+from pathlib import Path
+from typing import Any
+
+from sqlalchemy import Connection, Engine, create_engine, event, inspect, select
+from sqlalchemy.engine import make_url
+from sqlalchemy.exc import SQLAlchemyError
+
+from analysis.errors import AnalysisInputError
+from server.store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, StudyRow, TickRow, TrialRow
+
+
+class StoreReadError(AnalysisInputError):
+    """The store cannot be read for this study: no database, no schema, or no such study."""
+
+
+class UnknownStudyError(StoreReadError):
+    """The store has no study with this id."""
+
+
+@dataclass(frozen=True, slots=True)
+class StoredParticipant:
+    id: int
+    public_id: str
+    recruit_id: str | None
+    recruiting: dict[str, str]
+    status: str
+    state: str
+    step: int
+    steps: int
+    test_run: bool
+    excluded: bool
+    exclusion_reason: str | None
+    created_at: datetime
+    finished_at: datetime | None
+    order_index: int | None
+    condition_order: tuple[str, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class StoredTrial:
+    id: int
+    participant_id: int
+    kind: str
+    index: int
+    attempt: int
+    condition: str
+    kitchen: str
+    robot: str
+    seed: int
+    config_hash: str
+    status: str
+    end_reason: str | None
+    started_at: datetime
+    ended_at: datetime | None
+    ticks: int
+    delivered: int
+    score: int
+    initial_state: dict[str, Any]
+
+
+@dataclass(frozen=True, slots=True)
+class StoredTick:
+    """One stored world step (the columns of ``ticks`` the analysis uses)."""
+
+    tick: int
+    human_action: str
+    robot_action: str
+    action_source: str
+    subtask: str | None
+    kb_summary: dict[str, Any]
+    world_summary: dict[str, Any]
+    kb_gap: dict[str, int]
+    kb_gap_total: int
+    robot_in_fov: bool
+    lateness_ms: float
+    decision_ms: float | None
+    robot_missed: bool
+    world_state: dict[str, Any]
+    controller: dict[str, Any]
+    recorded_at: datetime | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class StoredEvent:
+    trial_id: int | None
+    tick: int | None
+    kind: str
+    payload: dict[str, Any]
+    created_at: datetime | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class StoredAnswer:
+    participant_id: int
+    questionnaire_id: str
+    step: int
+    after_trial: int | None
+    trial_id: int | None
+    item_id: str
+    value: int | None
+    created_at: datetime
+
+
+@dataclass(frozen=True, slots=True)
+class StudyData:
+    """A study's rows: participants (with their assignment), trial attempts, questionnaire answers."""
+
+    id: str
+    title: str
+    config_hash: str
+    config: dict[str, Any]
+    participants: tuple[StoredParticipant, ...]
+    trials: tuple[StoredTrial, ...]
+    answers: tuple[StoredAnswer, ...]
+
+
+def open_engine(url: str) -> Engine:
+    """An engine for reading the store at ``url``; a SQLite file that does not exist is an error (reading
+    must never create an empty database)."""
+    parsed = make_url(url)
+    if parsed.get_backend_name() != "sqlite":
+        return create_engine(url, isolation_level="REPEATABLE READ")
+    database = parsed.database or ""
+    if not database or database == ":memory:" or not Path(database).expanduser().is_file():
+        raise StoreReadError(f"no store at {url}: the SQLite file does not exist")
+    engine = create_engine(url)
+    event.listen(engine, "connect", _sqlite_connect)
+    event.listen(engine, "begin", _sqlite_begin)
+    return engine
+
+
+def _sqlite_connect(dbapi_connection: Any, _record: Any) -> None:
+    dbapi_connection.isolation_level = None
+
+
+def _sqlite_begin(conn: Any) -> None:
+    conn.exec_driver_sql("BEGIN")
+
+
+def study_ids(conn: Connection) -> list[str]:
+    """The ids of the studies in the store."""
+    return list(conn.scalars(select(StudyRow.id).order_by(StudyRow.id)))
+
+
+def read_study(conn: Connection, study_id: str) -> StudyData:
+    """Everything stored about ``study_id`` except ticks and events (read per trial, see below)."""
+    try:
+        missing = {"studies", "participants", "trials", "ticks", "events"} - set(inspect(conn).get_table_names())
+    except SQLAlchemyError as exc:
+        raise StoreReadError(f"cannot read the store: {exc}") from exc
+    if missing:
+        raise StoreReadError(f"the database has no Steakhouse store (tables missing: {', '.join(sorted(missing))})")
+    study = conn.execute(select(StudyRow.title, StudyRow.config_hash, StudyRow.config)
+                         .where(StudyRow.id == study_id)).first()
+    if study is None:
+        known = ", ".join(study_ids(conn)) or "none"
+        raise UnknownStudyError(f"no study {study_id!r} in the store; studies stored: {known}")
+    return StudyData(id=study_id, title=study.title, config_hash=study.config_hash, config=dict(study.config),
+                     participants=_participants(conn, study_id), trials=_trials(conn, study_id),
+                     answers=_answers(conn, study_id))
+
+
+def read_ticks(conn: Connection, trial_id: int) -> list[StoredTick]:
+    """The stored ticks of one trial, in tick order."""
+    rows = conn.execute(select(
+        TickRow.tick, TickRow.human_action, TickRow.robot_action, TickRow.action_source, TickRow.subtask,
+        TickRow.kb_summary, TickRow.world_summary, TickRow.kb_gap, TickRow.kb_gap_total, TickRow.robot_in_fov,
+        TickRow.lateness_ms, TickRow.decision_ms, TickRow.robot_missed, TickRow.world_state, TickRow.controller,
+        TickRow.recorded_at,
+    ).where(TickRow.trial_id == trial_id).order_by(TickRow.tick))
+    return [StoredTick(**row._asdict()) for row in rows]
+
+
+def read_events(conn: Connection, study_id: str) -> dict[int, list[StoredEvent]]:
+    """The events of every trial of the study, by trial id, in the order they were logged."""
+    rows = conn.execute(
+        select(EventRow.trial_id, EventRow.tick, EventRow.kind, EventRow.payload, EventRow.created_at)
+        .join(TrialRow, TrialRow.id == EventRow.trial_id)
+        .where(TrialRow.study_id == study_id)
+        .order_by(EventRow.id))
+    out: dict[int, list[StoredEvent]] = {}
+    for row in rows:
+        out.setdefault(row.trial_id, []).append(StoredEvent(**row._asdict()))
+    return out
+
+
+def _participants(conn: Connection, study_id: str) -> tuple[StoredParticipant, ...]:
+    p = ParticipantRow
+    rows = conn.execute(
+        select(p.id, p.public_id, p.recruit_id, p.recruiting, p.status, p.state, p.step, p.plan, p.test_run,
+               p.excluded, p.exclusion_reason, p.created_at, p.finished_at, AssignmentRow.order_index,
+               AssignmentRow.condition_order)
+        .outerjoin(AssignmentRow, AssignmentRow.participant_id == p.id)
+        .where(p.study_id == study_id)
+        .order_by(p.id))
+    return tuple(StoredParticipant(
+        id=r.id, public_id=r.public_id, recruit_id=r.recruit_id, recruiting=dict(r.recruiting or {}),
+        status=r.status, state=r.state, step=r.step, steps=len(r.plan or ()), test_run=bool(r.test_run),
+        excluded=bool(r.excluded), exclusion_reason=r.exclusion_reason, created_at=r.created_at,
+        finished_at=r.finished_at, order_index=r.order_index, condition_order=tuple(r.condition_order or ()))
+        for r in rows)
+
+
+def _trials(conn: Connection, study_id: str) -> tuple[StoredTrial, ...]:
+    t = TrialRow
+    rows = conn.execute(
+        select(t.id, t.participant_id, t.kind, t.index, t.attempt, t.condition_id.label("condition"), t.kitchen,
+               t.robot, t.seed, t.config_hash, t.status, t.end_reason, t.started_at, t.ended_at, t.ticks,
+               t.delivered, t.score, t.initial_state)
+        .where(t.study_id == study_id)
+        .order_by(t.id))
+    return tuple(StoredTrial(**row._asdict()) for row in rows)
+
+
+def _answers(conn: Connection, study_id: str) -> tuple[StoredAnswer, ...]:
+    rows = conn.execute(
+        select(AnswerRow.participant_id, AnswerRow.questionnaire_id, AnswerRow.step, AnswerRow.after_trial,
+               AnswerRow.trial_id, AnswerRow.item_id, AnswerRow.value, AnswerRow.created_at)
+        .join(ParticipantRow, ParticipantRow.id == AnswerRow.participant_id)
+        .where(ParticipantRow.study_id == study_id)
+        .order_by(AnswerRow.participant_id, AnswerRow.step, AnswerRow.id))
+    return tuple(StoredAnswer(**row._asdict()) for row in rows)
+
+
+def iso_time(value: datetime | None) -> str | None:
+    """A stored (UTC) timestamp as ISO 8601 text, ``None`` kept."""
+    return None if value is None else value.isoformat()

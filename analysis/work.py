@@ -1,0 +1,102 @@
+"""Who did which work, tick by tick: subtask switches and redundant actions (DOMAIN §6, "also worth logging").
+
+Both are judged from the stored ticks alone (``subtask`` and ``controller`` columns, and the world state
+after each step), so they can be recomputed from an export of the store.
+
+**Subtask switch.** At tick t the avatar runs subtask B, at tick t − 1 it ran a different subtask A, and
+the controller state stored after tick t − 1 still held A: the participant replaced a subtask that was
+neither finished nor cancelled. Choosing a subtask after the previous one finished, re-choosing the running
+one, or choosing after a ``stop`` that took effect at an earlier tick is not a switch. (A ``stop`` and a new
+choice sent between the same two ticks is a switch: the avatar went straight from A to B.)
+
+**Redundant action** (work the participant started that the robot had already done). At tick t the
+participant's avatar goes from empty-handed to holding a raw item, meat, onion or dirty plate (from a
+dispenser or a counter), while in the world *before* that step every station that item goes to (grills for
+meat, boards for an onion, sinks for a dirty plate) was occupied and at least one of them had been loaded by
+the robot. A station is loaded by the agent whose held item of that kind disappears in the step that fills
+the station without the item appearing on the counter it faces (which would be a put-down). Items the robot
+loads in the same step as the participant's pickup do not count (the participant could not have known).
+With several orders open, a pickup that prepares the next order while the robot's item still occupies the
+station counts as well: the item cannot be used until the station is free again.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from planner.geometry import Direction
+
+STATION_OF_ITEM: dict[str, str] = {"meat": "grills", "onion": "boards", "dirty_plate": "sinks"}
+"""Raw item → the world-state list of the stations it is loaded into."""
+
+World = Mapping[str, Any]
+
+
+def subtask_switch_flags(subtasks: Sequence[str | None], controllers: Sequence[Mapping[str, Any]]) -> list[int]:
+    """1 at each tick where the participant switched subtask (see the module docstring), else 0.
+
+    ``subtasks[i]`` is the ``subtask`` column of the i-th stored tick, ``controllers[i]`` its ``controller``
+    column (the participant's controller state after that tick).
+    """
+    flags = [0] * len(subtasks)
+    for i in range(1, len(subtasks)):
+        before, now = subtasks[i - 1], subtasks[i]
+        if before and now and before != now and controllers[i - 1].get("subtask") == before:
+            flags[i] = 1
+    return flags
+
+
+def redundant_action_flags(initial: World, worlds: Sequence[World]) -> list[int]:
+    """1 at each tick where the participant started work the robot had already done, else 0.
+
+    ``initial`` is the trial's initial world state, ``worlds[i]`` the world state stored after the i-th tick.
+    """
+    loaded_by = {kind: [None] * len(initial.get(kind, ())) for kind in STATION_OF_ITEM.values()}
+    flags = []
+    before = initial
+    for after in worlds:
+        flags.append(int(_redundant_pickup(before, after, loaded_by)))
+        _update_loaders(before, after, loaded_by)
+        before = after
+    return flags
+
+
+def _held(world: World, agent: str) -> str | None:
+    held = world[agent].get("held")
+    return None if held is None else str(held)
+
+
+def _redundant_pickup(before: World, after: World, loaded_by: dict[str, list[str | None]]) -> bool:
+    item = _held(after, "human")
+    if _held(before, "human") is not None or item not in STATION_OF_ITEM:
+        return False
+    kind = STATION_OF_ITEM[item]
+    stations = before.get(kind, ())
+    return bool(stations) and all(s is not None for s in stations) and "robot" in loaded_by[kind]
+
+
+def _update_loaders(before: World, after: World, loaded_by: dict[str, list[str | None]]) -> None:
+    for item, kind in STATION_OF_ITEM.items():
+        filled = []
+        for i, (old, new) in enumerate(zip(before.get(kind, ()), after.get(kind, ()), strict=True)):
+            if new is None:
+                loaded_by[kind][i] = None
+            elif old is None or new < old:
+                filled.append(i)
+        if not filled:
+            continue
+        loaders = [agent for agent in ("robot", "human") if _loaded(before, after, agent, item)]
+        for i, station in enumerate(filled):
+            loaded_by[kind][station] = loaders[i] if i < len(loaders) else "unknown"
+
+
+def _loaded(before: World, after: World, agent: str, item: str) -> bool:
+    """Whether ``agent`` let go of ``item`` in this step other than by putting it on the counter it faces."""
+    if _held(before, agent) != item or _held(after, agent) is not None:
+        return False
+    state = after[agent]
+    x, y = state["pos"]
+    faced = Direction(state["facing"]).ahead((int(x), int(y)))
+    on_counter = any(tuple(o["pos"]) == faced and o["obj"] == item for o in after.get("objects", ()))
+    return not on_counter

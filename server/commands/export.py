@@ -1,0 +1,63 @@
+"""``steakhouse export``: a stored study's tidy CSV files and data dictionary (see :mod:`analysis.export`).
+
+    steakhouse export --study paper_study --out exports/paper_study [--database-url URL]
+
+Without ``--database-url`` the store is the one ``steakhouse serve`` uses by default (``DATABASE_URL`` /
+``STEAKHOUSE_DATABASE_URL``, else ``sqlite:///./data/steakhouse.sqlite3``). The store is only read.
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+from typing import Any
+
+from server.cli import UsageError
+
+
+def register(subparsers: Any) -> None:
+    """Add the ``export`` subcommand to the ``steakhouse`` parser."""
+    p = subparsers.add_parser(
+        "export",
+        help="tidy CSV files of a stored study (ticks, trials, cells, wide, answers) and a data dictionary",
+        description="Write a stored study's per-tick, per-trial, per participant × condition (ANOVA input) and "
+                    "wide CSV files, questionnaire answers, participants with flags, the excluded participants "
+                    "with reasons, and a data dictionary describing every column.",
+        epilog="example: steakhouse export --study paper_study --out exports/paper_study",
+    )
+    p.add_argument("--study", metavar="ID", required=True, help="study id in the store")
+    p.add_argument("--out", metavar="DIR", type=Path, required=True, help="output folder (created if needed)")
+    p.add_argument("--database-url", metavar="URL",
+                   help="SQLAlchemy URL of the store (default: the one steakhouse serve uses)")
+    p.set_defaults(handler=handle, subparser=p)
+
+
+def database_url(value: str | None) -> str:
+    """The store URL: ``value`` normalised like the server's setting, else the server's default."""
+    from pydantic import ValidationError
+
+    from server.settings import Settings
+
+    try:
+        settings = Settings(database_url=value) if value is not None else Settings()
+    except ValidationError as exc:
+        problems = "; ".join(f"{'.'.join(str(p) for p in e['loc'])}: {e['msg']}" for e in exc.errors())
+        raise UsageError(f"invalid settings: {problems}") from None
+    return settings.database_url
+
+
+def handle(args: argparse.Namespace) -> int:
+    from analysis.errors import AnalysisInputError
+    from analysis.export import export_study
+
+    url = database_url(args.database_url)
+    try:
+        result = export_study(url, args.study, args.out)
+    except AnalysisInputError as exc:
+        raise UsageError(str(exc)) from exc
+    tables = result.dataset.tables
+    print(f"study {args.study}: {len(tables['participants.csv'])} participants, {len(tables['trials.csv'])} trial "
+          f"attempts, {len(tables['cells.csv'])} cells, {len(tables['excluded.csv'])} participants listed in "
+          "excluded.csv")
+    print(f"wrote {len(result.files)} files to {result.out_dir}")
+    return 0
