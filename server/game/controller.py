@@ -5,8 +5,11 @@
   re-planned every tick, and interacts when it faces the target (``HumanModel.move_toward``). Targets are
   judged on the participant's **modelled KB**, not the world: the avatar walks to where the participant
   can know things are (a steak they have not seen is not a target).
-- The robot's cell is avoided only while the robot is in the participant's view, so the avatar never
-  routes around a robot the participant cannot see (if it bumps into one, it is then facing it).
+- The robot's cell is avoided only where the participant can know the robot is: in view now, or where
+  the participant last acknowledged it (its modelled KB), so the avatar never routes around a robot the
+  participant cannot know about (if it bumps into one, it is then facing it). A robot known to have stood
+  still for ``STILL_TICKS`` ticks is walked around (the simulated human's rule); without this the avatar
+  dithered beside a parked robot that flickered in and out of view as it turned.
 - ``interrupt(up/down/left/right/stay/interact)`` overrides the subtask for one tick, at the next tick, in
   the order pressed (at most ``QUEUE_LIMIT`` waiting); the subtask then continues from the new pose.
   ``interrupt(stop)`` cancels the subtask and the queued interrupts at once.
@@ -33,6 +36,7 @@ from planner.state import WorldState
 from planner.subtasks import Believed, Subtask, available, is_done, targets
 
 QUEUE_LIMIT = 3
+STILL_TICKS = 2
 OFF_GRID: Pos = (-1, -1)
 
 
@@ -60,6 +64,8 @@ class ParticipantController:
         self.subtask = subtask
         self.last = last
         self.queue: deque[Interrupt] = deque()
+        self.robot_last: Pos | None = None
+        self.robot_still = 0
 
     def select(self, subtask: Subtask) -> None:
         self.subtask = self.last = subtask
@@ -82,15 +88,21 @@ class ParticipantController:
 
     def decide(self, world: WorldState, kb: KnowledgeBase, rng: np.random.Generator) -> tuple[Action, str]:
         """The avatar's action this tick and its source: ``interrupt``, ``subtask`` or ``idle``."""
+        robot = world.robot.pos
+        self.robot_still = self.robot_still + 1 if robot == self.robot_last else 0
+        self.robot_last = robot
         if self.queue:
             return INTERRUPT_ACTION[self.queue.popleft()], "interrupt"
         if self.subtask is None:
             return Action.STAY, "idle"
         human = world.human
         seen = view(self.layout, human.pos, human.facing, self.angle).cells
-        blocked = world.robot.pos if world.robot.pos in seen else OFF_GRID
+        believed_there = kb.robot is not None and kb.robot.pos == robot
+        known = robot in seen or believed_there
+        blocked = robot if known else OFF_GRID
         cells = targets(self.layout, self.subtask, kb, self.rules)
-        action, _ = self.model.move_toward((human.pos, human.facing), cells, blocked, rng)
+        action, _ = self.model.move_toward((human.pos, human.facing), cells, blocked, rng,
+                                           partner_parked=known and self.robot_still >= STILL_TICKS)
         return action, "subtask"
 
     def believed(self, world: WorldState, kb: KnowledgeBase) -> Believed:
