@@ -9,6 +9,7 @@ import asyncio
 import random
 
 import httpx
+import numpy as np
 import pandas as pd
 import pingouin as pg
 import pytest
@@ -127,7 +128,10 @@ def test_export_then_analyze_matches_pingouin_on_the_exported_cells(played, tmp_
         assert by_kitchen.loc[kitchen, "F"] == pytest.approx(direct.at[0, "F"], rel=1e-9)
 
     ticks = anova[(anova["measure"] == "ticks") & (anova["effect"] == "robot")].iloc[0]
-    assert ticks["p"] < 0.05  # the working robot finishes the dish sooner than the one that stays
+    # Whether the working robot is significantly faster depends on the scripted players, not on the code
+    # under test (it stopped being so once the avatar learned to walk around a robot that stays put); the
+    # effect must have been computed from real variation.
+    assert np.isfinite(ticks["F"]) and ticks["F"] > 0 and 0 < ticks["p"] < 1
     gap = complete.groupby("robot")["kb_gap_mean"].mean()
     assert gap["baseline"] > gap["stay"]
 
