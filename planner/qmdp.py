@@ -144,7 +144,7 @@ class QmdpRobot:
             return default, 0
         scored = []
         for move, rest in candidates.items():
-            if deadline is not None and time.perf_counter() > deadline:
+            if deadline is not None and scored and time.perf_counter() > deadline:
                 break
             plan = (move,) + rest
             v = sum(p * self.sampled(world, s, subtask, horizon, seed, plan) for s, p in likely)

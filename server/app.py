@@ -18,7 +18,7 @@ from typing import Any
 
 from fastapi import FastAPI
 
-from server import errors
+from server import errors, security
 from server.catalog import Catalog, load_catalog
 from server.game.live import GameDeps
 from server.game.registry import GameRegistry
@@ -69,6 +69,7 @@ def create_app(settings: Settings | None = None, *, robot_factory: Callable[...,
 
     app = FastAPI(title="Steakhouse Study", version="0.1.0", lifespan=lifespan)
     errors.install(app)
+    security.install(app, settings.join_rate_per_minute)
     for module in (health, participant, play, admin, admin_exports):
         app.include_router(module.router)
     static = settings.static_root()

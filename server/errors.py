@@ -9,6 +9,8 @@ from __future__ import annotations
 from typing import Any
 
 from fastapi import FastAPI, Request
+from fastapi.encoders import jsonable_encoder
+from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
 
 from server.flow.progress import IllegalTransition
@@ -47,6 +49,23 @@ def install(app: FastAPI) -> None:
         assert isinstance(exc, AnswerProblems)
         return JSONResponse({"detail": exc.problems}, 422)
 
+    async def invalid_request(_: Request, exc: Exception) -> JSONResponse:
+        assert isinstance(exc, RequestValidationError)
+        return JSONResponse({"detail": jsonable_encoder(_printable(exc.errors()))}, 422)
+
     app.add_exception_handler(ApiError, api_error)
     app.add_exception_handler(IllegalTransition, illegal)
     app.add_exception_handler(AnswerProblems, answers)
+    app.add_exception_handler(RequestValidationError, invalid_request)
+
+
+def _printable(value: Any) -> Any:
+    """FastAPI's validation problems with any raw bytes echoed back as text: a body that is not UTF-8 would
+    otherwise make FastAPI's own 422 handler fail with a 500."""
+    if isinstance(value, bytes):
+        return value.decode("utf-8", errors="replace")
+    if isinstance(value, dict):
+        return {key: _printable(item) for key, item in value.items()}
+    if isinstance(value, list | tuple):
+        return [_printable(item) for item in value]
+    return value

@@ -55,6 +55,8 @@ class Settings(BaseSettings):
     """Folder of the browser client served at ``/`` (default: ``./static`` or the repository's ``static/``)."""
     sweep_interval_s: float = Field(default=30.0, gt=0.0)
     """How often trials left running by a vanished participant or a crashed server are checked."""
+    join_rate_per_minute: int = Field(default=60, ge=0)
+    """Joins allowed per client address and minute (bursts up to the same number; 0 = no limit)."""
     log_level: Literal["debug", "info", "warning", "error"] = "info"
 
     @field_validator("database_url")

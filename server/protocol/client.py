@@ -40,7 +40,8 @@ class Heartbeat(ClientMessage):
     """Keep-alive and latency probe; answered by ``pong`` echoing ``client_time`` (ms, client clock)."""
 
     type: Literal["heartbeat"]
-    client_time: float
+    client_time: float = Field(allow_inf_nan=False)
+    """Finite: ``NaN`` and ``Infinity`` (which Python's JSON accepts) could not be echoed back as JSON."""
 
 
 class Focus(ClientMessage):

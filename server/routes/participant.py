@@ -2,7 +2,8 @@
 
 ``POST /api/studies/{study_id}/join`` → token and condition order; ``GET /api/session``;
 ``POST /api/session/consent``; ``POST /api/session/instructions_done``; ``POST /api/session/questionnaire``;
-``GET /api/session/completion``. Illegal transitions answer 409, invalid answers 422.
+``GET /api/session/completion``. Illegal transitions answer 409, invalid answers 422; joins beyond the
+per-address limit answer 429 (:mod:`server.security`).
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from server.flow import service
 from server.flow.progress import Move
 from server.flow.schemas import ConsentRequest, JoinRequest, JoinResponse, QuestionnaireRequest, StudyPublic
 from server.flow.views import session_view
+from server.security import limit_joins
 from server.services import Services
 from server.store import participants
 from server.store.tables import ParticipantRow
@@ -31,7 +33,7 @@ def study_info(loaded: Annotated[LoadedStudy, Depends(path_study)]) -> StudyPubl
     return StudyPublic(id=study.id, title=study.title, url_parameters=list(study.recruiting.url_parameters))
 
 
-@router.post("/studies/{study_id}/join")
+@router.post("/studies/{study_id}/join", dependencies=[Depends(limit_joins)])
 def join(loaded: Annotated[LoadedStudy, Depends(path_study)], body: JoinRequest,
          services: ServicesDep) -> JoinResponse:
     joined = service.join(services.store, loaded, body.recruiting, body.test_run)

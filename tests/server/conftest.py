@@ -89,13 +89,14 @@ def study_file(tmp_path: Path) -> Callable[..., Path]:
 
 @pytest.fixture
 def make_settings(db_url: str, tmp_path: Path) -> Callable[..., Any]:
-    """Settings for a test app on ``db_url``: in-process robots, fast flushes, a known admin token."""
+    """Settings for a test app on ``db_url``: in-process robots, fast flushes, a known admin token, no join
+    rate limit (tests join many participants from one address; the limit has its own tests)."""
     from server.settings import Settings
 
     def make(studies: list[Path], **overrides: Any) -> Settings:
         values: dict[str, Any] = {"database_url": db_url, "study_files": tuple(studies), "robot_workers": 0,
                                   "admin_token": "admin-secret", "flush_interval_s": 0.1,
-                                  "static_dir": tmp_path / "no-static"}
+                                  "static_dir": tmp_path / "no-static", "join_rate_per_minute": 0}
         values.update(overrides)
         return Settings(**values)
 

@@ -51,6 +51,17 @@ def write_study(folder: Path, study_id: str = "tiny", **overrides: Any) -> Path:
     return path
 
 
+def eventually(read: Callable[[], Any], holds: Callable[[Any], bool], timeout: float = 10.0) -> Any:
+    """``read()`` again until ``holds`` it or ``timeout`` seconds pass; returns the last value read (rows
+    reach the store in batches, so what a test just caused may take a flush interval to appear)."""
+    end = time.monotonic() + timeout
+    value = read()
+    while not holds(value) and time.monotonic() < end:
+        time.sleep(0.05)
+        value = read()
+    return value
+
+
 def free_port() -> int:
     with socket.socket() as sock:
         sock.bind(("127.0.0.1", 0))
@@ -96,7 +107,7 @@ class ProcessServer:
         self.args = [sys.executable, "-m", "server.cli", "serve", "--port", str(self.port), "--study", str(study),
                      "--database-url", database_url, "--workers", str(workers), "--log-level", "warning"]
         self.env = {**os.environ, "STEAKHOUSE_ADMIN_TOKEN": "admin-secret", "STEAKHOUSE_FLUSH_INTERVAL_S": "0.2",
-                    **(env or {})}
+                    "STEAKHOUSE_JOIN_RATE_PER_MINUTE": "0", **(env or {})}
         self.env["PYTHONPATH"] = os.pathsep.join([str(REPO), str(Path(__file__).parent)])
         self.log = log
         self.process: subprocess.Popen[bytes] | None = None
@@ -247,3 +258,15 @@ async def play_to_end(sock: Socket, *, on_state: Callable[[dict[str, Any]], Any]
             choice = next_subtask(message)
             if choice is not None:
                 await sock.send("select_subtask", subtask=choice)
+
+
+async def play_until(sock: Socket, tick: int) -> dict[str, Any]:
+    """Read ``sock`` (choosing the first available subtask whenever none is chosen) until a ``state`` of
+    ``tick`` or later; returns that state."""
+    while True:
+        message = await sock.recv()
+        if message["type"] == "state":
+            if message["subtask"] is None and message["available"]:
+                await sock.send("select_subtask", subtask=message["available"][0])
+            if message["tick"] >= tick:
+                return message

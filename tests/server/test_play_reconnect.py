@@ -7,20 +7,10 @@ import asyncio
 import time
 
 import pytest
-from steakhouse_testing import Player, play_to_end
+from steakhouse_testing import Player, play_to_end, play_until
 
 from server.store import trials
 from server.store.tables import EventRow, ParticipantRow, TrialRow
-
-
-async def play_until(sock, tick: int) -> dict:
-    while True:
-        message = await sock.recv()
-        if message["type"] == "state":
-            if message["subtask"] is None and message["available"]:
-                await sock.send("select_subtask", subtask=message["available"][0])
-            if message["tick"] >= tick:
-                return message
 
 
 def trial_rows(server, participant_token_owner: str) -> list[TrialRow]:

@@ -9,7 +9,7 @@ import time
 
 import pytest
 from sqlalchemy import text
-from steakhouse_testing import Player, ProcessServer, play_to_end
+from steakhouse_testing import Player, ProcessServer, play_to_end, play_until
 
 from planner.state import WorldState
 from server.game.kb_codec import kb_from_dict
@@ -18,16 +18,6 @@ from server.store.engine import Store
 from server.store.tables import TrialRow
 
 pytestmark = pytest.mark.slow
-
-
-async def play_until(sock, tick: int) -> dict:
-    while True:
-        message = await sock.recv()
-        if message["type"] == "state":
-            if message["subtask"] is None and message["available"]:
-                await sock.send("select_subtask", subtask=message["available"][0])
-            if message["tick"] >= tick:
-                return message
 
 
 def check_store(db_url: str, trial_id: int) -> tuple[TrialRow, list[int]]:

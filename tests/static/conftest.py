@@ -11,6 +11,7 @@ from __future__ import annotations
 import os
 import shutil
 import sys
+import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
@@ -89,8 +90,16 @@ class StudyServer:
     def live(self, trial_id: int) -> dict[str, Any]:
         return dict(self.get(f"/api/admin/live/{trial_id}"))
 
-    def events(self, trial_id: int) -> list[dict[str, Any]]:
-        return list(self.get(f"/api/admin/trials/{trial_id}/events"))
+    def events(self, trial_id: int, until: Callable[[list[str]], bool] | None = None,
+               timeout: float = 10.0) -> list[dict[str, Any]]:
+        """The trial's stored events; with ``until``, asked again (events reach the store in batches) until
+        ``until(kinds)`` holds or ``timeout`` seconds pass."""
+        end = time.monotonic() + timeout
+        while True:
+            events = list(self.get(f"/api/admin/trials/{trial_id}/events"))
+            if until is None or until([e["kind"] for e in events]) or time.monotonic() > end:
+                return events
+            time.sleep(0.05)
 
 
 @pytest.fixture(scope="module")
@@ -101,7 +110,8 @@ def study_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[StudyServ
     folder = tmp_path_factory.mktemp("browser-store")
     settings = Settings(database_url=f"sqlite:///{folder / 'store.sqlite3'}",
                         study_files=tuple(sorted(STUDIES.glob("*.yaml"))), robot_workers=0,
-                        admin_token=ADMIN_TOKEN, flush_interval_s=0.1, static_dir=REPO / "static")
+                        admin_token=ADMIN_TOKEN, flush_interval_s=0.1, static_dir=REPO / "static",
+                        join_rate_per_minute=0)
     with ThreadServer(create_app(settings)) as thread:
         server = StudyServer(thread)
         try:

@@ -172,7 +172,8 @@ def admin_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[AdminServ
 
     folder = tmp_path_factory.mktemp("dashboard")
     settings = Settings(database_url=f"sqlite:///{folder / 'store.sqlite3'}", study_files=tuple(write_studies(folder)),
-                        robot_workers=0, admin_token=ADMIN_TOKEN, flush_interval_s=0.1, static_dir=REPO / "static")
+                        robot_workers=0, admin_token=ADMIN_TOKEN, flush_interval_s=0.1, static_dir=REPO / "static",
+                        join_rate_per_minute=0)
     with ThreadServer(create_app(settings)) as thread:
         server = AdminServer(thread, thread.url, httpx.Client(base_url=thread.url, timeout=10,
                                                               headers={"Authorization": f"Bearer {ADMIN_TOKEN}"}))
