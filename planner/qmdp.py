@@ -10,15 +10,20 @@ Each tick the robot
    modelled KB, and scores the shaping-potential progress;
 3. combines them QMDP-style, ``Q(b, r) = Σ_s b(s) V(r, s)``, with a small bonus for keeping its current
    subtask, and takes ``r* = argmax Q``;
-4. **exploration** (FOV-aware only, depth ``k``): when several first moves toward ``r*`` are equally short,
-   it rolls each out and keeps the one whose effect on the human's KB (the robot and what it holds seen in
-   time) pays most — this is what produces the staircase paths that stay in the FOV. The no-rollout robot
-   (depth 0) and the baseline take the first shortest move.
+4. **exploration** (FOV-aware only, depth ``k``): it rolls out, besides the direct move toward ``r*``
+   (whose score is the one already computed for ``Q``), every other first move on a shortest path and,
+   when the modelled KB does not know what the robot holds, a *show plan*: the cheapest walk into the
+   human's current view on the way to ``r*`` (detour at most ``k`` ticks), then ``kb_delay − 1`` stays
+   (it replaces the plain candidate with the same first move; scoring both measured worse); it
+   keeps the one whose effect on the human's KB (the robot and what it holds seen in time) pays most (ties:
+   the direct move). This produces the staircase paths that stay in the FOV and the robot walking alongside
+   the human to show what it carries (paper §VI-C). The no-rollout robot (depth 0) and the baseline take
+   the direct move.
 
-The lookahead horizon is ``search_depth`` subtasks × 6 ticks. Randomness: rollouts use seeds derived
-from ``config.seed`` and the tick (common random numbers across candidates), so a decision is a pure
-function of the observation history. A ``deadline`` (``time.perf_counter()`` value) stops the search and
-returns the best action so far (``timed_out``).
+The lookahead horizon is ``search_depth`` subtasks × 6 ticks (default 7: 42 ticks). Randomness: rollouts
+use seeds derived from ``config.seed`` and the tick (common random numbers across candidates), so a
+decision is a pure function of the observation history. A ``deadline`` (``time.perf_counter()`` value)
+stops the search and returns the best action so far (``timed_out``).
 """
 
 from __future__ import annotations
@@ -103,16 +108,17 @@ class QmdpRobot:
         horizon = self.cfg.search_depth * TICKS_PER_SUBTASK
         seed = self.cfg.seed * 1_000_003 + world.tick
         q: dict[Subtask, float] = {}
+        values: dict[Subtask, float] = {}
         timed_out = False
         for r in options:
             if deadline is not None and q and time.perf_counter() > deadline:
                 timed_out = True
                 break
-            value = sum(p * self.sampled(world, s, r, horizon, seed) for s, p in likely)
-            q[r] = self.cfg.gamma * value + (self.cfg.commitment_bonus if r is self.current else 0.0)
+            values[r] = sum(p * self.sampled(world, s, r, horizon, seed) for s, p in likely)
+            q[r] = self.cfg.gamma * values[r] + (self.cfg.commitment_bonus if r is self.current else 0.0)
         best = max(q, key=lambda r: (q[r], r is self.current, -options.index(r)))
         self.current = best
-        action, explored = self.first_move(world, best, likely, horizon, seed, deadline)
+        action, explored = self.first_move(world, best, likely, horizon, seed, deadline, values[best])
         action = self.yield_if_blocking(world, best, action)
         return Decision(action=action, q_values={r.value: v for r, v in q.items()},
                         belief=self.belief.as_dict(), explored_kbs=explored,
@@ -122,10 +128,11 @@ class QmdpRobot:
         return self.decide(world, events, rng).action
 
     def first_move(self, world: WorldState, subtask: Subtask, likely, horizon: int, seed: int,
-                   deadline: float | None) -> tuple[Action, int]:
+                   deadline: float | None, direct_value: float) -> tuple[Action, int]:
         """Exploration: the direct first move toward ``subtask`` against the first moves of plans that
         show the robot to the human first (every first move on a shortest path, and the way into the
-        human's view held for ``kb_delay`` ticks), each scored by a rollout that tracks the modelled KB."""
+        human's view held for ``kb_delay`` ticks), each scored by a rollout that tracks the modelled KB.
+        ``direct_value`` is the direct move's score, already computed for ``Q`` (same rollouts, same seeds)."""
         default = self.rollout.robot_move(world, subtask, self.human_still >= 2)
         if not self.explore or self.cfg.exploration_depth <= 0 or default is Action.INTERACT:
             return default, 0
@@ -137,7 +144,7 @@ class QmdpRobot:
             nearest = min(cells, key=lambda c: distance(self.layout, pose, c))
             for move in best_moves(self.layout, pose, nearest, world.human.pos):
                 candidates.setdefault(move, ())
-        show = self.show_plan(world)
+        show = self.show_plan(world, subtask)
         if show:
             candidates[show[0]] = show[1:]
         if len(candidates) < 2:
@@ -146,8 +153,11 @@ class QmdpRobot:
         for move, rest in candidates.items():
             if deadline is not None and scored and time.perf_counter() > deadline:
                 break
-            plan = (move,) + rest
-            v = sum(p * self.sampled(world, s, subtask, horizon, seed, plan) for s, p in likely)
+            if move is default and not rest:
+                v = direct_value
+            else:
+                plan = (move,) + rest
+                v = sum(p * self.sampled(world, s, subtask, horizon, seed, plan) for s, p in likely)
             scored.append((v, move is default, move))
         chosen = max(scored, key=lambda t: (t[0], t[1]))[2]
         self.pending = candidates[chosen]
@@ -176,19 +186,29 @@ class QmdpRobot:
                 return move_action(d)
         return action
 
-    def show_plan(self, world: WorldState) -> tuple[Action, ...]:
-        """Moves (at most ``exploration_depth`` to get there) into the human's current view, then stays
-        ``human_delay`` ticks, so the human acknowledges what the robot holds. Empty when the modelled KB
-        already knows what the robot holds, when the robot is in view, or when the view is out of reach."""
+    def show_plan(self, world: WorldState, subtask: Subtask) -> tuple[Action, ...]:
+        """The cheapest way into the human's current view on the way to ``subtask``, then ``human_delay − 1``
+        stays there, so the human acknowledges what the robot holds (paper §VI-C, "walks alongside the
+        human"). Among floor poses in view, reached by a shortest walk that avoids the human, it minimises
+        the detour ``steps + d(pose, target) − d(robot, target)`` (ties: fewer steps), and keeps it only if
+        the detour is at most ``exploration_depth``. Empty when the modelled KB already knows what the robot
+        holds, when the robot is in view, or when no view cell is that close to the way."""
         human = world.human
         if self.kb is None or self.kb.robot is None or self.kb.robot.held == world.robot.held:
             return ()
         seen = view(self.layout, human.pos, human.facing, self.cfg.human_angle).cells
         if world.robot.pos in seen:
             return ()
+        cells = self.tasker.targets(subtask, world)
         start = (world.robot.pos, world.robot.facing)
+
+        def to_target(pose) -> int:
+            return min((distance(self.layout, pose, c) for c in cells), default=0)
+
+        base = to_target(start)
         frontier, first = [start], {start: ()}
-        for _ in range(self.cfg.exploration_depth):
+        best: tuple[int, int, tuple[Action, ...]] | None = None
+        for steps in range(1, base + self.cfg.exploration_depth + 1):
             nxt = []
             for pose in frontier:
                 for d in DIRECTIONS:
@@ -196,11 +216,15 @@ class QmdpRobot:
                     if after in first or after[0] == human.pos:
                         continue
                     first[after] = first[pose] + (move_action(d),)
-                    if after[0] in seen:
-                        return first[after] + (Action.STAY,) * max(self.cfg.human_delay - 1, 0)
                     nxt.append(after)
+                    if after[0] in seen:
+                        detour = steps + to_target(after) - base
+                        if detour <= self.cfg.exploration_depth and (best is None or (detour, steps) < best[:2]):
+                            best = (detour, steps, first[after])
             frontier = nxt
-        return ()
+        if best is None:
+            return ()
+        return best[2] + (Action.STAY,) * max(self.cfg.human_delay - 1, 0)
 
 
 def _infer_action(before: AgentState | None, now: AgentState, interacted: bool) -> Action | None:

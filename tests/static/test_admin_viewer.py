@@ -73,7 +73,9 @@ def test_a_finished_trial_is_replayed_tick_by_tick(admin_server, admin_page):  #
     page.wait_for_selector("#scrubber")
     assert page.inner_text("#tick-label") == f"Tick 0 of {last}"
 
-    k = next(i for i, f in enumerate(frames) if i > len(frames) // 3 and not f["robot_in_fov"])
+    hidden = [i for i, f in enumerate(frames) if 0 < i < len(frames) - 5 and not f["robot_in_fov"]]
+    assert hidden, "the replayed trial must hide the robot at some tick to test the dimmed view"
+    k = hidden[len(hidden) // 2]
     page.fill("#scrubber", str(k))
     page.wait_for_function(f"() => document.querySelector('#admin-kitchen').dataset.tick === '{k}'")
     frame = frames[k]
@@ -104,9 +106,10 @@ def test_a_finished_trial_is_replayed_tick_by_tick(admin_server, admin_page):  #
     page.wait_for_function(f"() => Number(document.querySelector('#admin-kitchen').dataset.tick) >= {k + 4}")
     page.click("#play")
     assert page.get_attribute("#play", "aria-pressed") == "false"
-    stopped = canvas_data(page)["tick"]
+    stopped = page.inner_text("#tick-label")  # the canvas draws on the next animation frame; the label at once
     page.wait_for_timeout(300)
-    assert canvas_data(page)["tick"] == stopped, "paused"
+    assert page.inner_text("#tick-label") == stopped, "paused"
+    assert f"Tick {canvas_data(page)['tick']} of" in stopped, "the canvas shows the tick the replay paused at"
 
     page.fill("#scrubber", str(len(frames) - 1))
     page.wait_for_function(f"() => document.querySelector('#tick-label').textContent === 'Tick {last} of {last}'")
