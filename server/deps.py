@@ -1,8 +1,10 @@
 """FastAPI dependencies: the services made at start-up, the participant behind a token, the admin check.
 
 Participant tokens come as ``Authorization: Bearer <token>`` or, for the websocket (browsers cannot set
-headers there), as ``?token=<token>``. The admin token only as a bearer header. Unknown, missing or wrong
-tokens all give the same 401 with no detail.
+headers there), as the subprotocol ``token.<token>`` offered beside ``steakhouse.v1`` (what the browser
+client does: the token stays out of URLs, so out of proxy and server access logs), or as ``?token=<token>``
+(for scripts). The admin token only as a bearer header. Unknown, missing or wrong tokens all give the same
+401 with no detail.
 """
 
 from __future__ import annotations
@@ -37,8 +39,25 @@ def bearer(conn: HTTPConnection) -> str | None:
     return None
 
 
+SUBPROTOCOL = "steakhouse.v1"
+"""The websocket subprotocol the server selects when a client offers it."""
+TOKEN_SUBPROTOCOL_PREFIX = "token."
+
+
+def offered_subprotocols(conn: HTTPConnection) -> list[str]:
+    header = conn.headers.get("sec-websocket-protocol", "")
+    return [part.strip() for part in header.split(",") if part.strip()]
+
+
+def subprotocol_token(conn: HTTPConnection) -> str | None:
+    for offered in offered_subprotocols(conn):
+        if offered.startswith(TOKEN_SUBPROTOCOL_PREFIX) and len(offered) > len(TOKEN_SUBPROTOCOL_PREFIX):
+            return offered[len(TOKEN_SUBPROTOCOL_PREFIX):]
+    return None
+
+
 def participant_token(conn: HTTPConnection) -> str | None:
-    return bearer(conn) or conn.query_params.get("token") or None
+    return bearer(conn) or subprotocol_token(conn) or conn.query_params.get("token") or None
 
 
 def find_participant(store: Store, token: str) -> ParticipantRow | None:

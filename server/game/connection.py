@@ -4,6 +4,11 @@ States: ``connecting`` → ``open`` (after ``hello``) → ``closing`` → ``clos
 ``closed`` when the socket breaks. Other transitions raise. Messages are numbered (``seq`` 1, 2, …) when
 queued and sent by one sender task, so a slow client never delays the game loop; a client that falls
 ``MAX_QUEUE`` messages behind is disconnected (it can reconnect and resume).
+
+Backpressure on the way in: the route reads the client's next frame only once :meth:`Connection.room`
+says at most ``MAX_QUEUE // 2`` replies wait to be sent. A burst of client frames (a script, or a browser
+flushing what it buffered) is then answered frame for frame instead of overflowing the queue, and only a
+client that stops *reading* is disconnected.
 """
 
 from __future__ import annotations
@@ -49,11 +54,15 @@ class Connection:
         self._sender: asyncio.Task[None] | None = None
         self.closed = asyncio.Event()
         self.close_code = 1000
+        self._room = asyncio.Event()
+        self._room.set()
 
     def _move(self, target: ConnState) -> None:
         if target not in _NEXT[self.state]:
             raise IllegalConnectionTransition(f"connection cannot go from {self.state.value} to {target.value}")
         self.state = target
+        if target in (ConnState.CLOSING, ConnState.CLOSED):
+            self._room.set()
         if target is ConnState.CLOSED:
             self.closed.set()
 
@@ -73,6 +82,8 @@ class Connection:
         message.seq = self.sent
         try:
             self._queue.put_nowait(message.model_dump_json())
+            if self._queue.qsize() > MAX_QUEUE // 2:
+                self._room.clear()
         except asyncio.QueueFull:
             log.warning("client too slow (%d messages queued); disconnecting it", MAX_QUEUE)
             self.sent -= 1
@@ -106,6 +117,8 @@ class Connection:
         try:
             while True:
                 text = await self._queue.get()
+                if self._queue.qsize() <= MAX_QUEUE // 2:
+                    self._room.set()
                 if text is None:
                     break
                 await self.websocket.send_text(text)
@@ -121,6 +134,11 @@ class Connection:
             await asyncio.wait_for(self.websocket.close(code=self.close_code), CLOSE_TIMEOUT_S)
         if self.state is not ConnState.CLOSED:
             self._move(ConnState.CLOSED)
+
+    async def room(self) -> None:
+        """Return once at most ``MAX_QUEUE // 2`` messages wait to be sent (at once when not open)."""
+        if self.state is ConnState.OPEN:
+            await self._room.wait()
 
     async def wait_closed(self) -> None:
         await self.closed.wait()

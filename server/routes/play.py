@@ -1,5 +1,7 @@
-"""``/ws/play?token=…``: the participant's game connection. Starts or resumes the trial of their current
-step; one connection per participant (a newer one replaces the older, which gets ``error: replaced``).
+"""``/ws/play``: the participant's game connection, authenticated by the participant token (offered as the
+subprotocol ``token.<token>`` beside ``steakhouse.v1``, which the server then selects; or ``?token=…``).
+Starts or resumes the trial of their current step; one connection per participant (a newer one replaces
+the older, which gets ``error: replaced``).
 
 Refusals before the game starts are typed too: ``error`` with code ``unauthorized`` (close 4401) or
 ``no_trial`` (close 4409, the participant is not at a trial step); a trial abandoned after the grace
@@ -14,7 +16,7 @@ import logging
 
 from fastapi import APIRouter, WebSocket
 
-from server.deps import ServicesDep, find_participant, participant_token
+from server.deps import SUBPROTOCOL, ServicesDep, find_participant, offered_subprotocols, participant_token
 from server.game.connection import Connection
 from server.game.registry import NoTrial, TrialAbandoned
 from server.protocol.server import Error, ServerMessage, TrialEnd
@@ -32,7 +34,7 @@ async def _refuse(websocket: WebSocket, message: ServerMessage, code: int) -> No
 
 @router.websocket("/ws/play")
 async def play(websocket: WebSocket, services: ServicesDep) -> None:
-    await websocket.accept()
+    await websocket.accept(subprotocol=SUBPROTOCOL if SUBPROTOCOL in offered_subprotocols(websocket) else None)
     token = participant_token(websocket)
     participant = await asyncio.to_thread(find_participant, services.store, token) if token else None
     if participant is None:
@@ -58,6 +60,7 @@ async def play(websocket: WebSocket, services: ServicesDep) -> None:
         return
     try:
         while True:
+            await conn.room()
             frame = await websocket.receive()
             if frame["type"] == "websocket.disconnect":
                 break

@@ -210,7 +210,8 @@ class Socket:
 
     @classmethod
     async def open(cls, url: str) -> Socket:
-        return cls(await connect(url, max_size=1 << 22))
+        # Like a browser, read every frame as it comes (no flow control on the receiving side).
+        return cls(await connect(url, max_size=1 << 22, max_queue=None))
 
     async def send(self, type_: str, **fields: Any) -> int:
         self.seq += 1

@@ -316,19 +316,21 @@ def test_a_burst_of_fuzzed_frames_without_waiting_is_answered_frame_for_frame(li
         player = Player(server.url)
         await player.ready()
         sock = await player.socket()
-        await sock.recv()
-        first = await sock.recv()
-        for i, recipe in enumerate(burst):
-            await sock.send_raw(recipe.frame(i).data)
-        replies = []
-        while len(replies) < len(burst):
-            message = await sock.recv()
-            server_adapter.validate_python(message)
-            if message["type"] in ("ack", "pong", "error"):
-                replies.append(message)
-        later = await sock.until(lambda m: m["type"] == "state" and m["tick"] > first["tick"] + 3)
-        await sock.close()
-        await player.close()
+        try:
+            await sock.recv()
+            first = await sock.recv()
+            for i, recipe in enumerate(burst):
+                await sock.send_raw(recipe.frame(i).data)
+            replies = []
+            while len(replies) < len(burst):
+                message = await sock.recv()
+                server_adapter.validate_python(message)
+                if message["type"] in ("ack", "pong", "error"):
+                    replies.append(message)
+            later = await sock.until(lambda m: m["type"] == "state" and m["tick"] > first["tick"] + 3)
+        finally:
+            await sock.close()
+            await player.close()
         return replies, first, later
 
     replies, first, later = asyncio.run(scenario())

@@ -139,6 +139,27 @@ def test_a_participant_token_reaches_only_its_own_session_and_trial(live_server,
     assert len(owners) == 2 and all(trial_owner[trial] == who for trial, who in owners.items())
 
 
+def test_the_websocket_takes_the_token_as_a_subprotocol_so_it_stays_out_of_urls(live_server, study_file):
+    server = live_server([study_file(world={"orders": 1, "horizon": 600, "kb_delay": 1})])
+    url = server.url.replace("http", "ws") + "/ws/play"
+
+    async def scenario() -> tuple[str | None, dict[str, Any], dict[str, Any], dict[str, Any]]:
+        player, _ = await _ready(server, "subprotocol")
+        async with connect(url, subprotocols=["steakhouse.v1", f"token.{player.token}"]) as ws:  # type: ignore[list-item]
+            selected, hello = ws.subprotocol, json.loads(await asyncio.wait_for(ws.recv(), 10))
+        async with connect(url, subprotocols=["steakhouse.v1", "token.not-a-token"]) as ws:  # type: ignore[list-item]
+            forged = json.loads(await asyncio.wait_for(ws.recv(), 10))
+        async with connect(url, subprotocols=["steakhouse.v1"]) as ws:  # type: ignore[list-item]
+            missing = json.loads(await asyncio.wait_for(ws.recv(), 10))
+        await player.close()
+        return selected, hello, forged, missing
+
+    selected, hello, forged, missing = asyncio.run(scenario())
+    assert selected == "steakhouse.v1", "a browser drops the connection unless the server selects a subprotocol"
+    assert hello["type"] == "hello" and hello["tick"] == 0
+    assert forged["code"] == missing["code"] == "unauthorized"
+
+
 def test_the_join_limiter_refills_per_address():
     now = [0.0]
     limiter = JoinLimiter(3, clock=lambda: now[0])

@@ -52,7 +52,12 @@ export class GameConnection {
 
   url() {
     const scheme = window.location.protocol === "https:" ? "wss" : "ws";
-    return `${scheme}://${window.location.host}/ws/play?token=${encodeURIComponent(this.token)}`;
+    return `${scheme}://${window.location.host}/ws/play`;
+  }
+
+  /** The token travels as a subprotocol, not in the URL: URLs end up in proxy and server logs. */
+  protocols() {
+    return ["steakhouse.v1", `token.${this.token}`];
   }
 
   setLink(link, info = {}) {
@@ -70,7 +75,7 @@ export class GameConnection {
     this.setLink(this.attempt === 0 ? Link.CONNECTING : Link.RECONNECTING, { attempt: this.attempt, waiting: false });
     let ws;
     try {
-      ws = new WebSocket(this.url());
+      ws = new WebSocket(this.url(), this.protocols());
     } catch {
       this.retry();
       return;
