@@ -110,6 +110,12 @@ def _missing(value: Any) -> bool:
     return value is None or (isinstance(value, float) and value != value)
 
 
+def _events_text(events: list[dict[str, Any]] | None) -> str | None:
+    if events is None:
+        return None
+    return ";".join(f"{e.get('agent')}:{e.get('kind')}" for e in events)
+
+
 def _statuses(summary: dict[str, Any], key: str) -> str:
     value = summary.get(key)
     return "|".join(str(v) for v in value) if isinstance(value, list) else ("" if value is None else str(value))
@@ -134,6 +140,7 @@ def _tick_rows(participant: str, trial: StoredTrial, ticks: Sequence[StoredTick]
             "kb_gap_total": tick.kb_gap_total, "robot_in_fov": int(tick.robot_in_fov),
             "lateness_ms": tick.lateness_ms, "decision_ms": tick.decision_ms,
             "robot_missed": int(tick.robot_missed), "recorded_at": iso_time(tick.recorded_at),
+            "world_events": _events_text(tick.world_events),
         }
         for component in GAP_COMPONENTS:
             row[f"kb_gap_{component}"] = int(tick.kb_gap.get(component, 0))

@@ -42,6 +42,12 @@ MEASURES: dict[str, Column] = {c.name: c for c in (
                                     "(see docs/analysis.md)"),
     Column("redundant_actions", INT, "pickups of meat / onion / dirty plate while every station for it was "
                                      "occupied and one had been loaded by the robot (see docs/analysis.md)"),
+    Column("human_prep_pct", NUM, "% of the prep work the participant did: meat onto a grill, onion onto a "
+                                  "board, dirty plate into a sink, chop and wash presses (the robot did the rest)"),
+    Column("human_plating_pct", NUM, "% of the plating work the participant did: plating the steak, adding the "
+                                     "garnish, delivering the dish"),
+    Column("collisions", INT, "steps in which a move was cancelled because the participant and the robot would "
+                              "have met"),
     Column("decision_ms_mean", NUM, "mean robot decision time in ms (request to answer, as the game loop saw it)"),
     Column("decision_ms_p95", NUM, "95th percentile of the robot decision time in ms"),
     Column("lateness_ms_mean", NUM, "mean tick lateness in ms (actual − scheduled start of a step)"),
@@ -88,6 +94,9 @@ TICK_COLUMNS: tuple[Column, ...] = (
     Column("decision_ms", NUM, "robot decision time in ms (empty: no decision)"),
     Column("robot_missed", FLAG, "1 when the robot's decision missed its deadline"),
     Column("recorded_at", TIME, "when the step was played"),
+    Column("world_events", TEXT, "what the step did, as agent:event (start_cooking, load_board, load_sink, chop, "
+                                 "wash, plate_steak, garnish, deliver, pick_up, put_down, swap, dispense, blocked), "
+                                 "';' between events; empty for ticks stored before events were kept"),
 )
 
 TRIAL_COLUMNS: tuple[Column, ...] = (

@@ -12,7 +12,8 @@ With n stored ticks t = 1..n of one trial:
 * ``ticks`` = world steps played (the trial row's count; the horizon when not finished), ``finished`` = 1
   when every order was delivered, ``delivered``, ``score``.
 * ``robot_in_fov_pct`` = 100 · #{t : the robot's cell is in the participant's FOV after step t} / n.
-* ``subtask_switches``, ``redundant_actions``: see :mod:`analysis.work`.
+* ``subtask_switches``, ``redundant_actions``, ``human_prep_pct``, ``human_plating_pct``, ``collisions``:
+  see :mod:`analysis.work`.
 * robot timing: ``decision_ms_mean`` and ``decision_ms_p95`` over the ticks with a decision time (request
   to answer as the game loop saw it, late answers included), ``lateness_ms_mean`` and ``lateness_ms_p99``
   (actual start of a step − its scheduled start), ``deadline_misses`` = ticks where the robot's decision
@@ -30,7 +31,7 @@ from typing import Any
 import numpy as np
 
 from analysis.store_reader import StoredEvent, StoredTick, StoredTrial
-from analysis.work import redundant_action_flags, subtask_switch_flags
+from analysis.work import redundant_action_flags, subtask_switch_flags, work_shares
 
 GAP_COMPONENTS: tuple[str, ...] = ("grill", "board", "sink", "robot_held")
 
@@ -38,7 +39,8 @@ TRIAL_MEASURES: tuple[str, ...] = (
     "ticks", "finished", "delivered", "score",
     "kb_gap_mean", "kb_gap_ticks_pct", *(f"kb_gap_{c}_pct" for c in GAP_COMPONENTS),
     "interrupts", "selections", "interrupts_per_selection",
-    "robot_in_fov_pct", "subtask_switches", "redundant_actions",
+    "robot_in_fov_pct", "subtask_switches", "redundant_actions", "human_prep_pct", "human_plating_pct",
+    "collisions",
     "decision_ms_mean", "decision_ms_p95", "lateness_ms_mean", "lateness_ms_p99", "deadline_misses",
 )
 """The measure columns of ``trials.csv`` and ``cells.csv``, in order."""
@@ -64,6 +66,7 @@ def trial_measures(trial: StoredTrial, ticks: Sequence[StoredTick], events: Sequ
     out["robot_in_fov_pct"] = _pct([t.robot_in_fov for t in ticks])
     out["subtask_switches"] = sum(subtask_switch_flags([t.subtask for t in ticks], [t.controller for t in ticks]))
     out["redundant_actions"] = sum(redundant_action_flags(trial.initial_state, [t.world_state for t in ticks]))
+    out.update(work_shares([t.world_events for t in ticks]))
     out.update(timing_measures(ticks))
     for name, kind in _CONDUCT_KIND.items():
         out[name] = sum(1 for e in events if e.kind == kind)

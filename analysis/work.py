@@ -1,6 +1,7 @@
-"""Who did which work, tick by tick: subtask switches and redundant actions (DOMAIN §6, "also worth logging").
+"""Who did which work, tick by tick: subtask switches, redundant actions and the share of the prep and
+plating work each agent did (DOMAIN §6, "also worth logging").
 
-Both are judged from the stored ticks alone (``subtask`` and ``controller`` columns, and the world state
+Switches and redundant actions are judged from the stored ticks alone (``subtask`` and ``controller`` columns, and the world state
 after each step), so they can be recomputed from an export of the store.
 
 **Subtask switch.** At tick t the avatar runs subtask B, at tick t − 1 it ran a different subtask A, and
@@ -18,6 +19,14 @@ the station without the item appearing on the counter it faces (which would be a
 loads in the same step as the participant's pickup do not count (the participant could not have known).
 With several orders open, a pickup that prepares the next order while the robot's item still occupies the
 station counts as well: the item cannot be used until the station is free again.
+
+**Work shares** come from the world events each tick stored (``ticks.world_events``, the typed events of
+``planner.events``): *prep* = putting meat on a grill, an onion on a board or a dirty plate in a sink,
+and every chop and wash press; *plating* = a clean plate taking the steak, the plated steak taking the
+garnish, and delivering the dish. ``human_prep_pct`` = 100 · the participant's prep events / all prep
+events (both agents), likewise ``human_plating_pct``; ``collisions`` = steps in which a move was cancelled
+because the two agents would have met. Empty when no tick of the trial kept its events (ticks stored
+before the store's revision 0002) or, for a share, when nobody did such work.
 """
 
 from __future__ import annotations
@@ -28,9 +37,13 @@ from typing import Any
 from planner.geometry import Direction
 
 STATION_OF_ITEM: dict[str, str] = {"meat": "grills", "onion": "boards", "dirty_plate": "sinks"}
+PREP_EVENTS = frozenset({"start_cooking", "load_board", "load_sink", "chop", "wash"})
+PLATING_EVENTS = frozenset({"plate_steak", "garnish", "deliver"})
+COLLISION_EVENT = "blocked"
 """Raw item → the world-state list of the stations it is loaded into."""
 
 World = Mapping[str, Any]
+NAN = float("nan")
 
 
 def subtask_switch_flags(subtasks: Sequence[str | None], controllers: Sequence[Mapping[str, Any]]) -> list[int]:
@@ -100,3 +113,26 @@ def _loaded(before: World, after: World, agent: str, item: str) -> bool:
     faced = Direction(state["facing"]).ahead((int(x), int(y)))
     on_counter = any(tuple(o["pos"]) == faced and o["obj"] == item for o in after.get("objects", ()))
     return not on_counter
+
+
+def work_shares(steps: Sequence[Sequence[Mapping[str, Any]] | None]) -> dict[str, float]:
+    """``human_prep_pct``, ``human_plating_pct`` and ``collisions`` from each tick's world events (see the
+    module docstring); ``steps[i]`` is the ``world_events`` of the i-th stored tick (``None``: not kept)."""
+    kept = [events for events in steps if events is not None]
+    if not kept:
+        return {"human_prep_pct": NAN, "human_plating_pct": NAN, "collisions": NAN}
+    counts = {(agent, group): 0 for agent in ("human", "robot") for group in ("prep", "plating")}
+    collisions = 0
+    for events in kept:
+        collisions += any(e.get("kind") == COLLISION_EVENT for e in events)
+        for e in events:
+            group = "prep" if e.get("kind") in PREP_EVENTS else "plating" if e.get("kind") in PLATING_EVENTS else None
+            if group is not None and (e.get("agent"), group) in counts:
+                counts[(str(e["agent"]), group)] += 1
+    return {"human_prep_pct": _share(counts[("human", "prep")], counts[("robot", "prep")]),
+            "human_plating_pct": _share(counts[("human", "plating")], counts[("robot", "plating")]),
+            "collisions": float(collisions)}
+
+
+def _share(human: int, robot: int) -> float:
+    return 100.0 * human / (human + robot) if human + robot else NAN

@@ -134,6 +134,9 @@ class TickRow(Base):
     world_state: Mapped[dict[str, Any]] = mapped_column(JsonType)
     kb_state: Mapped[dict[str, Any]] = mapped_column(JsonType)
     controller: Mapped[dict[str, Any]] = mapped_column(JsonType)
+    world_events: Mapped[list[dict[str, Any]] | None] = mapped_column(JsonType, nullable=True)
+    """The step's world events (``planner.events.Event.to_dict``: agent, kind, pos, obj); NULL in ticks
+    stored before revision 0002."""
 
 
 class EventRow(Base):

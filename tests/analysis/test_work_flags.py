@@ -1,10 +1,13 @@
-"""Subtask switches and redundant actions (analysis.work) on small hand-made tick sequences."""
+"""Subtask switches, redundant actions and work shares (analysis.work) on small hand-made tick sequences."""
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
-from analysis.work import redundant_action_flags, subtask_switch_flags
+import pytest
+
+from analysis.work import redundant_action_flags, subtask_switch_flags, work_shares
 
 
 def ctl(subtask: str | None) -> dict[str, Any]:
@@ -84,3 +87,30 @@ def test_a_station_emptied_and_refilled_in_one_step_belongs_to_the_new_loader() 
     robot_plated_human_loaded = world(agent(H, "south"), agent(R, "north", "steak_plate"), [1])
     human_picks = world(agent(H, "south", "meat"), agent(R, "north", "steak_plate"), [2])
     assert redundant_action_flags(start, [robot_plated_human_loaded, human_picks]) == [0, 0]
+
+
+def _events(*pairs: tuple[str, str]) -> list[dict[str, object]]:
+    return [{"agent": agent, "kind": kind, "pos": [1, 1], "obj": None} for agent, kind in pairs]
+
+
+def test_work_shares_count_prep_and_plating_per_agent_and_steps_with_a_collision() -> None:
+    steps = [
+        _events(("human", "start_cooking"), ("robot", "load_board")),
+        _events(("robot", "chop")),
+        _events(("robot", "chop"), ("human", "blocked"), ("robot", "blocked")),
+        _events(("human", "plate_steak"), ("robot", "dispense")),
+        _events(("human", "garnish")),
+        _events(("robot", "deliver"), ("human", "blocked")),
+        [],
+    ]
+    shares = work_shares(steps)
+    assert shares["human_prep_pct"] == 25.0, "1 of 4 prep events (the meat) was the participant's"
+    assert shares["human_plating_pct"] == pytest.approx(200 / 3), "plating and garnish, not the delivery"
+    assert shares["collisions"] == 2
+
+
+def test_work_shares_are_empty_without_kept_events_or_without_such_work() -> None:
+    assert all(math.isnan(v) for v in work_shares([None, None]).values())
+    shares = work_shares([_events(("human", "pick_up")), None])
+    assert math.isnan(shares["human_prep_pct"]) and math.isnan(shares["human_plating_pct"])
+    assert shares["collisions"] == 0
