@@ -21,12 +21,13 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import Any
 
 from planner.events import Event
 from planner.fov import view
 from planner.geometry import Pos, manhattan
 from planner.layout import Layout, Terrain
-from planner.objects import CLEAN_PLATE, DISH, STEAK_PLATE
+from planner.objects import CLEAN_PLATE, DISH, OBJECTS, STEAK_PLATE
 from planner.state import AgentState, WorldState
 
 ROBOT_KEY: Pos = (-1, -1)
@@ -61,6 +62,28 @@ class KnowledgeBase:
             "robot": None if self.robot is None else self.robot.to_dict(),
             "streaks": [[list(k), occ, n] for k, occ, n in self.streaks],
         }
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> KnowledgeBase:
+        """The inverse of :meth:`to_dict` (resuming a trial keeps the streaks); ``ValueError`` on unknown
+        objects."""
+        objects = []
+        for item in data["objects"]:
+            if item["obj"] not in OBJECTS:
+                raise ValueError(f"unknown object {item['obj']!r}")
+            objects.append(((int(item["pos"][0]), int(item["pos"][1])), str(item["obj"])))
+        streaks = []
+        for key, occupant, count in data.get("streaks", []):
+            pos = (int(key[0]), int(key[1]))
+            streaks.append((ROBOT_KEY if pos == ROBOT_KEY else pos, occupant, int(count)))
+        robot = data.get("robot")
+        return cls(objects=tuple(sorted(objects)), grills=tuple(_count(v) for v in data["grills"]),
+                   boards=tuple(_count(v) for v in data["boards"]), sinks=tuple(_count(v) for v in data["sinks"]),
+                   robot=None if robot is None else AgentState.from_dict(robot), streaks=tuple(streaks))
+
+
+def _count(value: Any) -> int | None:
+    return None if value is None else int(value)
 
 
 def initial_kb(state: WorldState) -> KnowledgeBase:

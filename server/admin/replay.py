@@ -12,7 +12,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-from planner.kb import initial_kb
+from planner.kb import KnowledgeBase, initial_kb
 from planner.layout import Layout
 from planner.rules import Rules
 from planner.state import WorldState
@@ -20,7 +20,6 @@ from planner.summary import gap_components, summarize
 from server.admin.scenes import frame, grid, kb_frame
 from server.catalog import LoadedStudy
 from server.errors import ApiError
-from server.game.kb_codec import kb_from_dict
 from server.store.tables import TickRow, TrialRow
 
 RECORDED = ("human_action", "robot_action", "action_source", "subtask", "kb_gap", "kb_gap_total", "kb_summary",
@@ -41,7 +40,7 @@ def replay(loaded: LoadedStudy | None, row: TrialRow, ticks: Sequence[TickRow], 
     for tick in ticks:
         world = WorldState.from_dict(tick.world_state)
         frames.append({**frame(layout, world, rules, angle),
-                       "kb": kb_frame(layout, kb_from_dict(tick.kb_state), rules),
+                       "kb": kb_frame(layout, KnowledgeBase.from_dict(tick.kb_state), rules),
                        **{name: getattr(tick, name) for name in RECORDED}, "decision": tick.robot_info})
     return {
         "grid": grid(layout),

@@ -17,7 +17,7 @@ import asyncio
 import logging
 from typing import Any
 
-from planner.kb import initial_kb
+from planner.kb import KnowledgeBase, initial_kb
 from planner.state import WorldState
 from server.catalog import Catalog, LoadedStudy
 from server.flow.progress import Phase
@@ -25,7 +25,6 @@ from server.flow.service import progress_of
 from server.game.connection import Connection
 from server.game.controller import ParticipantController
 from server.game.engine import TrialEngine
-from server.game.kb_codec import kb_from_dict
 from server.game.live import GameDeps, LiveGame
 from server.game.meta import TrialMeta
 from server.game.resume import Prepared, abandon_stale, prepare_trial
@@ -130,7 +129,7 @@ class GameRegistry:
         last = prepared.last_tick
         if last is not None:
             engine = TrialEngine(layout, rules, angle=angle, kb_delay=delay, seed=row.seed,
-                                 world=WorldState.from_dict(last.world_state), kb=kb_from_dict(last.kb_state),
+                                 world=WorldState.from_dict(last.world_state), kb=KnowledgeBase.from_dict(last.kb_state),
                                  controller=ParticipantController.from_dict(last.controller, layout, rules, angle))
         else:
             world = WorldState.from_dict(row.initial_state)

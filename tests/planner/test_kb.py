@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+import json
 from dataclasses import replace
 
 import numpy as np
+import pytest
 
 from planner.geometry import Action, Direction
 from planner.human import HumanMemory, HumanModel
-from planner.kb import initial_kb, update_kb
+from planner.kb import KnowledgeBase, initial_kb, update_kb
 from planner.objects import MEAT, ONION
 from planner.play import TrialSettings, run_trial
 from planner.rules import Rules
@@ -154,3 +156,27 @@ def test_fast_gap_equals_the_gap_of_the_two_summaries():
         assert fast == gap_components(summarize(kb, RULES), summarize(world, RULES))
         differing += sum(fast.values()) > 0
     assert differing > 0
+
+
+def test_a_kb_read_back_from_json_is_the_same_kb_at_every_tick():
+    """Resuming a trial reads the participant's modelled KB back from the store: streaks included."""
+    layout = load_layout("mid_2")
+    world = initial_state(layout, RULES)
+    kb = initial_kb(world)
+    human, memory, partner = HumanModel(layout, RULES), HumanMemory(), SimulatedPartner(layout, RULES)
+    rng = np.random.default_rng(11)
+    with_streaks = 0
+    for _ in range(120):
+        h, memory = human.act(world, kb, memory, rng)
+        world, events = step(layout, world, {"human": h, "robot": partner.act(world, (), rng)}, RULES)
+        kb = tick(layout, kb, world, events=[e for e in events if e.agent == "human"])
+        assert KnowledgeBase.from_dict(json.loads(json.dumps(kb.to_dict()))) == kb
+        with_streaks += bool(kb.streaks)
+    assert with_streaks > 0, "the walk must cross ticks with running streaks to test them"
+
+
+def test_a_stored_kb_naming_an_unknown_object_is_refused(kitchen):
+    data = initial_kb(initial_state(kitchen, RULES)).to_dict()
+    data["objects"] = [{"pos": [4, 3], "obj": "saucepan"}]
+    with pytest.raises(ValueError, match="saucepan"):
+        KnowledgeBase.from_dict(data)

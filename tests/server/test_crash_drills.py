@@ -22,8 +22,8 @@ from sqlalchemy import func, select, text
 from steakhouse_testing import Player, ProcessServer, play_to_end, play_until
 from websockets.exceptions import ConnectionClosed
 
+from planner.kb import KnowledgeBase
 from planner.state import WorldState
-from server.game.kb_codec import kb_from_dict
 from server.store import trials
 from server.store.engine import Store
 from server.store.tables import EventRow, TickRow, TrialRow
@@ -49,7 +49,7 @@ def stored(db_url: str) -> dict[int, dict[str, Any]]:
                 for tick in trials.ticks(session, row.id):
                     world = WorldState.from_dict(tick.world_state)
                     assert world.tick == tick.tick
-                    kb_from_dict(tick.kb_state)
+                    KnowledgeBase.from_dict(tick.kb_state)
                     ticks[tick.tick] = tick.world_state
                 out[row.id] = {"status": row.status, "attempt": row.attempt, "reason": row.end_reason,
                                "participant": row.participant_id, "ticks": ticks}

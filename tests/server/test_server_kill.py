@@ -11,8 +11,8 @@ import pytest
 from sqlalchemy import text
 from steakhouse_testing import Player, ProcessServer, play_to_end, play_until
 
+from planner.kb import KnowledgeBase
 from planner.state import WorldState
-from server.game.kb_codec import kb_from_dict
 from server.store import trials
 from server.store.engine import Store
 from server.store.tables import TrialRow
@@ -32,7 +32,7 @@ def check_store(db_url: str, trial_id: int) -> tuple[TrialRow, list[int]]:
             for tick in rows:
                 world = WorldState.from_dict(tick.world_state)
                 assert world.tick == tick.tick
-                kb_from_dict(tick.kb_state)
+                KnowledgeBase.from_dict(tick.kb_state)
             return row, [t.tick for t in rows]
     finally:
         store.dispose()

@@ -4,13 +4,12 @@ of each tick; determinism by seed; a stored tick resumes to the same future."""
 from __future__ import annotations
 
 from planner.geometry import Action
-from planner.kb import initial_kb, update_kb
+from planner.kb import KnowledgeBase, initial_kb, update_kb
 from planner.rules import Rules
 from planner.state import WorldState
 from planner.summary import gap_components, summarize
 from server.game.controller import ParticipantController
 from server.game.engine import TrialEngine
-from server.game.kb_codec import kb_from_dict
 from study_config import load_layout
 
 RULES = Rules(orders=1, horizon=200)
@@ -59,7 +58,7 @@ def test_same_seed_same_trial_and_resume_from_a_stored_tick():
     stored = full[29]
     resumed = TrialEngine(layout, RULES, angle=120.0, kb_delay=3, seed=9,
                           world=WorldState.from_dict(stored.world.to_dict()),
-                          kb=kb_from_dict(stored.kb.to_dict()),
+                          kb=KnowledgeBase.from_dict(stored.kb.to_dict()),
                           controller=ParticipantController.from_dict(
                               {"subtask": stored.subtask.value if stored.subtask and not stored.subtask_finished
                                else None, "last": stored.subtask.value if stored.subtask else None},
