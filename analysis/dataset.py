@@ -188,8 +188,8 @@ def _wide_rows(participants: Sequence[StoredParticipant], cell_rows: list[dict[s
                answers: dict[int, dict[int | None, dict[str, int | None]]], design: Design) -> list[dict[str, Any]]:
     values = [*TRIAL_MEASURES, *design.item_names(design.trial_items)]
     by_participant: dict[str, list[dict[str, Any]]] = {}
-    for row in cell_rows:
-        by_participant.setdefault(row["participant"], []).append(row)
+    for cell_row in cell_rows:
+        by_participant.setdefault(cell_row["participant"], []).append(cell_row)
     out = []
     for p in participants:
         cells = by_participant.get(p.public_id)

@@ -7,7 +7,7 @@ are generated from the study's stored configuration.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 
 from analysis.measures import CONDUCT_COUNTS, GAP_COMPONENTS, TRIAL_MEASURES
@@ -208,7 +208,7 @@ FILE_NOTES: dict[str, str] = {
 }
 
 
-def render_markdown(files: dict[str, Sequence[Column]], study_id: str, exported_at: str) -> str:
+def render_markdown(files: Mapping[str, Sequence[Column]], study_id: str, exported_at: str) -> str:
     """``data_dictionary.md``: a section per file with a table of its columns."""
     lines = [f"# Data dictionary: study {study_id}", "", f"Exported {exported_at}.", "",
              "Empty cells are missing values. Flags are 0/1. Times are UTC (ISO 8601). Measures are defined in "
@@ -220,7 +220,7 @@ def render_markdown(files: dict[str, Sequence[Column]], study_id: str, exported_
     return "\n".join(lines)
 
 
-def rows(files: dict[str, Sequence[Column]]) -> list[dict[str, str]]:
+def rows(files: Mapping[str, Sequence[Column]]) -> list[dict[str, str]]:
     """``data_dictionary.csv``: one row per file and column."""
     return [{"file": name, "column": c.name, "type": c.type, "description": c.description}
             for name, columns in files.items() for c in columns]

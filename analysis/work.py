@@ -65,7 +65,8 @@ def redundant_action_flags(initial: World, worlds: Sequence[World]) -> list[int]
 
     ``initial`` is the trial's initial world state, ``worlds[i]`` the world state stored after the i-th tick.
     """
-    loaded_by = {kind: [None] * len(initial.get(kind, ())) for kind in STATION_OF_ITEM.values()}
+    loaded_by: dict[str, list[str | None]] = {kind: [None] * len(initial.get(kind, ()))
+                                              for kind in STATION_OF_ITEM.values()}
     flags = []
     before = initial
     for after in worlds:

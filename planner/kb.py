@@ -198,12 +198,12 @@ def update_kb(kb: KnowledgeBase, layout: Layout, world: WorldState, *, angle: fl
             streaks.append((cell, occ, count))
     for cell, kind, i in seen.stations:
         value = _statuses(world, kind)[i]
-        occ = value is not None
+        occupied = value is not None
         prev = previous.get(cell)
-        count = prev[1] + 1 if prev is not None and prev[0] == occ else 1
+        count = prev[1] + 1 if prev is not None and prev[0] == occupied else 1
         if cell in own_cells:
             count = max(count, kb_delay)
-        streaks.append((cell, occ, count))
+        streaks.append((cell, occupied, count))
         if count >= kb_delay:
             w.copy_cell(cell, world, world_objects)
     robot = world.robot

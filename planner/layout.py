@@ -108,7 +108,7 @@ def parse_layout(text: str, name: str = "layout", source: str | None = None) -> 
         if len(line) != width:
             raise LayoutError(src, y + 1, min(len(line), width) + 1,
                               f"ragged row: {len(line)} characters where the first row has {width}")
-        row = []
+        cells: list[str] = []
         for x, ch in enumerate(line):
             if ch in START_CHARS:
                 agent = START_CHARS[ch]
@@ -121,8 +121,8 @@ def parse_layout(text: str, name: str = "layout", source: str | None = None) -> 
                 ch = Terrain.FLOOR.value
             elif ch not in _TERRAIN_CHARS:
                 raise LayoutError(src, y + 1, x + 1, f"unknown character {ch!r}; allowed: {_ALLOWED}")
-            row.append(ch)
-        rows.append("".join(row))
+            cells.append(ch)
+        rows.append("".join(cells))
     height = len(rows)
     for y, row in enumerate(rows):
         for x, ch in enumerate(row):
@@ -142,8 +142,8 @@ def parse_layout(text: str, name: str = "layout", source: str | None = None) -> 
                               f"missing station: no {station.name.lower()} ('{station.value}')")
     floor = frozenset(by_kind[Terrain.FLOOR])
     _check_reachable(src, floor, starts, by_kind)
-    stations = {pos: (kind, i) for kind, cells in by_kind.items() if kind is not Terrain.FLOOR
-                for i, pos in enumerate(cells)}
+    stations: dict[Pos, tuple[Terrain, int]] = {pos: (kind, i) for kind, found in by_kind.items()
+                                                if kind is not Terrain.FLOOR for i, pos in enumerate(found)}
     return Layout(
         name=name, width=width, height=height, rows=tuple(rows),
         starts=tuple(sorted(starts.items())), floor=floor,

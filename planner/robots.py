@@ -15,6 +15,7 @@ from planner.decision import Decision
 from planner.events import Event
 from planner.geometry import Action
 from planner.layout import Layout
+from planner.planner_config import PlannerConfig
 from planner.registry import PLANNER_NAMES
 from planner.rules import Rules
 from planner.state import WorldState
@@ -35,7 +36,7 @@ class StayRobot:
         return Action.STAY
 
 
-def make_robot(name: str, layout: Layout, rules: Rules, config: object | None = None):
+def make_robot(name: str, layout: Layout, rules: Rules, config: PlannerConfig | None = None):
     """A fresh robot policy. Raises ``ValueError`` naming the known planners for an unknown name."""
     if name not in PLANNER_NAMES:
         raise ValueError(f"unknown robot planner {name!r}; known: {', '.join(PLANNER_NAMES)}")
