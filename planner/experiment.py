@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import statistics
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from scipy import stats
@@ -65,7 +66,7 @@ class PairedComparison:
     wilcoxon_p: float
 
 
-def paired_comparison(rows: list[dict[str, object]], robot: str = "fov_aware",
+def paired_comparison(rows: list[dict[str, Any]], robot: str = "fov_aware",
                       reference: str = "baseline") -> PairedComparison | None:
     """Ticks of ``robot`` against ``reference`` on the same (kitchen, seed) trials."""
     by_key = {(r["layout"], r["seed"], r["robot"]): float(r["ticks"]) for r in rows}
@@ -80,7 +81,7 @@ def paired_comparison(rows: list[dict[str, object]], robot: str = "fov_aware",
     return PairedComparison(robot, reference, len(keys), float(change), t_p, w_p)
 
 
-def summarize_trials(rows: list[dict[str, object]]) -> str:
+def summarize_trials(rows: list[dict[str, Any]]) -> str:
     """The paper-style table as text."""
     robots = sorted({str(r["robot"]) for r in rows}, key=lambda r: (r != "fov_aware", r))
     layouts = sorted({str(r["layout"]) for r in rows})

@@ -8,8 +8,11 @@ Each tick the robot
 2. for every subtask the robot could take and every likely human subtask ``s`` (belief ≥ threshold),
    simulates the joint system forward (:class:`planner.rollout.Rollout`) with the human choosing from its
    modelled KB, and scores the shaping-potential progress;
-3. combines them QMDP-style, ``Q(b, r) = Σ_s b(s) V(r, s)``, with a small bonus for keeping its current
-   subtask, and takes ``r* = argmax Q``;
+3. combines them QMDP-style, ``Q(b, r) = Σ_s b(s) V(r, s)``, averages each ``Q(b, r)`` with its value at
+   the previous ticks (``value_smoothing``: an exponential average, restarted when the robot's held object
+   or the orders left change — one seeded rollout per hypothesis is noisy, and a robot that flips between
+   subtasks on noise can leave the human stuck), adds a small bonus for keeping its current subtask, and
+   takes ``r* = argmax Q``;
 4. **exploration** (FOV-aware only, depth ``k``): it rolls out, besides the direct move toward ``r*``
    (whose score is the one already computed for ``Q``), every other first move on a shortest path and,
    when the modelled KB does not know what the robot holds, a *show plan*: the cheapest walk into the
@@ -41,7 +44,7 @@ from planner.fov import view
 from planner.geometry import DIRECTIONS, Action, manhattan, move_action
 from planner.kb import KnowledgeBase, initial_kb, omniscient_kb, update_kb
 from planner.layout import Layout
-from planner.paths import best_moves, distance, next_pose
+from planner.paths import Pose, best_moves, distance, next_pose
 from planner.planner_config import PlannerConfig
 from planner.rollout import Rollout, RobotTasker
 from planner.rules import Rules
@@ -63,6 +66,8 @@ class QmdpRobot:
         self.held_before: str | None = None
         self.pending: tuple[Action, ...] = ()
         self.human_still = 0
+        self.averages: dict[Subtask, float] = {}
+        self.averages_key: tuple[str | None, int] | None = None
 
     def reset(self, world: WorldState) -> None:
         self.kb = initial_kb(world)
@@ -72,6 +77,8 @@ class QmdpRobot:
         self.held_before = world.robot.held
         self.pending = ()
         self.human_still = 0
+        self.averages = {}
+        self.averages_key = None
 
     def observe(self, world: WorldState, events: Sequence[Event]) -> None:
         if self.kb is None:
@@ -98,6 +105,9 @@ class QmdpRobot:
         start = time.perf_counter()
         self.observe(world, events)
         assert self.kb is not None and self.belief is not None
+        key = (world.robot.held, world.orders_left)
+        if key != self.averages_key:
+            self.averages, self.averages_key = {}, key
         likely = self.belief.likely(self.cfg.belief_threshold, self.cfg.max_subtasks)
         if self.pending and self.kb.robot is not None and self.kb.robot.held != world.robot.held:
             action, self.pending = self.pending[0], self.pending[1:]
@@ -115,7 +125,8 @@ class QmdpRobot:
                 timed_out = True
                 break
             values[r] = sum(p * self.sampled(world, s, r, horizon, seed) for s, p in likely)
-            q[r] = self.cfg.gamma * values[r] + (self.cfg.commitment_bonus if r is self.current else 0.0)
+            q[r] = self.cfg.gamma * self.averaged(r, values[r]) + (
+                self.cfg.commitment_bonus if r is self.current else 0.0)
         best = max(q, key=lambda r: (q[r], r is self.current, -options.index(r)))
         self.current = best
         action, explored = self.first_move(world, best, likely, horizon, seed, deadline, values[best])
@@ -123,6 +134,13 @@ class QmdpRobot:
         return Decision(action=action, q_values={r.value: v for r, v in q.items()},
                         belief=self.belief.as_dict(), explored_kbs=explored,
                         elapsed_ms=(time.perf_counter() - start) * 1000, timed_out=timed_out)
+
+    def averaged(self, subtask: Subtask, value: float) -> float:
+        """``value`` folded into the running average of ``subtask``'s rollout value (``value_smoothing``)."""
+        before = self.averages.get(subtask)
+        alpha = self.cfg.value_smoothing
+        self.averages[subtask] = value if before is None else alpha * value + (1.0 - alpha) * before
+        return self.averages[subtask]
 
     def act(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator) -> Action:
         return self.decide(world, events, rng).action
@@ -149,7 +167,7 @@ class QmdpRobot:
             candidates[show[0]] = show[1:]
         if len(candidates) < 2:
             return default, 0
-        scored = []
+        scored: list[tuple[float, bool, Action]] = []
         for move, rest in candidates.items():
             if deadline is not None and scored and time.perf_counter() > deadline:
                 break
@@ -206,7 +224,8 @@ class QmdpRobot:
             return min((distance(self.layout, pose, c) for c in cells), default=0)
 
         base = to_target(start)
-        frontier, first = [start], {start: ()}
+        frontier = [start]
+        first: dict[Pose, tuple[Action, ...]] = {start: ()}
         best: tuple[int, int, tuple[Action, ...]] | None = None
         for steps in range(1, base + self.cfg.exploration_depth + 1):
             nxt = []

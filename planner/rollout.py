@@ -25,7 +25,7 @@ from planner.geometry import Action, Pos
 from planner.human import HumanMemory, HumanModel
 from planner.kb import KnowledgeBase, omniscient_kb, update_kb
 from planner.layout import Layout
-from planner.objects import CLEAN_PLATE, DISH, STEAK_PLATE
+from planner.objects import CLEAN_PLATE, DISH, MEAT, ONION, STEAK_PLATE
 from planner.paths import UNREACHABLE, distances_to
 from planner.planner_config import PlannerConfig
 from planner.rules import Rules
@@ -60,9 +60,12 @@ class RobotTasker:
 
     def options(self, world: WorldState, current: Subtask | None) -> tuple[Subtask, ...]:
         """The human's options (DOMAIN §4) from the robot's seat, plus what only someone who sees the whole
-        kitchen would add: finishing an onion or plate left unfinished, and putting a plated steak down
+        kitchen would add: finishing an onion or plate left unfinished; putting a plated steak down
         while no garnish is ready (else both agents can end up waiting on a board nobody chops, or the
-        robot waiting in the only spot from which the human could bring the onion).
+        robot waiting in the only spot from which the human could bring the onion); and fetching a clean
+        plate (then the steak) as soon as a steak *and* a garnish are on their way, counting the meat or
+        onion the human carries, instead of only once both are on their stations (the human's rule judges
+        by its KB, the robot sees the human's hands).
         """
         b = Believed(kb=omniscient_kb(world), held=world.robot.held, partner_held=world.human.held,
                      orders_left=world.orders_left)
@@ -78,6 +81,14 @@ class RobotTasker:
                                                          for v in world.boards):
             if Subtask.DROP_ON_COUNTER not in options:
                 options.append(Subtask.DROP_ON_COUNTER)
+        coming = ((any(g is not None for g in world.grills) or world.human.held == MEAT)
+                  and (any(b is not None for b in world.boards) or world.human.held == ONION))
+        if coming and world.robot.held is None and Subtask.PICKUP_CLEAN_PLATE not in options:
+            if (any(v is not None and v >= self.rules.wash_time for v in world.sinks)
+                    or any(obj == CLEAN_PLATE for _, obj in world.objects)):
+                options.append(Subtask.PICKUP_CLEAN_PLATE)
+        elif coming and world.robot.held == CLEAN_PLATE and Subtask.PICKUP_STEAK not in options:
+            options.append(Subtask.PICKUP_STEAK)
         return tuple(options)
 
     def done(self, subtask: Subtask, held_before: str | None, world: WorldState) -> bool:
