@@ -16,19 +16,16 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-import numpy as np
 import pytest
 
 from planner.fov import visible_cells
 from planner.geometry import Action, Direction
-from planner.kb import initial_kb, update_kb
+from planner.kb import initial_kb
 from planner.objects import ONION
 from planner.paths import distance
-from planner.planner_config import PlannerConfig
-from planner.robots import make_robot
 from planner.rules import Rules
 from planner.state import AgentState, initial_state
-from planner.step import step
+from steakhouse_onion_run import carry_onion_to_board
 from study_config import load_layout
 
 RULES = Rules()
@@ -50,26 +47,8 @@ def situation():
 def play_until_the_onion_is_on_the_board(name: str, seed: int, max_ticks: int = 25):
     """The robot's cells after each tick, its actions, and the tick at which the human's KB acknowledged
     the onion (None if never), the human standing still."""
-    before, world = situation()
-    robot = make_robot(name, LAYOUT, RULES, PlannerConfig(seed=seed))
-    robot.reset(before)
-    kb = initial_kb(before)
-    rng = np.random.default_rng(seed)
-    cells: list[tuple[int, int]] = []
-    actions: list[Action] = []
-    acknowledged = None
-    events = ()
-    for tick in range(max_ticks):
-        action = robot.decide(world, events, rng).action
-        actions.append(action)
-        world, events = step(LAYOUT, world, {"human": Action.STAY, "robot": action}, RULES)
-        cells.append(world.robot.pos)
-        kb = update_kb(kb, LAYOUT, world, angle=120, kb_delay=3)
-        if acknowledged is None and kb.robot is not None and kb.robot.held == ONION:
-            acknowledged = tick
-        if world.boards[0] is not None:
-            return cells, actions, acknowledged
-    pytest.fail(f"{name} did not put the onion on the board in {max_ticks} ticks: {actions}")
+    run = carry_onion_to_board(LAYOUT, RULES, name, seed, *situation(), max_ticks)
+    return run.cells, run.actions, run.acknowledged
 
 
 def steps_walked(cells) -> int:
