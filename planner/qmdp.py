@@ -60,6 +60,7 @@ class QmdpRobot:
         self.rollout = Rollout(layout, rules, config)
         self.tasker = RobotTasker(layout, rules)
         self.kb: KnowledgeBase | None = None
+        self.kb_tick: int | None = None
         self.belief: Belief | None = None
         self.last_human: AgentState | None = None
         self.current: Subtask | None = None
@@ -71,6 +72,7 @@ class QmdpRobot:
 
     def reset(self, world: WorldState) -> None:
         self.kb = initial_kb(world)
+        self.kb_tick = world.tick
         self.belief = None
         self.last_human = None
         self.current = None
@@ -85,8 +87,12 @@ class QmdpRobot:
             self.reset(world)
         assert self.kb is not None
         human_events = [e for e in events if e.agent == "human"]
-        self.kb = update_kb(self.kb, self.layout, world, angle=self.cfg.human_angle,
-                            kb_delay=self.cfg.human_delay, own_events=human_events)
+        if world.tick != self.kb_tick:
+            # The person's KB takes each world once, after it steps (planner.play, server.game.engine): the
+            # world the robot was reset with is already in ``initial_kb``, and seeing it again is no new tick.
+            self.kb = update_kb(self.kb, self.layout, world, angle=self.cfg.human_angle,
+                                kb_delay=self.cfg.human_delay, own_events=human_events)
+            self.kb_tick = world.tick
         action = _infer_action(self.last_human, world.human, bool(human_events))
         partner_held = self.kb.robot.held if self.kb.robot is not None else None
         self.belief = update_belief(self.belief, self.layout, self.rules, self.kb, self.last_human, world.human,
