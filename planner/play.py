@@ -6,6 +6,7 @@ child stream (``Generator.spawn``), so the same seed gives the same trial whatev
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -13,7 +14,7 @@ import numpy as np
 from planner.fov import view
 from planner.geometry import Action
 from planner.human import HumanMemory, HumanModel
-from planner.kb import initial_kb, update_kb
+from planner.kb import KnowledgeBase, initial_kb, update_kb
 from planner.layout import Layout
 from planner.partner import RobotPolicy, SimulatedPartner
 from planner.rules import Rules
@@ -59,8 +60,12 @@ class TrialResult:
 
 
 def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings(),
-              robot: RobotPolicy | None = None, record: bool = False) -> TrialResult:
-    """Play one trial to the end (all orders delivered or the horizon)."""
+              robot: RobotPolicy | None = None, record: bool = False,
+              before_human: Callable[[KnowledgeBase, HumanMemory, np.random.Generator], None] | None = None,
+              ) -> TrialResult:
+    """Play one trial to the end (all orders delivered or the horizon). ``before_human`` (diagnostics,
+    e.g. ``benchmarks/planner/clairvoyant.py``) is shown the simulated person's KB, memory and random
+    stream each tick before it acts; it must not consume the stream."""
     rules = settings.rules
     human_rng, robot_rng = np.random.default_rng(seed).spawn(2)
     world = initial_state(layout, rules)
@@ -76,6 +81,8 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
     decision_ms: list[float] = []
     timed_out = 0
     while not is_done(world, rules):
+        if before_human is not None:
+            before_human(kb, memory, human_rng)
         h_action, memory = human.act(world, kb, memory, human_rng)
         decide = getattr(partner, "decide", None)
         if decide is not None:

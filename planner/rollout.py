@@ -125,8 +125,12 @@ class Rollout:
     def value(self, world: WorldState, kb: KnowledgeBase, human_subtask: Subtask, robot_subtask: Subtask,
               horizon: int, seed: int, prefix: tuple[Action, ...] = (), parked_for: int = 0) -> float:
         """The discounted progress of the hypothesis; the robot plays ``prefix`` first, then its subtask."""
-        rng = np.random.default_rng(seed)
-        memory = HumanMemory(subtask=human_subtask, held=world.human.held)
+        return self.run(world, kb, HumanMemory(subtask=human_subtask, held=world.human.held),
+                        np.random.default_rng(seed), robot_subtask, horizon, prefix, parked_for)
+
+    def run(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory, rng: np.random.Generator,
+            robot_subtask: Subtask, horizon: int, prefix: tuple[Action, ...] = (), parked_for: int = 0) -> float:
+        """:meth:`value` from a given human memory and random stream (``rng`` is consumed)."""
         robot_task: Subtask | None = robot_subtask
         phi = potential(world, self.cfg)
         total, discount = 0.0, 1.0
