@@ -32,6 +32,7 @@ class TrialSpec:
     human_angle: float = 120.0
     kb_delay: int = 3
     rollout_samples: int = 1
+    lookahead: str = "rollout"
 
 
 def run_spec(spec: TrialSpec) -> dict[str, object]:
@@ -42,7 +43,7 @@ def run_spec(spec: TrialSpec) -> dict[str, object]:
     rules = Rules()
     robot = make_robot(spec.robot, layout, rules,
                        PlannerConfig(human_angle=spec.human_angle, human_delay=spec.kb_delay, seed=spec.seed,
-                                     rollout_samples=spec.rollout_samples))
+                                     rollout_samples=spec.rollout_samples, lookahead=spec.lookahead))
     result = run_trial(layout, spec.seed, TrialSettings(angle=spec.human_angle, kb_delay=spec.kb_delay,
                                                          rules=rules), robot=robot)
     times = np.array(result.decision_ms) if result.decision_ms else np.zeros(1)

@@ -5,6 +5,9 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 
+LOOKAHEADS = ("rollout", "abstract")
+
+
 @dataclass(frozen=True, slots=True)
 class PlannerConfig:
     """``human_angle``/``human_delay``: the robot's model of the person's FOV and KB delay (the baseline
@@ -17,7 +20,11 @@ class PlannerConfig:
     ``value_smoothing``: weight of this tick's rollout value of a robot subtask against its running average
     over the previous ticks (1 = no averaging); the average restarts when the robot's held object or the
     orders left change. Averaging over ticks lowers the noise of one-sample rollouts at no extra cost.
-    Rewards are the reference implementation's shaping (DOMAIN §5, step 4)."""
+    ``lookahead``: how a hypothesis is valued. ``"rollout"`` (default): the joint system simulated tick by
+    tick for ``search_depth`` × 6 ticks with the human model. ``"abstract"``: DOMAIN §5 as the reference
+    did it, ``exploration_depth + 1`` ticks simulated, then a heuristic search over abstract states
+    (:mod:`planner.abstract`) ``abstract_depth`` transitions deep, discounted ``abstract_discount`` per
+    transition. Rewards are the reference implementation's shaping (DOMAIN §5, step 4)."""
 
     human_angle: float = 120.0
     human_delay: int = 3
@@ -39,7 +46,14 @@ class PlannerConfig:
     commitment_bonus: float = 1.0
     rollout_samples: int = 1
     value_smoothing: float = 0.5
+    lookahead: str = "rollout"
+    abstract_depth: int = 5
+    abstract_discount: float = 0.8
     seed: int = 0
+
+    def __post_init__(self) -> None:
+        if self.lookahead not in LOOKAHEADS:
+            raise ValueError(f"lookahead must be one of {', '.join(LOOKAHEADS)}, got {self.lookahead!r}")
 
     def omniscient_human(self) -> PlannerConfig:
         return replace(self, human_angle=360.0, human_delay=0)

@@ -17,6 +17,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--seeds", type=int, default=10, help="seeds 0..N-1 per kitchen and robot")
     parser.add_argument("--human-angle", type=float, default=120.0, metavar="DEG")
     parser.add_argument("--kb-delay", type=int, default=3)
+    parser.add_argument("--lookahead", default="rollout", choices=("rollout", "abstract"),
+                        help="how the QMDP robots value a hypothesis: tick rollouts (default) or DOMAIN §5's "
+                             "abstract-state search")
     parser.add_argument("--jobs", type=int, default=0, help="worker processes (0 = one per core)")
     parser.add_argument("--out", required=True, metavar="DIR")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -46,8 +49,8 @@ def _simulate(args: argparse.Namespace) -> int:
         raise UsageError("--seeds must be at least 1")
     if not 0 < args.human_angle <= 360 or args.kb_delay < 0:
         raise UsageError("--human-angle must be in (0, 360] and --kb-delay 0 or more")
-    specs = [TrialSpec(n, r, s, args.human_angle, args.kb_delay) for n in names for r in robots
-             for s in range(args.seeds)]
+    specs = [TrialSpec(n, r, s, args.human_angle, args.kb_delay, lookahead=args.lookahead) for n in names
+             for r in robots for s in range(args.seeds)]
     jobs = args.jobs or os.cpu_count() or 1
     rows: list[dict[str, object]] = []
     show = not args.quiet and sys.stderr.isatty()
@@ -63,6 +66,7 @@ def _simulate(args: argparse.Namespace) -> int:
         writer = csv.DictWriter(handle, fieldnames=COLUMNS)
         writer.writeheader()
         writer.writerows(rows)
+    print(f"lookahead: {args.lookahead}")
     print(summarize_trials(rows))
     print(f"wrote {out / 'trials.csv'} ({len(rows)} trials)")
     return 0
