@@ -75,7 +75,7 @@ class AbstractSearch:
         self.cache: dict[tuple[AbstractState, int], float] = {}
 
     def leaf(self, world: WorldState, robot: Subtask | None, human: Subtask | None) -> float:
-        """The value of a state a rollout stopped in (:data:`planner.rollout.Leaf`): subtasks already done
+        """The value of a state an exploration reached (:mod:`planner.reference`): subtasks already done
         or no longer available are chosen anew."""
         if robot is not None and robot not in self.tasker.options(world, robot):
             robot = None

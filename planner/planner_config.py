@@ -20,9 +20,10 @@ class PlannerConfig:
     ``value_smoothing``: weight of this tick's rollout value of a robot subtask against its running average
     over the previous ticks (1 = no averaging); the average restarts when the robot's held object or the
     orders left change. Averaging over ticks lowers the noise of one-sample rollouts at no extra cost.
-    ``lookahead``: how a hypothesis is valued. ``"rollout"`` (default): the joint system simulated tick by
-    tick for ``search_depth`` × 6 ticks with the human model. ``"abstract"``: DOMAIN §5 as the reference
-    did it, ``exploration_depth + 1`` ticks simulated, then a heuristic search over abstract states
+    ``lookahead``: ``"rollout"`` (default): each robot subtask is valued by simulating the joint system
+    tick by tick for ``search_depth`` × 6 ticks with the human model. ``"abstract"``: DOMAIN §5 as the
+    reference did it (:mod:`planner.reference`): Q per low-level action from ``exploration_samples``
+    motion sequences of depth ``exploration_depth`` and a heuristic search over abstract states
     (:mod:`planner.abstract`) ``abstract_depth`` transitions deep, discounted ``abstract_discount`` per
     transition. Rewards are the reference implementation's shaping (DOMAIN §5, step 4)."""
 
@@ -48,6 +49,7 @@ class PlannerConfig:
     value_smoothing: float = 0.5
     lookahead: str = "rollout"
     abstract_depth: int = 5
+    exploration_samples: int = 16
     abstract_discount: float = 0.8
     seed: int = 0
 

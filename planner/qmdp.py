@@ -23,13 +23,13 @@ Each tick the robot
    the human to show what it carries (paper §VI-C). The no-rollout robot (depth 0) and the baseline take
    the direct move.
 
-The lookahead horizon is ``search_depth`` subtasks × 6 ticks (default 7: 42 ticks). With
-``lookahead="abstract"`` a hypothesis is instead simulated for the one step and ``exploration_depth``
-ticks of DOMAIN §5 and valued from there by the heuristic search over abstract states
-(:mod:`planner.abstract`; depth 5, discount 0.8), as the reference did. Measured on all kitchens × seeds
-0–9, that version erases the FOV-aware robot's advantage (97.9 vs 98.8 ticks, p = 0.53; rollouts: 88.9 vs
-92.7, p = 0.004): the abstraction drops the human's FOV after ``k + 1`` ticks, so what the human will not
-see later no longer matters to the plan. Rollouts are therefore the default. Randomness: rollouts
+The lookahead horizon is ``search_depth`` subtasks × 6 ticks (default 7: 42 ticks).
+``PlannerConfig(lookahead="abstract")`` replaces steps 2–4 by DOMAIN §5 as the reference planned
+(:mod:`planner.reference`: Q per low-level action from motion-sequence exploration and a heuristic search
+over abstract states). Measured on all kitchens × seeds 0–9 it is far worse (FOV-aware 146.8 ticks, 8 of
+100 trials unfinished; baseline 135.4, 3 unfinished; no significant difference) and needs up to ~300 ms
+per decision, so the rollouts are the default: they keep the human's FOV-limited KB for the whole
+lookahead, where the abstraction drops it after ``k + 1`` ticks. Randomness: rollouts
 use seeds derived from ``config.seed`` and the tick (common random numbers across candidates), so a
 decision is a pure function of the observation history. A ``deadline`` (``time.perf_counter()`` value)
 stops the search and returns the best action so far (``timed_out``).
@@ -43,7 +43,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from planner.abstract import AbstractSearch
+from planner.reference import ReferenceLookahead
 from planner.belief import Belief, update_belief
 from planner.decision import Decision
 from planner.events import Event
@@ -65,7 +65,7 @@ class QmdpRobot:
     def __init__(self, layout: Layout, rules: Rules, config: PlannerConfig, explore: bool) -> None:
         self.layout, self.rules, self.cfg, self.explore = layout, rules, config, explore
         self.rollout = Rollout(layout, rules, config)
-        self.abstract = AbstractSearch(layout, rules, config) if config.lookahead == "abstract" else None
+        self.reference = ReferenceLookahead(layout, rules, config) if config.lookahead == "abstract" else None
         self.tasker = RobotTasker(layout, rules)
         self.kb: KnowledgeBase | None = None
         self.kb_tick: int | None = None
@@ -123,14 +123,20 @@ class QmdpRobot:
         if key != self.averages_key:
             self.averages, self.averages_key = {}, key
         likely = self.belief.likely(self.cfg.belief_threshold, self.cfg.max_subtasks)
+        seed = self.cfg.seed * 1_000_003 + world.tick
+        if self.reference is not None:
+            by_action, explored, cut = self.reference.q_values(world, self.kb, likely, seed, deadline)
+            return Decision(action=max(by_action, key=lambda a: by_action[a]),
+                            q_values={a.value: v for a, v in by_action.items()}, belief=self.belief.as_dict(),
+                            explored_kbs=explored, elapsed_ms=(time.perf_counter() - start) * 1000,
+                            timed_out=cut)
         if self.pending and self.kb.robot is not None and self.kb.robot.held != world.robot.held:
             action, self.pending = self.pending[0], self.pending[1:]
             return Decision(action=action, belief=self.belief.as_dict(),
                             elapsed_ms=(time.perf_counter() - start) * 1000)
         self.pending = ()
         options = self.tasker.options(world, self.current)
-        horizon = self.horizon()
-        seed = self.cfg.seed * 1_000_003 + world.tick
+        horizon = self.cfg.search_depth * TICKS_PER_SUBTASK
         q: dict[Subtask, float] = {}
         values: dict[Subtask, float] = {}
         timed_out = False
@@ -195,23 +201,14 @@ class QmdpRobot:
         self.pending = candidates[chosen]
         return chosen, len(scored)
 
-    def horizon(self) -> int:
-        """Ticks simulated per hypothesis: the whole lookahead, or with ``lookahead="abstract"`` the one
-        step and the ``exploration_depth`` ticks of DOMAIN §5 before the abstract search takes over."""
-        if self.abstract is not None:
-            return self.cfg.exploration_depth + 1
-        return self.cfg.search_depth * TICKS_PER_SUBTASK
-
     def sampled(self, world: WorldState, human_subtask: Subtask, robot_subtask: Subtask, horizon: int,
                 seed: int, prefix: tuple[Action, ...] = ()) -> float:
         """The mean rollout value over ``rollout_samples`` seeded futures (the same seeds for every
         candidate, so candidates are compared on common random numbers)."""
         assert self.kb is not None
         n = max(self.cfg.rollout_samples, 1)
-        leaf = self.abstract.leaf if self.abstract is not None else None
         return sum(self.rollout.value(world, self.kb, human_subtask, robot_subtask, horizon, seed + 7919 * i,
-                                      prefix=prefix, parked_for=self.human_still, leaf=leaf)
-                   for i in range(n)) / n
+                                      prefix=prefix, parked_for=self.human_still) for i in range(n)) / n
 
     def yield_if_blocking(self, world: WorldState, subtask: Subtask, action: Action) -> Action:
         """The human model's yield rule for the robot: waiting at a station (steak not ready, garnish not

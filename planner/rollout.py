@@ -17,7 +17,6 @@ Progress made sooner is worth more (``tick_discount`` per tick).
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -33,8 +32,6 @@ from planner.rules import Rules
 from planner.state import WorldState
 from planner.step import step
 from planner.subtasks import Believed, Subtask, available, is_done, targets
-
-Leaf = Callable[[WorldState, Subtask | None, Subtask | None], float]
 
 
 def potential(world: WorldState, cfg: PlannerConfig) -> float:
@@ -126,18 +123,14 @@ class Rollout:
         self.omniscient = cfg.human_angle >= 360.0 and cfg.human_delay == 0
 
     def value(self, world: WorldState, kb: KnowledgeBase, human_subtask: Subtask, robot_subtask: Subtask,
-              horizon: int, seed: int, prefix: tuple[Action, ...] = (), parked_for: int = 0,
-              leaf: Leaf | None = None) -> float:
+              horizon: int, seed: int, prefix: tuple[Action, ...] = (), parked_for: int = 0) -> float:
         """The discounted progress of the hypothesis; the robot plays ``prefix`` first, then its subtask."""
         return self.run(world, kb, HumanMemory(subtask=human_subtask, held=world.human.held),
-                        np.random.default_rng(seed), robot_subtask, horizon, prefix, parked_for, leaf)
+                        np.random.default_rng(seed), robot_subtask, horizon, prefix, parked_for)
 
     def run(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory, rng: np.random.Generator,
-            robot_subtask: Subtask, horizon: int, prefix: tuple[Action, ...] = (), parked_for: int = 0,
-            leaf: Leaf | None = None) -> float:
-        """:meth:`value` from a given human memory and random stream (``rng`` is consumed). ``leaf`` values
-        where the rollout stops short of the end (``(world, robot subtask, human subtask) -> value``,
-        discounted like the progress before it)."""
+            robot_subtask: Subtask, horizon: int, prefix: tuple[Action, ...] = (), parked_for: int = 0) -> float:
+        """:meth:`value` from a given human memory and random stream (``rng`` is consumed)."""
         robot_task: Subtask | None = robot_subtask
         phi = potential(world, self.cfg)
         total, discount = 0.0, 1.0
@@ -164,8 +157,6 @@ class Rollout:
                 robot_task = None
             if world.orders_left == 0:
                 break
-        if leaf is not None and world.orders_left > 0:
-            total += discount * leaf(world, robot_task, memory.subtask)
         return total
 
     def robot_move(self, world: WorldState, subtask: Subtask, human_parked: bool = False) -> Action:

@@ -18,8 +18,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--human-angle", type=float, default=120.0, metavar="DEG")
     parser.add_argument("--kb-delay", type=int, default=3)
     parser.add_argument("--lookahead", default="rollout", choices=("rollout", "abstract"),
-                        help="how the QMDP robots value a hypothesis: tick rollouts (default) or DOMAIN §5's "
-                             "abstract-state search")
+                        help="how the QMDP robots plan: tick rollouts (default) or DOMAIN §5 as the reference did "
+                             "it (motion-sequence exploration and abstract-state search)")
     parser.add_argument("--jobs", type=int, default=0, help="worker processes (0 = one per core)")
     parser.add_argument("--out", required=True, metavar="DIR")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")

@@ -17,13 +17,11 @@ import planner.abstract as abstract
 from planner.abstract import STALEMATE, AbstractSearch, AbstractState, Job
 from planner.geometry import Direction
 from planner.objects import CLEAN_PLATE, MEAT, STEAK_PLATE
-from planner.play import run_trial
 from planner.planner_config import PlannerConfig
-from planner.robots import make_robot
 from planner.rules import Rules
 from planner.state import AgentState, WorldState, initial_state
 from planner.subtasks import Subtask
-from study_config import layout_names, load_layout
+from study_config import load_layout
 
 RULES = Rules()
 LAYOUT = load_layout("practice")
@@ -103,13 +101,3 @@ def test_leaf_chooses_again_for_a_subtask_already_done():
 def test_an_unknown_lookahead_is_named():
     with pytest.raises(ValueError, match="lookahead must be one of rollout, abstract"):
         PlannerConfig(lookahead="mcts")
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("name", ["fov_aware", "baseline"])
-def test_the_abstract_planner_finishes_every_kitchen(name):
-    for kitchen in layout_names():
-        layout = load_layout(kitchen)
-        robot = make_robot(name, layout, RULES, PlannerConfig(seed=0, lookahead="abstract"))
-        result = run_trial(layout, 0, robot=robot)
-        assert result.finished, f"{name} (abstract) on {kitchen}: {result.delivered} delivered"
