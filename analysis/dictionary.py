@@ -29,7 +29,7 @@ MEASURES: dict[str, Column] = {c.name: c for c in (
     Column("delivered", INT, "dishes delivered"),
     Column("score", INT, "score at the end (delivery reward per dish)"),
     Column("kb_gap_mean", NUM, "mean KB gap per tick: number of components (grill, board, sink, robot's held "
-                               "object) where the participant's modelled KB differs from the world (DOMAIN §6)"),
+                               "object) where the participant's modelled KB differs from the world (docs/domain.md §6)"),
     Column("kb_gap_ticks_pct", NUM, "% of ticks with a KB gap in any component"),
     *(Column(f"kb_gap_{c}_pct", NUM, f"% of ticks where the {c.replace('_', ' ')} component of the KB differs "
                                      f"from the world (= its mean gap per tick × 100)") for c in GAP_COMPONENTS),
@@ -212,7 +212,7 @@ def render_markdown(files: Mapping[str, Sequence[Column]], study_id: str, export
     """``data_dictionary.md``: a section per file with a table of its columns."""
     lines = [f"# Data dictionary: study {study_id}", "", f"Exported {exported_at}.", "",
              "Empty cells are missing values. Flags are 0/1. Times are UTC (ISO 8601). Measures are defined in "
-             "docs/analysis.md (DOMAIN §6).", ""]
+             "docs/analysis.md (docs/domain.md §6).", ""]
     for name, columns in files.items():
         lines += [f"## {name}", "", FILE_NOTES.get(name, ""), "", "| column | type | description |", "|---|---|---|"]
         lines += [f"| {c.name} | {c.type} | {_md_cell(c.description)} |" for c in columns]

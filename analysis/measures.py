@@ -1,4 +1,4 @@
-"""Per-trial measures from the stored ticks and events (DOMAIN §6, paper §VII).
+"""Per-trial measures from the stored ticks and events (docs/domain.md §6, paper §VII).
 
 With n stored ticks t = 1..n of one trial:
 
@@ -84,7 +84,7 @@ def kb_gap_measures(ticks: Sequence[StoredTick]) -> dict[str, float]:
 
 
 def input_measures(events: Sequence[StoredEvent]) -> dict[str, float | int]:
-    """``interrupts``, ``selections`` and ``interrupts_per_selection`` (DOMAIN §6)."""
+    """``interrupts``, ``selections`` and ``interrupts_per_selection`` (docs/domain.md §6)."""
     interrupts = sum(1 for e in events if e.kind == "interrupt")
     selections = sum(1 for e in events if e.kind == "select_subtask")
     both = interrupts + selections

@@ -1,7 +1,7 @@
 """Reading a study from the store: SQLAlchemy Core queries of the store's tables, never the running server.
 
 The table definitions come from ``server.store.tables`` (the schema only: no app, route, game or flow
-code is imported; PRODUCT "Data flows one way"). Everything is returned as frozen records, so the measures
+code is imported; data flows one way: server writes, analysis reads). Everything is returned as frozen records, so the measures
 and the export are pure functions of what is stored. Large columns the analysis does not need (the full KB
 state, the robot's decision record) are never loaded.
 

@@ -1,4 +1,4 @@
-"""Heuristic search over abstract states (DOMAIN §5 steps 3–4; paper §V-B, §V-C).
+"""Heuristic search over abstract states (docs/domain.md §5 steps 3–4; paper §V-B, §V-C).
 
 **Abstraction.** A reached state keeps the stations' statuses, the objects on counters, the orders left,
 what each agent holds and the subtask each is doing; the human's FOV is removed (its KB is the world from

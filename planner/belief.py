@@ -1,4 +1,4 @@
-"""The robot's belief over the human's current subtask (paper §V-A; DOMAIN §5).
+"""The robot's belief over the human's current subtask (paper §V-A; docs/domain.md §5).
 
 Update, once per tick, from the human's pose, heading, held object and the robot's model of the human's KB:
 

@@ -1,4 +1,4 @@
-"""The field of view: the one function that decides what an agent sees (DOMAIN §2, paper §III).
+"""The field of view: the one function that decides what an agent sees (docs/domain.md §2, paper §III).
 
 A cell is in view of an agent at cell ``p`` facing ``d`` when it is ``p`` itself, one of the two cells
 directly left or right of ``p``, or the angle between ``d`` and the vector from ``p``'s centre to the cell's

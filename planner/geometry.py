@@ -1,4 +1,4 @@
-"""Cells, facings and actions of the Steakhouse grid (DOMAIN §1). The y axis points down."""
+"""Cells, facings and actions of the Steakhouse grid (docs/domain.md §1). The y axis points down."""
 
 from __future__ import annotations
 
@@ -41,7 +41,7 @@ DIRECTIONS: tuple[Direction, ...] = (Direction.NORTH, Direction.SOUTH, Direction
 
 
 class Action(str, Enum):
-    """The six low-level actions (DOMAIN §1). A move turns the agent and steps if the target is floor."""
+    """The six low-level actions (docs/domain.md §1). A move turns the agent and steps if the target is floor."""
 
     NORTH = "north"
     SOUTH = "south"

@@ -1,4 +1,4 @@
-"""The simulated human (paper §IV-A; DOMAIN §4): used in simulation and as the robot's model of the person.
+"""The simulated human (paper §IV-A; docs/domain.md §4): used in simulation and as the robot's model of the person.
 
 It commits to a subtask until the subtask is done or becomes unavailable in its KB, then picks uniformly
 at random (from the generator passed in) among the available subtasks. It walks a shortest path over

@@ -1,4 +1,4 @@
-"""The human's knowledge base (KB): what the person believes about the world (DOMAIN §3, paper §III-B).
+"""The human's knowledge base (KB): what the person believes about the world (docs/domain.md §3, paper §III-B).
 
 Contents: the status of each grill, board and sink, the objects on counters, and the robot's last
 acknowledged pose and held object. The rules, applied once per tick after the world has stepped:

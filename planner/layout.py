@@ -1,4 +1,4 @@
-"""Kitchen layouts: parsing and validation of the plain grids (DOMAIN §1).
+"""Kitchen layouts: parsing and validation of the plain grids (docs/domain.md §1).
 
 Characters: ``X`` counter, space floor, ``O`` onion dispenser, ``M`` meat dispenser, ``D`` plate
 dispenser, ``P`` grill, ``B`` chopping board, ``W`` sink, ``S`` serving counter, ``1`` the robot's

@@ -1,4 +1,4 @@
-"""The objects an agent can hold or a counter can carry (DOMAIN §1).
+"""The objects an agent can hold or a counter can carry (docs/domain.md §1).
 
 A dish is made as: meat → grill; onion → board, chopped; dirty plate → sink, washed, taken out clean;
 clean plate takes the steak from the grill (``steak_plate``); the plated steak takes the garnish from

@@ -1,4 +1,4 @@
-"""Shortest paths over (cell, facing), precomputed per layout (DOMAIN §4).
+"""Shortest paths over (cell, facing), precomputed per layout (docs/domain.md §4).
 
 Every action costs 1: a move into floor turns and steps; a move into anything else only turns. A target
 cell (a station or counter) is reached when the agent stands on a floor cell next to it and faces it; the

@@ -1,4 +1,4 @@
-"""Every parameter of the robot planners in one typed config (DOMAIN §5), with the paper's defaults."""
+"""Every parameter of the robot planners in one typed config (docs/domain.md §5), with the paper's defaults."""
 
 from __future__ import annotations
 
@@ -21,11 +21,11 @@ class PlannerConfig:
     over the previous ticks (1 = no averaging); the average restarts when the robot's held object or the
     orders left change. Averaging over ticks lowers the noise of one-sample rollouts at no extra cost.
     ``lookahead``: ``"rollout"`` (default): each robot subtask is valued by simulating the joint system
-    tick by tick for ``search_depth`` × 6 ticks with the human model. ``"abstract"``: DOMAIN §5 as the
+    tick by tick for ``search_depth`` × 6 ticks with the human model. ``"abstract"``: docs/domain.md §5 as the
     reference did it (:mod:`planner.reference`): Q per low-level action from ``exploration_samples``
     motion sequences of depth ``exploration_depth`` and a heuristic search over abstract states
     (:mod:`planner.abstract`) ``abstract_depth`` transitions deep, discounted ``abstract_discount`` per
-    transition. Rewards are the reference implementation's shaping (DOMAIN §5, step 4)."""
+    transition. Rewards are the reference implementation's shaping (docs/domain.md §5, step 4)."""
 
     human_angle: float = 120.0
     human_delay: int = 3

@@ -1,4 +1,4 @@
-"""The hierarchical QMDP robot (paper §IV–V; DOMAIN §5): ``fov_aware``, ``baseline``, ``no_rollout``.
+"""The hierarchical QMDP robot (paper §IV–V; docs/domain.md §5): ``fov_aware``, ``baseline``, ``no_rollout``.
 
 Each tick the robot
 
@@ -24,7 +24,7 @@ Each tick the robot
    the direct move.
 
 The lookahead horizon is ``search_depth`` subtasks × 6 ticks (default 7: 42 ticks).
-``PlannerConfig(lookahead="abstract")`` replaces steps 2–4 by DOMAIN §5 as the reference planned
+``PlannerConfig(lookahead="abstract")`` replaces steps 2–4 by docs/domain.md §5 as the reference planned
 (:mod:`planner.reference`: Q per low-level action from motion-sequence exploration and a heuristic search
 over abstract states). Measured on all kitchens × seeds 0–9 it is far worse (FOV-aware 146.8 ticks, 8 of
 100 trials unfinished; baseline 135.4, 3 unfinished; no significant difference) and needs up to ~300 ms

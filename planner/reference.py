@@ -1,4 +1,4 @@
-"""DOMAIN §5 step by step, as the reference implementation planned (``PlannerConfig(lookahead="abstract")``).
+"""docs/domain.md §5 step by step, as the reference implementation planned (``PlannerConfig(lookahead="abstract")``).
 
 For each low-level robot action ``a`` and each likely human subtask ``s`` (belief ≥ threshold):
 
@@ -46,7 +46,7 @@ REFERENCE_COMBINE = "mean"
 
 
 class ReferenceLookahead:
-    """``q_values(...)``: Q(b, a) for every low-level robot action by DOMAIN §5's pipeline."""
+    """``q_values(...)``: Q(b, a) for every low-level robot action by docs/domain.md §5's pipeline."""
 
     def __init__(self, layout: Layout, rules: Rules, cfg: PlannerConfig) -> None:
         self.layout, self.rules, self.cfg = layout, rules, cfg

@@ -1,4 +1,4 @@
-"""Names of the robot planners a study or a simulation may ask for (DOMAIN §5)."""
+"""Names of the robot planners a study or a simulation may ask for (docs/domain.md §5)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The robot planners by name (DOMAIN §5): ``make_robot(name, layout, rules, config)``.
+"""The robot planners by name (docs/domain.md §5): ``make_robot(name, layout, rules, config)``.
 
 ``stay`` never moves (practice trials); ``fov_aware``, ``baseline`` and ``no_rollout`` are the
 hierarchical QMDP planner with different models of the human (see :mod:`planner.qmdp`).

@@ -7,7 +7,7 @@ its KB updated every tick by the same FOV rules, so the robot entering its view,
 changes what it predicts the person will do. The robot follows a candidate subtask, then picks the
 available subtask nearest to it that the human is not already doing.
 
-Value of a rollout: the discounted sum of the increments of the shaping potential Φ (DOMAIN §5 step 4,
+Value of a rollout: the discounted sum of the increments of the shaping potential Φ (docs/domain.md §5 step 4,
 the reference's rewards): Φ = −40 per order left (+100 when none is), +5 per steak on a grill,
 +(3 + count) per board and per sink in use, +12 / +20 / +30 per clean plate / plated steak / dish held
 *or on a counter* (the reference counted only held ones; then putting a plate down to free the hands
@@ -59,7 +59,7 @@ class RobotTasker:
     rules: Rules
 
     def options(self, world: WorldState, current: Subtask | None) -> tuple[Subtask, ...]:
-        """The human's options (DOMAIN §4) from the robot's seat, plus what only someone who sees the whole
+        """The human's options (docs/domain.md §4) from the robot's seat, plus what only someone who sees the whole
         kitchen would add: finishing an onion or plate left unfinished; putting a plated steak down
         while no garnish is ready (else both agents can end up waiting on a board nobody chops, or the
         robot waiting in the only spot from which the human could bring the onion); and fetching a clean

@@ -1,4 +1,4 @@
-"""The kitchen's numbers (DOMAIN §1). Defaults are those every run of the reference study used."""
+"""The kitchen's numbers (docs/domain.md §1). Defaults are those every run of the reference study used."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The world's transition: ``step(layout, state, {"human": a, "robot": b}) -> (state, events)`` (DOMAIN §1).
+"""The world's transition: ``step(layout, state, {"human": a, "robot": b}) -> (state, events)`` (docs/domain.md §1).
 
 Order inside one step: interacts (robot first, then human) on the faced cell, then moves (a move turns
 the agent and steps only onto floor; if both would end on the same cell or swap cells, neither moves,

@@ -1,4 +1,4 @@
-"""Human subtasks and when they are available, judged on the human's KB (DOMAIN §4, paper §IV-A).
+"""Human subtasks and when they are available, judged on the human's KB (docs/domain.md §4, paper §IV-A).
 
 Holding something forces its continuation (onion → board, meat → grill, dirty plate → sink, clean plate →
 grill, plated steak → board, dish → serving counter); when the station it needs is believed unusable
@@ -53,7 +53,7 @@ class Believed:
 
 
 def available(b: Believed, rules: Rules, current: Subtask | None = None) -> tuple[Subtask, ...]:
-    """The subtasks the human may choose now (DOMAIN §4); never empty."""
+    """The subtasks the human may choose now (docs/domain.md §4); never empty."""
     kb = b.kb
     if b.held is not None:
         return (forced_continuation(b),)

@@ -1,4 +1,4 @@
-"""The compact status summary of a world or a KB, and the KB gap (DOMAIN §6, paper §VII).
+"""The compact status summary of a world or a KB, and the KB gap (docs/domain.md §6, paper §VII).
 
 Components: grill status (empty / cooking / ready), board status (empty / chopping / ready), sink status
 (empty / washing / clean) and the robot's held object. The KB gap at a tick is the number of components

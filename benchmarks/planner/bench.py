@@ -1,4 +1,4 @@
-"""Planner latency and quality, measured on this machine (DOMAIN §5; PRODUCT "targets").
+"""Planner latency and quality, measured on this machine (docs/domain.md §5; the targets are in the README).
 
 1. Decision time p50 / p95 / p99 per kitchen and planner, one process pinned to one core when possible,
    over full simulated trials with the FOV-limited simulated human.

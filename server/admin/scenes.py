@@ -4,7 +4,7 @@ field of view to overlay on it, and the kitchen as the participant's modelled KB
 A scene is split into the fixed ``grid`` (terrain names row by row, sent once per trial) and a ``frame`` per
 tick: both agents, the objects on counters, the status of every grill / board / sink (the shape of the
 participant protocol's ``StationView``), and ``fov``, the cells in view — computed with the one FOV function
-(``planner.fov.view``, DOMAIN §2) from the human's pose and the study's angle, as the game masks them. The
+(``planner.fov.view``, docs/domain.md §2) from the human's pose and the study's angle, as the game masks them. The
 browser composes grid and frame into the ``state`` shape its kitchen painter already draws.
 """
 

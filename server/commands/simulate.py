@@ -18,7 +18,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--human-angle", type=float, default=120.0, metavar="DEG")
     parser.add_argument("--kb-delay", type=int, default=3)
     parser.add_argument("--lookahead", default="rollout", choices=("rollout", "abstract"),
-                        help="how the QMDP robots plan: tick rollouts (default) or DOMAIN §5 as the reference did "
+                        help="how the QMDP robots plan: tick rollouts (default) or docs/domain.md §5 as the reference did "
                              "it (motion-sequence exploration and abstract-state search)")
     parser.add_argument("--jobs", type=int, default=0, help="worker processes (0 = one per core)")
     parser.add_argument("--out", required=True, metavar="DIR")

@@ -1,4 +1,4 @@
-"""The participant's control of the avatar: a chosen subtask, or interrupt actions (DOMAIN §4).
+"""The participant's control of the avatar: a chosen subtask, or interrupt actions (docs/domain.md §4).
 
 - ``select(subtask)`` replaces the current subtask (and drops queued interrupts). Each tick the avatar
   takes the first move of a shortest path over (cell, facing) to the nearest target of the subtask,
@@ -118,7 +118,7 @@ class ParticipantController:
         return False
 
     def available(self, world: WorldState, kb: KnowledgeBase) -> tuple[Subtask, ...]:
-        """The subtasks the model of the participant considers available (DOMAIN §4), judged on the KB."""
+        """The subtasks the model of the participant considers available (docs/domain.md §4), judged on the KB."""
         return available(self.believed(world, kb), self.rules, self.subtask or self.last)
 
     def to_dict(self) -> dict[str, Any]:

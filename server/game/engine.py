@@ -2,7 +2,7 @@
 
 Each tick: the participant's action comes from the controller (interrupt, subtask path, or stay), the
 robot's from its planner; the world steps; the participant's modelled KB is updated with the study's FOV
-angle and KB delay and the participant's own events (DOMAIN §3); the KB-gap components (paper §VII) and
+angle and KB delay and the participant's own events (docs/domain.md §3); the KB-gap components (paper §VII) and
 whether the robot is in the participant's FOV are computed for the tick record.
 
 Randomness: the avatar's tie-breaks draw from ``default_rng([seed, tick, 0])`` and the robot's from

@@ -1,6 +1,6 @@
 """One live trial: the participant's connection, their messages, and the game loop task.
 
-The clock (PRODUCT "Runtime shape"):
+The clock:
 
 - ``fixed_rate``: a step every ``1 / tick_rate_hz`` seconds; ``wait_for_participant``: a step only when
   the avatar has something to do (a queued interrupt or a subtask), never faster than the tick rate.

@@ -1,4 +1,4 @@
-"""Server-side FOV masking: what the participant's browser may receive at a tick (DOMAIN §2).
+"""Server-side FOV masking: what the participant's browser may receive at a tick (docs/domain.md §2).
 
 Only cells in the participant's view (``planner.fov.view`` from the avatar's pose, with the study's angle)
 are sent, each with its terrain, the object on it (counters) and its status (grills, boards, sinks); the

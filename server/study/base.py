@@ -77,7 +77,7 @@ Slug = Annotated[str, AfterValidator(_check_slug)]
 """An identifier used in URLs, CSV columns and the store: lowercase letters, digits, ``-`` and ``_``."""
 
 RobotName = Annotated[str, AfterValidator(_check_robot)]
-"""The name of a robot planner, one of ``planner.registry.PLANNER_NAMES`` (DOMAIN §5)."""
+"""The name of a robot planner, one of ``planner.registry.PLANNER_NAMES`` (docs/domain.md §5)."""
 
 
 def _check_not_empty(value: Any) -> Any:

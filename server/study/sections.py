@@ -15,7 +15,7 @@ _URL_PARAMETER = re.compile(r"^[A-Za-z0-9_.-]+$")
 
 
 class World(StudyModel):
-    """The game's numbers (DOMAIN §1–§3); the defaults are the paper's."""
+    """The game's numbers (docs/domain.md §1–§3); the defaults are the paper's."""
 
     fov_angle: float = Field(default=120.0, gt=0, le=360)
     """Field-of-view angle in degrees; cells outside it are black for the participant. 360 sees all."""

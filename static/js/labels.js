@@ -1,5 +1,5 @@
 /**
- * Participant-facing names for the protocol's identifiers (DOMAIN §4): subtasks grouped the way a cook
+ * Participant-facing names for the protocol's identifiers (docs/domain.md §4): subtasks grouped the way a cook
  * thinks of them, interrupts with their keys, and the objects an agent can hold.
  */
 

@@ -1,4 +1,4 @@
-"""The abstract-state search of DOMAIN §5 (``lookahead="abstract"``), on the practice kitchen:
+"""The abstract-state search of docs/domain.md §5 (``lookahead="abstract"``), on the practice kitchen:
 
     XXXXXBOWXXXXXXX      board (5,1), onion (6,1), sink (7,1)
     XX1 2   XXXXXXX

@@ -1,4 +1,4 @@
-"""The FOV rule (DOMAIN §2): the exact cone plus the two side cells, inclusive edges, 360° sees all."""
+"""The FOV rule (docs/domain.md §2): the exact cone plus the two side cells, inclusive edges, 360° sees all."""
 
 from __future__ import annotations
 

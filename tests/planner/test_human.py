@@ -1,4 +1,4 @@
-"""The simulated human (DOMAIN §4): KB-judged subtasks, commitment, seeded uniform choice, paths, unstuck."""
+"""The simulated human (docs/domain.md §4): KB-judged subtasks, commitment, seeded uniform choice, paths, unstuck."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The knowledge base (DOMAIN §3): delayed acknowledgement, persistence, removal, own actions, the robot."""
+"""The knowledge base (docs/domain.md §3): delayed acknowledgement, persistence, removal, own actions, the robot."""
 
 from __future__ import annotations
 

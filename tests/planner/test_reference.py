@@ -1,4 +1,4 @@
-"""DOMAIN §5 step by step (``PlannerConfig(lookahead="abstract")``, :mod:`planner.reference`)."""
+"""docs/domain.md §5 step by step (``PlannerConfig(lookahead="abstract")``, :mod:`planner.reference`)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Every rule of DOMAIN §1: the interaction table, collisions, the order of interacts, cooking, orders."""
+"""Every rule of docs/domain.md §1: the interaction table, collisions, the order of interacts, cooking, orders."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Crash and reconnect drills (PRODUCT "Reliability"):
+"""Crash and reconnect drills (a killed server or a dropped connection loses nothing beyond the last batch):
 
 - SIGKILL the server while four participants play at once, check the store (every flushed tick intact:
   ticks 1..n of each trial, no duplicates, each parses back), start it again on the same database: every

@@ -15,7 +15,7 @@ function statusText(value) {
   return value === null || value === undefined ? "nothing" : heldLabel(value);
 }
 
-/** KB vs world per gap component (DOMAIN §3: 1 where the participant's model differs from the world). */
+/** KB vs world per gap component (docs/domain.md §3: 1 where the participant's model differs from the world). */
 export function gapPanel(kbSummary, worldSummary, gap, total) {
   const rows = COMPONENTS.map(([key, label]) => {
     const differs = gap && gap[key] === 1;

@@ -1,5 +1,5 @@
 /**
- * Attention events for exclusion rules (PRODUCT "Participant flow"): `blur` when the tab is hidden or
+ * Attention events for exclusion rules (the admin excludes on them): `blur` when the tab is hidden or
  * the window loses focus, `focus` when it is back, and `idle` when there was no keyboard, mouse or touch
  * input for `idleMs` during a trial (reported again after every further `idleMs`, with the time since
  * the last input). Only changes are sent; `send(type, fields)` returns null when the game is offline,

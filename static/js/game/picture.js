@@ -26,7 +26,7 @@ export async function loadExample() {
 
 /**
  * Whether `cell` is in view from `origin` facing `facing` with a field of view of `angle` degrees: the own
- * cell, the two cells beside it, and every cell within half the angle of the facing (DOMAIN §2).
+ * cell, the two cells beside it, and every cell within half the angle of the facing (docs/domain.md §2).
  */
 export function inView(origin, facing, cell, angle) {
   if (angle >= 360) return true;
