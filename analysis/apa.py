@@ -47,9 +47,9 @@ def apa_f_sentence(row: Mapping[str, Any]) -> str:
     """``F(1, 26) = 4.53, p = .043, η²G = .11`` from a row with ``df1, df2, F, p, ges``.
 
     A row of :mod:`analysis.anova` reads the degrees of freedom and p its ``correction`` names
-    (``df1_read, df2_read, p_read``: ``F(1.92, 17.31) = 40.72, p < .001, η²G = .39, 90% CI [.21, .52]
-    (Huynh–Feldt, ε = 1.00)``), adds the interval of η²G when the row has one, and says "not testable" with the
-    reason when F could not be computed.
+    (``df1_read, df2_read, p_read``: ``F(2.43, 21.85) = 38.03, p < .001, η²G = .60, 90% CI [.48, .82]
+    (Greenhouse–Geisser, ε = .49)``), adds the interval of η²G when the row has one, and says "not testable" with
+    the reason when F could not be computed.
     """
     note = str(row.get("note") or "")
     if note.startswith("not testable"):
