@@ -28,6 +28,7 @@ import pandas as pd
 from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+from matplotlib.ticker import MaxNLocator
 
 from analysis.cells import cell_label, factor_levels
 from analysis.measure_info import MeasureInfo
@@ -106,6 +107,8 @@ def paired_plot(df: pd.DataFrame, info: MeasureInfo, within: Sequence[str], subj
         if others:
             ax.set_title(cell_label(others, combo))
     axes[0].set_ylabel(info.label)
+    if info.discrete:
+        axes[0].yaxis.set_major_locator(MaxNLocator(integer=True))
     axes[0].legend(frameon=False)
     note = f"Grey lines: the {len(subjects)} participants; red: cell means."
     if info.discrete:

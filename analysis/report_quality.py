@@ -50,8 +50,12 @@ def _left_out(result: AnalysisResult, context: ReportContext) -> list[Block]:
     lines = list(context.left_out)
     lines += [f"participant {r.subject}, {r.cell}: {r.reason}" + (" (kept on request)" if r.included else "")
               for r in rules.itertuples()]
+    by_reason: dict[tuple[str, str], list[str]] = {}
     for r in result.measures:
-        lines += [f"{r.measure}: participant {x.subject}: {x.reason}" for x in r.excluded.itertuples()]
+        for x in r.excluded.itertuples():
+            by_reason.setdefault((str(x.subject), str(x.reason)), []).append(r.measure)
+    lines += [f"participant {who}, left out of {', '.join(measures)}: {reason}"
+              for (who, reason), measures in by_reason.items()]
     blocks: list[Block] = [Heading(3, "Left out, and why")]
     blocks.append(BulletList(tuple(lines)) if lines else Paragraph("Nobody was left out."))
     return blocks
