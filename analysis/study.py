@@ -51,8 +51,8 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
     and the study's scales) into ``out_dir``; ``include`` names exclusion rules whose rows are kept."""
     out = Path(out_dir)
     export = export_study(source, study_id, out / DATA_DIR)
-    cells = pd.read_csv(out / DATA_DIR / "cells.csv")
-    trials = pd.read_csv(out / DATA_DIR / "trials.csv")
+    cells = pd.read_csv(out / DATA_DIR / "cells.csv", dtype={SUBJECT: str})
+    trials = pd.read_csv(out / DATA_DIR / "trials.csv", dtype={SUBJECT: str})
     if cells.empty:
         raise AnalysisInputError(
             f"study {study_id!r} has no analysable main trial (cells.csv is empty); "
