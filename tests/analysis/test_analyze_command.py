@@ -143,3 +143,14 @@ def test_csv_and_study_are_mutually_exclusive(csv_file, capsys) -> None:
         main(["analyze", "--csv", str(csv_file), "--study", "x"])
     assert info.value.code == 2
     assert "not allowed with argument" in capsys.readouterr().err
+
+
+def test_include_invalid_keeps_the_trials_the_server_marked(cells, tmp_path) -> None:
+    df = cells(n_subjects=6, seed=3).assign(invalid_reason="")
+    df.loc[0, "invalid_reason"] = "robot missed 30% of its decisions"
+    df.to_csv(tmp_path / "c.csv", index=False)
+    assert run(tmp_path / "c.csv", tmp_path / "a", "--no-plots", dv="ticks") == 0
+    assert pd.read_csv(tmp_path / "a" / "anova.csv")["df2"].iloc[0] == 4
+    assert run(tmp_path / "c.csv", tmp_path / "b", "--no-plots", "--include-invalid", dv="ticks") == 0
+    assert pd.read_csv(tmp_path / "b" / "anova.csv")["df2"].iloc[0] == 5
+    assert pd.read_csv(tmp_path / "b" / "exclusions.csv")["included"].tolist() == [1]

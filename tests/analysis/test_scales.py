@@ -68,3 +68,23 @@ def test_alpha_needs_two_items_and_variance() -> None:
     single = scale_reliability(pd.DataFrame({"q.a": [1, 2, 3]}), ITEMS, (ScaleSpec("q.s", "S", ("q.a",)),), [])
     assert single.loc[0, "note"] == "not applicable: α needs at least two items"
     assert cronbach(pd.DataFrame({"a": [3, 3, 3, 3], "b": [2, 2, 2, 2]}))["note"].startswith("not computable")
+
+
+def test_scales_are_scored_and_analysed_as_rating_measures(tmp_path) -> None:
+    from analysis.options import AnalysisOptions
+    from analysis.run import analyze_long
+
+    rng = np.random.default_rng(9)
+    rows = []
+    for s in range(10):
+        trait = rng.normal(4, 1)
+        for shift, robot in ((0.0, "fov_aware"), (1.0, "baseline"), (0.5, "stay")):
+            a, b, c = np.clip(np.round(trait + shift + rng.normal(0, 0.6, 3)), 1, 7)
+            rows.append({"participant": s, "robot": robot, "q.a": a, "q.b": 8 - b, "q.c": c})
+    options = AnalysisOptions(items=ITEMS, scales=(SCALE,), ratings={"q.fluency": (1.0, 7.0)}, plots=False)
+    result = analyze_long(pd.DataFrame(rows), ["q.fluency"], ["robot"], "participant", tmp_path, options)
+    assert result.measures[0].info.rating and result.measures[0].n_used == 10
+    assert result.tables["rank_tests.csv"]["test"].tolist() == ["Friedman"]
+    assert result.tables["reliability.csv"]["condition"].tolist()[0] == "all conditions"
+    md = (tmp_path / "report.md").read_text()
+    assert "## Questionnaire scales" in md and "Friedman (robot): χ²(2) = " in md
