@@ -70,11 +70,3 @@ class AnalysisResult:
     @property
     def simple_effects(self) -> pd.DataFrame:
         return self.tables["simple_effects.csv"]
-
-    @property
-    def descriptives(self) -> pd.DataFrame:
-        return self.tables["descriptives.csv"]
-
-    @property
-    def excluded(self) -> pd.DataFrame:
-        return self.tables["excluded.csv"]
