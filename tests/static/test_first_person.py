@@ -120,6 +120,17 @@ def test_a_first_person_round_renders_moves_and_masks(study_server, new_gl_page)
     assert camera_cells == [f"{x},{y}" for x, y in fov], "the camera shows what the participant's screen showed"
     keep(admin, "first_person_admin_live_camera")
 
+    # The replay of the same trial draws the participant's camera of the tick shown (tick 0: the start).
+    admin.goto(f"{study_server.url}/admin/#/replay/{trial_id}")
+    admin.click("#camera-toggle")
+    admin.wait_for_function("() => { const c = document.querySelector('#camera-canvas');"
+                            " return c && +c.dataset.frames > 0 && c.dataset.tick === '0'; }", timeout=TIMEOUT_MS)
+    first = study_server.get(f"/api/admin/trials/{trial_id}/frames", start=0, limit=1)["frames"][0]
+    camera_cells = admin.eval_on_selector("#camera-canvas", "el => el.dataset.drawn").split(";")
+    assert (first["human"]["x"], first["human"]["y"]) == (3, 2)
+    assert camera_cells == [f"{x},{y}" for x, y in first["fov"]]
+    keep(admin, "first_person_admin_replay_camera")
+
 
 def test_enter_vr_opens_a_session_with_an_emulated_headset(study_server, new_gl_page):
     page, _ = new_gl_page()

@@ -7,7 +7,7 @@
 
 import * as THREE from "../../vendor/three/three.module.js";
 import { COLORS, OKABE_ITO } from "../game/palette.js";
-import { ball, box, cylinder } from "./kit.js";
+import { bake, ball, box, cylinder } from "./kit.js";
 import { itemModel } from "./items.js";
 
 const SKIN = "#E0AC8A";
@@ -37,7 +37,7 @@ export function robotModel(held) {
   ball(g, COLORS.robot, 0.035, 0, 1.3, 0);
   for (const x of [-0.31, 0.31]) box(g, COLORS.visor, 0.06, 0.06, 0.3, x, 0.5, -0.18);
   holding(g, held, 0, 0.56, -0.42);
-  return g;
+  return bake(g);
 }
 
 /**
@@ -66,5 +66,5 @@ export function handsModel(held) {
     item.scale.setScalar(0.7);
     g.add(item);
   }
-  return g;
+  return bake(g);
 }

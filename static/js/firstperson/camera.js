@@ -5,6 +5,7 @@
  */
 
 import * as THREE from "../../vendor/three/three.module.js";
+import { unbake } from "./kit.js";
 import { lensFor } from "./lens.js";
 
 const NEAR = 0.05;
@@ -99,7 +100,10 @@ export class EyeCamera {
 
   /** Show `model` (a group in camera space, or null) as the cook's hands. */
   setHands(model) {
-    if (this.held) this.hands.remove(this.held);
+    if (this.held) {
+      this.hands.remove(this.held);
+      unbake(this.held);
+    }
     this.held = model;
     if (model) this.hands.add(model);
   }

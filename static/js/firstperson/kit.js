@@ -64,6 +64,66 @@ export function dome(group, color, r, x = 0, y = 0, z = 0) {
   return place(group, new THREE.Mesh(geometry, material(color)), x, y, z);
 }
 
+const BAKED = new THREE.MeshLambertMaterial({ vertexColors: true, flatShading: true });
+
+/**
+ * One mesh for all the meshes of `group` (their shapes moved into the group's frame, their colours baked
+ * into the vertices), keeping the group's other children (sprites): one draw call instead of dozens, which
+ * is what software WebGL (SwiftShader) spends most of its time on. Glowing parts keep their own mesh. (Not
+ * three's BufferGeometryUtils: that addon imports the bare specifier "three", which needs an import map, an
+ * inline script the page's Content-Security-Policy forbids.)
+ */
+export function bake(group) {
+  group.updateMatrixWorld(true);
+  const inverse = group.matrixWorld.clone().invert();
+  const parts = [];
+  const keep = [];
+  group.traverse((node) => {
+    if (node === group) return;
+    if (node.isMesh && !node.material.emissive?.getHex()) parts.push(node);
+    else if (!node.isGroup) keep.push(node);
+  });
+  let count = 0;
+  const pieces = parts.map((mesh) => {
+    const geometry = mesh.geometry.index ? mesh.geometry.toNonIndexed() : mesh.geometry.clone();
+    geometry.applyMatrix4(new THREE.Matrix4().multiplyMatrices(inverse, mesh.matrixWorld));
+    count += geometry.attributes.position.count;
+    return [geometry, mesh.material.color];
+  });
+  const position = new Float32Array(count * 3);
+  const color = new Float32Array(count * 3);
+  let offset = 0;
+  for (const [geometry, tint] of pieces) {
+    const n = geometry.attributes.position.count;
+    position.set(geometry.attributes.position.array, offset * 3);
+    for (let i = 0; i < n; i += 1) color.set([tint.r, tint.g, tint.b], (offset + i) * 3);
+    offset += n;
+    geometry.dispose();
+  }
+  const merged = new THREE.BufferGeometry();
+  merged.setAttribute("position", new THREE.BufferAttribute(position, 3));
+  merged.setAttribute("color", new THREE.BufferAttribute(color, 3));
+  const out = new THREE.Group();
+  out.name = group.name;
+  out.position.copy(group.position);
+  out.rotation.copy(group.rotation);
+  if (count) out.add(new THREE.Mesh(merged, BAKED));
+  for (const node of keep) {
+    node.updateMatrixWorld(true);
+    const placed = node.clone();
+    new THREE.Matrix4().multiplyMatrices(inverse, node.matrixWorld).decompose(placed.position, placed.quaternion, placed.scale);
+    out.add(placed);
+  }
+  return out;
+}
+
+/** Free the baked geometry of a group made by `bake` (the shared materials stay). */
+export function unbake(group) {
+  group.traverse((node) => {
+    if (node.isMesh && node.material === BAKED) node.geometry.dispose();
+  });
+}
+
 /** Colour between `a` and `b` (hex strings) at `t` in [0, 1], as a hex string. */
 export function mix(a, b, t) {
   return `#${new THREE.Color(a).lerp(new THREE.Color(b), Math.min(Math.max(t, 0), 1)).getHexString()}`;

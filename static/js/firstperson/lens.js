@@ -13,13 +13,15 @@
  *   any panorama.
  *
  * Vertically the horizon sits at `HORIZON` (25 %) from the top, so the counter in front of the cook and what
- * lies on it are in view; a narrow rectilinear lens that would still miss it is pitched down just enough.
+ * lies on it are in view (its top centre is 24° below the eyes, kit.js); a lens too narrow for that (below
+ * about 58°) is pitched down just enough, and then its side edges are no longer exactly the field of view's
+ * vertical edges (they tilt with the pitch: a few per cent of the width more is shown at the eye line).
  */
 
 export const RECTILINEAR_LIMIT = 100;
 export const HORIZON = 0.25;
 const SLICE_MAX = 90;
-const MIN_DOWN = (40 * Math.PI) / 180;
+const MIN_DOWN = (25 * Math.PI) / 180;
 
 const rad = (deg) => (deg * Math.PI) / 180;
 

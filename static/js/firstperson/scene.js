@@ -9,11 +9,12 @@
 
 import * as THREE from "../../vendor/three/three.module.js";
 import { YAW, robotModel } from "./agents.js";
-import { EYE_BACK, EYE_HEIGHT } from "./kit.js";
+import { EYE_BACK, EYE_HEIGHT, unbake } from "./kit.js";
 import { Glide, poseOf } from "./motion.js";
 import { contentsKey, contentsModel, terrainModel } from "./stations.js";
 
 function dispose(group) {
+  unbake(group);
   group.traverse((node) => {
     if (node.isSprite) node.material.dispose();
   });
@@ -85,7 +86,10 @@ export class KitchenScene {
       return;
     }
     if (!this.robot || this.robotHeld !== robot.held) {
-      if (this.robot) this.scene.remove(this.robot);
+      if (this.robot) {
+        this.scene.remove(this.robot);
+        unbake(this.robot);
+      }
       this.robot = robotModel(robot.held);
       this.robotHeld = robot.held;
       this.scene.add(this.robot);

@@ -10,7 +10,8 @@
 import * as THREE from "../../vendor/three/three.module.js";
 import { COLORS } from "../game/palette.js";
 import { BAR_COLOR, drawCheck } from "../game/stations.js";
-import { COUNTER_TOP, ball, box, cylinder, dome } from "./kit.js";
+import { STATIONS } from "../labels.js";
+import { COUNTER_TOP, bake, ball, box, cylinder, dome } from "./kit.js";
 import { dirtyPlate, cleanPlate, garnish, itemModel, meat, onion } from "./items.js";
 
 const BODY_H = COUNTER_TOP - 0.05;
@@ -106,13 +107,51 @@ export const TERRAIN = {
   serve,
 };
 
-/** The model of a cell's terrain at grid (x, y): floor under everything, then the terrain's own model. */
+const signs = new Map();
+
+/** A station's name (labels.js, the words of the instructions' legend) as a sprite texture, cached. */
+function signTexture(text) {
+  if (!signs.has(text)) {
+    const canvas = document.createElement("canvas");
+    canvas.width = 512;
+    canvas.height = 96;
+    const ctx = canvas.getContext("2d");
+    ctx.font = "600 44px system-ui, 'DejaVu Sans', sans-serif";
+    const width = Math.min(ctx.measureText(text).width + 40, 512);
+    ctx.fillStyle = "rgba(20, 24, 28, 0.72)";
+    ctx.beginPath();
+    ctx.roundRect((512 - width) / 2, 14, width, 68, 18);
+    ctx.fill();
+    ctx.fillStyle = "#FFFFFF";
+    ctx.textAlign = "center";
+    ctx.textBaseline = "middle";
+    ctx.fillText(text, 256, 50);
+    const texture = new THREE.CanvasTexture(canvas);
+    texture.colorSpace = THREE.SRGBColorSpace;
+    signs.set(text, texture);
+  }
+  return signs.get(text);
+}
+
+const SIGN_MATERIALS = new Map();
+
+/** The model of a cell's terrain at grid (x, y): floor under everything, then the terrain's own model, and
+ * above a station (not a plain counter) its name, so a station is known by name as well as by shape. */
 export function terrainModel(terrain, x, y) {
   const group = new THREE.Group();
   group.name = `terrain:${terrain}`;
   group.position.set(x, 0, y);
   (TERRAIN[terrain] || TERRAIN.counter)(group, x, y);
-  return group;
+  if (terrain !== "floor" && terrain !== "counter" && STATIONS[terrain]) {
+    if (!SIGN_MATERIALS.has(terrain)) {
+      SIGN_MATERIALS.set(terrain, new THREE.SpriteMaterial({ map: signTexture(STATIONS[terrain].replace(/ \(.*\)$/, "")) }));
+    }
+    const sign = new THREE.Sprite(SIGN_MATERIALS.get(terrain));
+    sign.scale.set(1.0, 0.19, 1);
+    sign.position.set(0, 1.72, 0);
+    group.add(sign);
+  }
+  return bake(group);
 }
 
 function grillContents(g, station) {
@@ -199,5 +238,5 @@ export function contentsModel(cell) {
       group.add(sprite);
     }
   }
-  return group;
+  return bake(group);
 }

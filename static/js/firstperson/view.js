@@ -34,7 +34,7 @@ export class FirstPersonView {
     this.canvas.setAttribute("role", "img");
     this.canvas.dataset.view = "first_person";
     container.prepend(this.canvas);
-    this.renderer = new THREE.WebGLRenderer({ canvas: this.canvas, antialias: true, powerPreference: "high-performance" });
+    this.renderer = new THREE.WebGLRenderer({ canvas: this.canvas, antialias: false, powerPreference: "high-performance" });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, MAX_PIXEL_RATIO));
     this.kitchen = new KitchenScene();
     this.eye = new EyeCamera(this.kitchen.head);
