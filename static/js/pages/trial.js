@@ -62,8 +62,8 @@ function intro(root, trial, onStart) {
     practice
       ? h("p", {}, "Try the controls: choose tasks with the buttons on the right, interrupt with the keys or the " +
           "buttons under the kitchen. This round is for practice; its result does not count.")
-      : h("p", {}, "Work with the robot to deliver the orders as quickly as you can. Remember: black cells are " +
-          "outside your view."),
+      : h("p", {}, "Work with the robot to deliver the orders as quickly as you can." +
+          (trial.view === "first_person" ? "" : " Remember: black cells are outside your view.")),
     trial.view === "first_person"
       ? h("p", { id: "first-person-note" }, "In this round you see the kitchen through the cook's eyes; what is " +
           "outside your view is dark. ↑ or W steps forward, ← → or A D turn left and right (stepping that way " +
