@@ -11,15 +11,16 @@ frames it counted over the walk, divided by the time, are the frames per second 
 
     .venv/bin/python benchmarks/first_person/fps.py [--seconds 20] [--fovs 90,120,360] [--json]
 
-It prints, per field of view, the lens, the canvas size, frames, seconds, frames per second, and how busy the
-machine was meanwhile (all processes: software rendering shares the cores with the server, the robot and
-anything else running).
+It prints, per field of view, the lens, the canvas size, frames, seconds, frames per second, how busy the
+machine was meanwhile and its load average (all processes: software rendering shares the cores with the
+server, the robot and anything else running).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import shutil
 import sys
 import tempfile
@@ -98,7 +99,7 @@ def measure(fov: float, seconds: float, chromium: str, folder: Path) -> dict[str
         finally:
             browser.close()
     return {"fov": fov, **info, "frames": frames, "seconds": round(elapsed, 2), "fps": round(frames / elapsed, 1),
-            "machine_busy_cores": round(busy, 2)}
+            "machine_busy_cores": round(busy, 2), "load_average": round(os.getloadavg()[0], 1)}
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -121,10 +122,12 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     print(f"first-person view on {KITCHEN}, canvas {CANVAS[0]}x{CANVAS[1]}, software WebGL; {args.seconds:g} s walk each")
     print(f"renderer: {results[0]['renderer']}")
-    print(f"{'fov':>5} {'lens':<12} {'canvas':<10} {'frames':>7} {'seconds':>8} {'fps':>6} {'busy cores':>11}")
+    print(f"{'fov':>5} {'lens':<12} {'canvas':<10} {'frames':>7} {'seconds':>8} {'fps':>6} {'busy cores':>11} "
+          f"{'load avg':>9}")
     for r in results:
         print(f"{r['fov']:>5g} {r['lens']:<12} {r['width']}x{r['height']:<5} {r['frames']:>7} {r['seconds']:>8} "
-              f"{r['fps']:>6} {r['machine_busy_cores']:>11}")
+              f"{r['fps']:>6} {r['machine_busy_cores']:>11} {r['load_average']:>9}")
+    print(f"({os.cpu_count()} cores; load average: runnable processes on the whole machine, 1-minute mean)")
     return 0
 
 
