@@ -27,9 +27,9 @@ IWER = Path(__file__).resolve().parent / "vendor" / "iwer" / "iwer.min.js"
 SCREENS = Path("/work/screens/i17")
 
 
-def keep(page: Any, name: str) -> None:
+def keep(page: Any, name: str, *, full_page: bool = False) -> None:
     """Save a screenshot under test-output/screenshots (and /work/screens/i17 when that folder exists)."""
-    path = screenshot(page, name)
+    path = screenshot(page, name, full_page=full_page)
     if SCREENS.is_dir():
         shutil.copy(path, SCREENS / path.name)
 
@@ -118,7 +118,7 @@ def test_a_first_person_round_renders_moves_and_masks(study_server, new_gl_page)
     camera_cells = admin.eval_on_selector("#camera-canvas", "el => el.dataset.drawn").split(";")
     fov = study_server.live(trial_id)["fov_cells"]
     assert camera_cells == [f"{x},{y}" for x, y in fov], "the camera shows what the participant's screen showed"
-    keep(admin, "first_person_admin_live_camera")
+    keep(admin, "first_person_admin_live_camera", full_page=True)
 
     # The replay of the same trial draws the participant's camera of the tick shown (tick 0: the start).
     admin.goto(f"{study_server.url}/admin/#/replay/{trial_id}")
@@ -129,7 +129,7 @@ def test_a_first_person_round_renders_moves_and_masks(study_server, new_gl_page)
     camera_cells = admin.eval_on_selector("#camera-canvas", "el => el.dataset.drawn").split(";")
     assert (first["human"]["x"], first["human"]["y"]) == (3, 2)
     assert camera_cells == [f"{x},{y}" for x, y in first["fov"]]
-    keep(admin, "first_person_admin_replay_camera")
+    keep(admin, "first_person_admin_replay_camera", full_page=True)
 
 
 def test_enter_vr_opens_a_session_with_an_emulated_headset(study_server, new_gl_page):
