@@ -101,7 +101,7 @@ class TrialRow(Base):
     robot: Mapped[str] = mapped_column(String(64))
     view: Mapped[str] = mapped_column(String(16), server_default="top_down")
     """How the participant saw the kitchen (``server.study.views``); ``top_down`` for trials stored before
-    revision 0006."""
+    revision 0003."""
     seed: Mapped[int] = mapped_column(BigInteger)
     config_hash: Mapped[str] = mapped_column(String(64))
     status: Mapped[str] = mapped_column(String(16), default="running")
