@@ -2,7 +2,8 @@
 
 Never the condition's robot or kitchen names beyond the assigned order given at join: the pages show
 "round 2 of 5", not which robot is playing. ``fov_angle`` (the study's field of view, the same in every trial)
-lets the instructions draw the cone the participant will have.
+lets the instructions draw the cone the participant will have; a trial's ``view`` (top-down or first-person)
+lets the round's intro card explain its controls (the participant sees the view anyway).
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ from server.catalog import LoadedStudy
 from server.flow.progress import Phase
 from server.flow.service import completion, progress_of
 from server.store.tables import AssignmentRow, ParticipantRow
+from server.study.views import DEFAULT_VIEW
 
 
 def session_view(loaded: LoadedStudy, row: ParticipantRow, order: AssignmentRow | None) -> dict[str, Any]:
@@ -43,7 +45,7 @@ def session_view(loaded: LoadedStudy, row: ParticipantRow, order: AssignmentRow 
         view["trial"] = {"kind": step.trial_kind, "index": step.index, "number": step.number,
                          "total": step.total, "kind_number": (step.index or 0) + 1,
                          "kind_total": sum(1 for s in progress.plan if s.trial_kind == step.trial_kind),
-                         "websocket": "/ws/play"}
+                         "view": step.view or DEFAULT_VIEW, "websocket": "/ws/play"}
     elif phase is Phase.QUESTIONNAIRE:
         questionnaire = next(q for q in study.questionnaires if q.id == step.questionnaire)
         view["questionnaire"] = {

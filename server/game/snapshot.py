@@ -14,6 +14,7 @@ from server.game.engine import TrialEngine
 from server.game.meta import TrialMeta
 from server.game.view import agent_view, visible_world
 from server.protocol.server import Hello, Hud, State, TrialInfo
+from server.study.views import ViewName
 
 TrialKind = Literal["practice", "main"]
 Mode = Literal["fixed_rate", "wait_for_participant"]
@@ -26,7 +27,8 @@ def hello(meta: TrialMeta, engine: TrialEngine, *, mode: str, rate: float, resum
                         total=meta.total, kind_number=meta.index + 1, kind_total=meta.kind_total),
         width=layout.width, height=layout.height, subtasks=[s.value for s in SUBTASKS],
         interrupts=[i.value for i in Interrupt], mode=cast(Mode, mode), tick_rate_hz=rate, fov_angle=engine.angle,
-        horizon=rules.horizon, orders=rules.orders, tick=engine.tick, resumed=resumed, max_message_bytes=limit)
+        horizon=rules.horizon, orders=rules.orders, tick=engine.tick, resumed=resumed, max_message_bytes=limit,
+        view=cast(ViewName, meta.view))
 
 
 def state(engine: TrialEngine, *, mode: str, rate: float, ack: int) -> State:

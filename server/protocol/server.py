@@ -13,6 +13,8 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, TypeAdapter
 
+from server.study.views import ViewName
+
 TerrainName = Literal["floor", "counter", "onion", "meat", "plate", "grill", "board", "sink", "serve"]
 StationState = Literal["empty", "cooking", "ready", "chopping", "washing", "clean"]
 
@@ -57,6 +59,9 @@ class Hello(ServerMessage):
     tick: int
     resumed: bool
     max_message_bytes: int
+    view: ViewName
+    """How to draw the kitchen: from above, or through the cook's eyes (camera field of view ``fov_angle``).
+    The only fact about the trial's condition a participant may be told: they see it anyway."""
 
 
 class StationView(BaseModel):

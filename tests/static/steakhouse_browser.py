@@ -38,7 +38,8 @@ def kitchen(name: str) -> Layout:
 
 @dataclass(frozen=True)
 class Drawn:
-    """What the kitchen canvas says it drew (its data attributes, set in the same frame as the pixels)."""
+    """What the kitchen canvas says it drew (its data attributes, set in the same frame as the pixels); the
+    first-person canvas has no cells, so ``cell_css`` and ``dpr`` are NaN there."""
 
     trial: int
     tick: int
@@ -57,7 +58,7 @@ def drawn(page: Any) -> Drawn:
     width, height = data["grid"].split("x")
     return Drawn(trial=int(data["trial"]), tick=int(data["tick"]), pos=(int(x), int(y)), facing=Direction(facing),
                  held=data["held"], robot=data["robot"], grid=(int(width), int(height)),
-                 cell_css=float(data["cell"]), dpr=float(data["dpr"]))
+                 cell_css=float(data.get("cell", "nan")), dpr=float(data.get("dpr", "nan")))
 
 
 def wait_drawn(page: Any, condition: str = "true", timeout: float = TIMEOUT_MS) -> Drawn:

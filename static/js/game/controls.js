@@ -11,7 +11,8 @@ import { h } from "../dom.js";
 import { INTERRUPTS, SUBTASK_GROUPS, SUBTASKS, subtaskLabel } from "../labels.js";
 
 export class Controls {
-  constructor({ subtasks, interrupts, onSelect, onInterrupt }) {
+  /** `labels`: interrupt id → label replacing the usual one (the first-person view's "Forward", …). */
+  constructor({ subtasks, interrupts, onSelect, onInterrupt, labels = {} }) {
     this.enabled = false;
     this.buttons = new Map();
     this.current = null;
@@ -40,7 +41,7 @@ export class Controls {
       type: "button", class: `interrupt-button interrupt-${i.id}`, dataset: { interrupt: i.id },
       "aria-keyshortcuts": i.keys.map(ariaKey).join(" "),
       onclick: () => this.enabled && onInterrupt(i.id),
-    }, h("span", { class: "interrupt-label" }, i.label),
+    }, h("span", { class: "interrupt-label" }, labels[i.id] || i.label),
        h("span", { class: "keys" }, i.keys.map((k) => h("kbd", {}, k)))));
     this.interrupts = h("div", { class: "interrupts", role: "group", "aria-label": "Interrupt actions" },
       this.interruptButtons);

@@ -8,7 +8,7 @@
 
 import { h, show } from "../dom.js";
 import { GameConnection, Link } from "../game/connection.js";
-import { KitchenView } from "../game/renderer.js";
+import { kitchenViewFor } from "../game/views.js";
 import { Hud, roundLabel } from "../game/hud.js";
 import { Controls } from "../game/controls.js";
 import { Activity } from "../game/activity.js";
@@ -62,8 +62,13 @@ function intro(root, trial, onStart) {
     practice
       ? h("p", {}, "Try the controls: choose tasks with the buttons on the right, interrupt with the keys or the " +
           "buttons under the kitchen. This round is for practice; its result does not count.")
-      : h("p", {}, "Work with the robot to deliver the orders as quickly as you can. Remember: black cells are " +
-          "outside your view."),
+      : h("p", {}, "Work with the robot to deliver the orders as quickly as you can." +
+          (trial.view === "first_person" ? "" : " Remember: black cells are outside your view.")),
+    trial.view === "first_person"
+      ? h("p", { id: "first-person-note" }, "In this round you see the kitchen through the cook's eyes; what is " +
+          "outside your view is dark. ↑ or W steps forward, ← → or A D turn left and right (stepping that way " +
+          "when the floor is free), ↓ or S turns around, Space interacts with what you face.")
+      : null,
     h("p", { class: "muted" }, "The round starts as soon as you press the button."),
     h("div", { class: "actions" }, button)), button);
 }
@@ -81,7 +86,7 @@ function playRound(root, ctx, onFinished) {
   show(root, layout);
   document.body.classList.add("playing");
 
-  const view = new KitchenView(canvas, stage);
+  let view = null;
   let controls = null;
   let removeKeys = null;
   let lastTask = null;
@@ -93,9 +98,12 @@ function playRound(root, ctx, onFinished) {
     if (text) cover.append(h("p", { class: "cover-text" }, text));
     if (action) cover.append(action);
   };
-  const sendInterrupt = (action) => {
-    if (conn.send("interrupt", { action }) === null) return;
-    controls.flash(action);
+  const sendInterrupt = (key) => {
+    const action = view.interruptFor(key);
+    const seq = conn.send("interrupt", { action });
+    view.interruptSent(seq);
+    if (seq === null) return;
+    controls.flash(key);
     if (action === "stop") controls.setCurrent(null, true);
   };
   const select = (subtask) => {
@@ -112,12 +120,13 @@ function playRound(root, ctx, onFinished) {
   const conn = new GameConnection(ctx.api.token, {
     onHello(hello) {
       tickMs = 1000 / hello.tick_rate_hz;
-      view.setGrid(hello.width, hello.height);
+      if (!view) view = kitchenViewFor(hello.view, stage, canvas, { xr: true, onInterrupt: (a) => sendInterrupt(a) });
+      view.configure(hello);
       hud.setRound(hello.trial);
       canvas.dataset.trial = String(hello.trial.id);
       if (!controls) {
         controls = new Controls({ subtasks: hello.subtasks, interrupts: hello.interrupts, onSelect: select,
-                                  onInterrupt: sendInterrupt });
+                                  onInterrupt: sendInterrupt, labels: view.interruptLabels });
         main.querySelector(".interrupts-slot").replaceWith(controls.interrupts);
         side.append(controls.tasks);
         removeKeys = listenKeys(document, sendInterrupt, { repeatMs: tickMs });
@@ -129,7 +138,7 @@ function playRound(root, ctx, onFinished) {
       activity.resync();
     },
     onState(state) {
-      view.update(state);
+      if (view) view.update(state);
       hud.update(state);
       taskChanged(state.subtask);
       if (controls && !controls.pending) controls.setCurrent(state.subtask);
@@ -166,7 +175,7 @@ function playRound(root, ctx, onFinished) {
 
   function cleanup() {
     conn.stop();
-    view.destroy();
+    if (view) view.destroy();
     activity.destroy();
     if (removeKeys) removeKeys();
     document.body.classList.remove("playing");
