@@ -1,7 +1,7 @@
 """``steakhouse analyze --study`` on studies stored through the server's own store and flow functions (SQLite and
 PostgreSQL): a measure that does not vary no longer stops the analysis (issue 15's ``KeyError: 'F'``), a
-one-factor study with three robots is analysed in the study's order with sphericity and pairwise comparisons,
-and the report opens with data quality."""
+one-factor study with three robots is analysed in the study's order with sphericity and pairwise comparisons, a
+robot × kitchen × view study gets its three-factor ANOVA, and the report opens with data quality."""
 
 from __future__ import annotations
 
@@ -21,8 +21,9 @@ THREE_ROBOTS = ("stay", "baseline", "fov_aware")
 
 @pytest.fixture(scope="module")
 def stored(module_db_url, tmp_path_factory):
-    """A 2 × 2 study whose three participants never interrupt (``interrupts`` is 0 everywhere) and a one-factor
-    study of three robots in one kitchen with four participants."""
+    """A 2 × 2 study whose three participants never interrupt (``interrupts`` is 0 everywhere), a one-factor
+    study of three robots in one kitchen with four participants, and a 2 × 2 × 2 robot × kitchen × view study with
+    three."""
     store = Store(module_db_url)
     store.migrate()
     folder = tmp_path_factory.mktemp("studies")
@@ -30,6 +31,8 @@ def stored(module_db_url, tmp_path_factory):
         "quiet": load_one(write_study(folder, "quiet", **study_overrides())),
         "robots3": load_one(write_study(folder, "robots3", **study_overrides(
             robots=list(THREE_ROBOTS), kitchens=["none_3"], factors=["robot"], practice=[]))),
+        "views": load_one(write_study(folder, "views", **study_overrides(
+            views=["top_down", "first_person"], factors=["robot", "kitchen", "view"], practice=[]))),
     }
     for loaded in studies.values():
         with store.transaction() as session:
@@ -40,6 +43,9 @@ def stored(module_db_url, tmp_path_factory):
     for n in range(4):
         play_participant(store, studies["robots3"], join(store, studies["robots3"], f"r{n}"),
                          Participant(seed=10 + n, interrupt_rate=0.05))
+    for n in range(3):
+        play_participant(store, studies["views"], join(store, studies["views"], f"v{n}"),
+                         Participant(seed=20 + n, interrupt_rate=0.05))
     store.dispose()
     return module_db_url
 
@@ -79,6 +85,19 @@ def test_one_factor_of_three_robots_in_the_study_order(stored, tmp_path) -> None
     report = (tmp_path / "report.md").read_text()
     assert "Within factors: robot." in report and "Plots" not in report  # --no-plots
     assert "### Order and carry-over" in report and "### Sphericity (Mauchly's test)" in report
+
+
+def test_robot_kitchen_view_gets_the_three_factor_analysis(stored, tmp_path) -> None:
+    assert analyze(stored, "views", tmp_path, "--dv", "ticks,robot_in_fov_pct") == 0
+    anova = pd.read_csv(tmp_path / "anova.csv").query("measure == 'ticks'")
+    assert anova["effect"].tolist() == ["robot", "kitchen", "view", "robot * kitchen", "robot * view",
+                                        "kitchen * view", "robot * kitchen * view"]
+    assert (anova["df2"] == 2).all()
+    simple = pd.read_csv(tmp_path / "simple_effects.csv").query("measure == 'ticks'")
+    assert simple.groupby("factor", sort=False).size().to_dict() == {"robot": 4, "kitchen": 4, "view": 4}
+    descriptives = pd.read_csv(tmp_path / "descriptives.csv")
+    assert descriptives["view"].drop_duplicates().tolist() == ["top_down", "first_person"]
+    assert "Within factors: robot, kitchen, view." in (tmp_path / "report.md").read_text()
 
 
 def test_cells_carry_their_trials_validity_when_the_export_records_it() -> None:
