@@ -40,14 +40,36 @@ def format_df(df: float) -> str:
     return str(int(round(df))) if float(df).is_integer() else f"{df:.2f}"
 
 
+CORRECTIONS = {"GG": "Greenhouse–Geisser", "HF": "Huynh–Feldt"}
+
+
 def apa_f_sentence(row: Mapping[str, Any]) -> str:
-    """``F(1, 26) = 4.53, p = .043, η²G = .11`` from a row with ``df1, df2, F, p, ges``."""
+    """``F(1, 26) = 4.53, p = .043, η²G = .11`` from a row with ``df1, df2, F, p, ges``.
+
+    A row of :mod:`analysis.anova` reads the degrees of freedom and p its ``correction`` names
+    (``df1_read, df2_read, p_read``: ``F(2.43, 21.85) = 38.03, p < .001, η²G = .60, 90% CI [.48, .82]
+    (Greenhouse–Geisser, ε = .49)``), adds the interval of η²G when the row has one, and says "not testable" with
+    the reason when F could not be computed.
+    """
+    note = str(row.get("note") or "")
+    if note.startswith("not testable"):
+        return note
+    corrected = "p_read" in row
+    df1, df2 = (float(row["df1_read"]), float(row["df2_read"])) if corrected else (float(row["df1"]),
+                                                                                   float(row["df2"]))
     f_value = float(row["F"])
     f_text = "n/a" if math.isnan(f_value) else f"{f_value:.2f}"
-    return (
-        f"F({format_df(float(row['df1']))}, {format_df(float(row['df2']))}) = {f_text}, "
-        f"{p_clause(float(row['p']))}, η²G = {format_proportion(float(row['ges']))}"
-    )
+    text = (f"F({format_df(df1)}, {format_df(df2)}) = {f_text}, "
+            f"{p_clause(float(row['p_read'] if corrected else row['p']))}, "
+            f"η²G = {format_proportion(float(row['ges']))}")
+    if "ges_ci_low" in row and not math.isnan(float(row["ges_ci_low"])):
+        text += f", 90% CI [{format_proportion(float(row['ges_ci_low']))}, " \
+                f"{format_proportion(float(row['ges_ci_high']))}]"
+    correction = str(row.get("correction") or "none")
+    if correction in CORRECTIONS:
+        eps = float(row["eps_gg"] if correction == "GG" else min(float(row["eps_hf"]), 1.0))
+        text += f" ({CORRECTIONS[correction]}, ε = {format_proportion(eps)})"
+    return text
 
 
 def _no_leading_zero(value: float, digits: int) -> str:

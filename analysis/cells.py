@@ -11,9 +11,10 @@ done explicitly and reported.
 from __future__ import annotations
 
 import itertools
-from collections.abc import Hashable, Iterable, Sequence
+from collections.abc import Hashable, Iterable, Iterator, Mapping, Sequence
 from typing import Any
 
+import numpy as np
 import pandas as pd
 
 from analysis.errors import AnalysisInputError
@@ -32,12 +33,13 @@ def require_columns(df: pd.DataFrame, columns: Iterable[str]) -> None:
 
 
 def factor_levels(df: pd.DataFrame, factor: str) -> list[Any]:
-    """Levels of ``factor`` in a stable order: the category order if categorical, else sorted."""
+    """Levels of ``factor`` present in ``df``: the category order if categorical (the study's order, see
+    :mod:`analysis.levels`), else the order of first appearance."""
     column = df[factor]
     if isinstance(column.dtype, pd.CategoricalDtype):
         present = set(column.dropna().unique())
         return [level for level in column.cat.categories if level in present]
-    return sorted(column.dropna().unique().tolist(), key=_sort_key)
+    return list(pd.unique(column.dropna()))
 
 
 def cell_label(within: Sequence[str], cell: Cell) -> str:
@@ -86,27 +88,33 @@ def validate_design(df: pd.DataFrame, dv: str, within: Sequence[str], subject: s
 
 
 def complete_cases(
-    df: pd.DataFrame, dv: str, within: Sequence[str], subject: str
+    df: pd.DataFrame, dv: str, within: Sequence[str], subject: str,
+    why_missing: Mapping[tuple[Any, str], str] | None = None,
 ) -> tuple[pd.DataFrame, pd.DataFrame]:
     """Split ``df`` into the subjects with a value in every within cell and the others.
 
     Returns ``(clean, excluded)``: ``clean`` holds all rows of the complete subjects (original
     columns, original order); ``excluded`` has one row per removed subject with columns
     ``subject, reason``, the reason naming each missing cell (``missing cell robot=baseline,
-    kitchen=mid_2``) or missing value (``missing value of ticks in cell ...``), joined by ``; ``.
+    kitchen=mid_2``, followed by ``(why)`` when ``why_missing`` has the subject and cell label) or
+    missing value (``missing value of ticks in cell ...``), joined by ``; ``.
     """
     within = list(within)
     validate_design(df, dv, within, subject)
     cells: list[Cell] = list(itertools.product(*(factor_levels(df, f) for f in within)))
+    observed = {(row[0], *row[1:-1]): row[-1] for row in
+                df[[subject, *within, dv]].astype(object).itertuples(index=False, name=None)}
     kept: list[Hashable] = []
     excluded: list[dict[str, Any]] = []
-    for subject_id, rows in df.groupby(subject, sort=True, observed=True):
-        values = {tuple(row[within]): row[dv] for _, row in rows.iterrows()}
+    for subject_id in sorted(pd.unique(df[subject]), key=_subject_key):
         problems = []
         for cell in cells:
-            if cell not in values:
-                problems.append(f"missing cell {cell_label(within, cell)}")
-            elif pd.isna(values[cell]):
+            key = (subject_id, *cell)
+            if key not in observed:
+                label = cell_label(within, cell)
+                why = (why_missing or {}).get((subject_id, label))
+                problems.append(f"missing cell {label}" + (f" ({why})" if why else ""))
+            elif pd.isna(observed[key]):
                 problems.append(f"missing value of {dv} in cell {cell_label(within, cell)}")
         if problems:
             excluded.append({"subject": subject_id, "reason": "; ".join(problems)})
@@ -127,8 +135,33 @@ def require_complete(df: pd.DataFrame, dv: str, within: Sequence[str], subject: 
         )
 
 
-def _sort_key(level: Any) -> tuple[str, Any]:
-    """Sort numbers numerically and everything else as text, without mixing the two."""
-    if isinstance(level, int | float) and not isinstance(level, bool):
-        return ("0", level)
-    return ("1", str(level))
+def slices(df: pd.DataFrame, within: Sequence[str], factor: str) -> Iterator[tuple[str, pd.DataFrame]]:
+    """``(label, rows)`` for each combination of the levels of the factors other than ``factor``, in design order
+    (``kitchen=mid_2``: the rows of ``df`` in that kitchen)."""
+    others = [f for f in within if f != factor]
+    for combo in itertools.product(*(factor_levels(df, f) for f in others)):
+        mask = pd.Series(True, index=df.index)
+        for other, level in zip(others, combo, strict=True):
+            mask &= df[other] == level
+        yield cell_label(others, combo), df[mask]
+
+
+def wide_matrix(df: pd.DataFrame, dv: str, within: Sequence[str], subject: str) -> tuple[np.ndarray, list[Any]]:
+    """``(Y, subjects)``: ``Y[s, c]`` is subject s's value in cell c, cells in design order (the first factor
+    varies slowest, levels in :func:`factor_levels` order). ``df`` must be complete (see :func:`complete_cases`)."""
+    within = list(within)
+    require_complete(df, dv, within, subject)
+    levels = [factor_levels(df, f) for f in within]
+    cells = list(itertools.product(*levels))
+    subjects = list(pd.unique(df[subject]))
+    table = df.set_index([subject, *within])[dv].astype(float)
+    index = pd.MultiIndex.from_tuples([(s, *cell) for s in subjects for cell in cells])
+    values = table.reindex(index).to_numpy(dtype=float).reshape(len(subjects), len(cells))
+    return values, subjects
+
+
+def _subject_key(subject: Any) -> tuple[int, Any]:
+    """Subjects in order: numbers numerically, everything else as text."""
+    if isinstance(subject, int | float) and not isinstance(subject, bool):
+        return (0, subject)
+    return (1, str(subject))

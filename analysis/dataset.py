@@ -10,7 +10,7 @@ never in ``cells.csv``. Flagged participants, and participants missing a cell, a
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import pandas as pd
@@ -39,6 +39,8 @@ class Dataset:
     design: Design
     tables: dict[str, pd.DataFrame]
     columns: dict[str, tuple[Column, ...]]
+    config: dict[str, Any] = field(default_factory=dict)
+    """The study's resolved configuration as stored (the analysis reads factors, levels and scales from it)."""
 
     @property
     def cells(self) -> pd.DataFrame:
@@ -90,7 +92,7 @@ def build_dataset(conn: Connection, study_id: str) -> Dataset:
                          if (row := excluded_row(p, data.trials, used, design)) is not None],
     }
     tables = {name: _frame(rows[name], columns[name]) for name in FILES}
-    return Dataset(study_id, design, tables, columns)
+    return Dataset(study_id, design, tables, columns, data.config)
 
 
 def _frame(rows: list[dict[str, Any]], columns: Sequence[Column]) -> pd.DataFrame:

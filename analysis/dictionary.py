@@ -59,6 +59,16 @@ MEASURES: dict[str, Column] = {c.name: c for c in (
     Column("errors", INT, "error events during the trial (rejected messages, robot errors)"),
 )}
 
+UNITS: dict[str, str] = {
+    "ticks": "world steps", "delivered": "dishes", "score": "points", "kb_gap_mean": "components",
+    "interrupts": "actions", "selections": "choices", "interrupts_per_selection": "%", "subtask_switches": "switches",
+    "redundant_actions": "pickups", "collisions": "steps", "deadline_misses": "ticks",
+    **{name: "%" for name in MEASURES if name.endswith("_pct")},
+    **{name: "ms" for name in MEASURES if name.startswith(("decision_ms", "lateness_ms"))},
+    **{name: "events" for name in CONDUCT_COUNTS},
+}
+"""Unit of each measure (axis labels of the analysis plots; the ``unit`` column of the dictionary)."""
+
 _PARTICIPANT = Column("participant", TEXT, "participant's public id (random; not the recruiting id)")
 _TRIAL_ID = Column("trial_id", INT, "trial attempt id in the store (trials.csv, ticks.csv)")
 _ROBOT = Column("robot", TEXT, "robot planner of the condition (within factor)")
@@ -217,16 +227,17 @@ def render_markdown(files: Mapping[str, Sequence[Column]], study_id: str, export
              "Empty cells are missing values. Flags are 0/1. Times are UTC (ISO 8601). Measures are defined in "
              "docs/analysis.md (docs/domain.md §6).", ""]
     for name, columns in files.items():
-        lines += [f"## {name}", "", FILE_NOTES.get(name, ""), "", "| column | type | description |", "|---|---|---|"]
-        lines += [f"| {c.name} | {c.type} | {_md_cell(c.description)} |" for c in columns]
+        lines += [f"## {name}", "", FILE_NOTES.get(name, ""), "", "| column | type | unit | description |",
+                  "|---|---|---|---|"]
+        lines += [f"| {c.name} | {c.type} | {UNITS.get(c.name, '')} | {_md_cell(c.description)} |" for c in columns]
         lines.append("")
     return "\n".join(lines)
 
 
 def rows(files: Mapping[str, Sequence[Column]]) -> list[dict[str, str]]:
     """``data_dictionary.csv``: one row per file and column."""
-    return [{"file": name, "column": c.name, "type": c.type, "description": c.description}
-            for name, columns in files.items() for c in columns]
+    return [{"file": name, "column": c.name, "type": c.type, "unit": UNITS.get(c.name, ""),
+             "description": c.description} for name, columns in files.items() for c in columns]
 
 
 def _md_cell(text: str) -> str:

@@ -74,7 +74,7 @@ def write_dataset(dataset: Dataset, out_dir: Path | str) -> ExportResult:
     markdown = render_markdown(dataset.columns, dataset.study_id, stamp)
     (out / DICTIONARY_FILES[0]).write_text(markdown, encoding="utf-8")
     with (out / DICTIONARY_FILES[1]).open("w", newline="", encoding="utf-8") as handle:
-        writer = csv.DictWriter(handle, fieldnames=["file", "column", "type", "description"])
+        writer = csv.DictWriter(handle, fieldnames=["file", "column", "type", "unit", "description"])
         writer.writeheader()
         writer.writerows(rows(dataset.columns))
     files += [out / name for name in DICTIONARY_FILES]

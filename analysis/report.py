@@ -1,189 +1,110 @@
-"""The analysis report, in Markdown and HTML, built from the per-measure results.
+"""The analysis report, in Markdown and HTML: data quality first, then the method, the analysis of ``finished`` and
+of the questionnaire scales, then one section per measure (:mod:`analysis.report_measure`).
 
-Per measure: who was analysed and who was excluded (with the reason), ready-to-paste APA sentences,
-the two-way RM-ANOVA table, the simple main effects of the first factor within each level of the
-second (Holm-adjusted), the cell descriptives with within-subject 95 % CIs, and the plots (paths
-relative to the report, so the output folder can be moved or zipped as a whole).
+Plot paths are relative to the report, so the output folder can be moved or zipped as a whole.
 """
 
 from __future__ import annotations
 
 import importlib.metadata
-import math
-from collections.abc import Sequence
 from pathlib import Path
 
 import pandas as pd
 
-from analysis.apa import apa_f_sentence, format_df, format_p, format_proportion, p_clause
-from analysis.document import Block, BulletList, Heading, Image, Paragraph, render_html
-from analysis.document import render_markdown, table
-from analysis.results import MeasureResult
+from analysis.anova import GG_THRESHOLD
+from analysis.apa import format_p, format_proportion
+from analysis.document import Block, BulletList, Heading, Paragraph, render_html, render_markdown, table
+from analysis.effect_sizes import BOOTSTRAP_RESAMPLES
+from analysis.options import AnalysisOptions
+from analysis.report_measure import measure_section
+from analysis.report_quality import ReportContext, quality_section
+from analysis.report_tables import interval, number
+from analysis.results import AnalysisResult
 
-TITLE = "Repeated-measures analysis"
 
-
-def build_report(results: Sequence[MeasureResult]) -> list[Block]:
-    """The blocks of the whole report: a methods note, then one section per measure."""
-    if not results:
-        return [Heading(1, TITLE), Paragraph("No measure was analysed.")]
-    first = results[0]
-    a, b = first.within
-    blocks: list[Block] = [
-        Heading(1, TITLE),
-        Paragraph(
-            f"Design: {a} × {b}, both within subjects (subject column: {first.subject}). "
-            f"Each measure was analysed with a two-way repeated-measures ANOVA ({a}, {b}, "
-            f"{a} × {b}), followed by simple main effects of {a} within each level of {b} "
-            "(one-way repeated-measures ANOVAs, p Holm-adjusted across the levels of "
-            f"{b}). Subjects without a value in every cell of a measure were excluded from "
-            "that measure (complete cases)."
-        ),
-        Paragraph(
-            "Effect sizes: generalized eta squared η²G (Olejnik & Algina, 2003; Bakeman, 2005) "
-            "and partial eta squared. Error bars and CIs: within-subject 95% confidence "
-            "intervals (Cousineau, 2005, with the Morey, 2008, correction). "
-            f"Computed with {_versions()}."
-        ),
-    ]
-    for result in results:
-        blocks += measure_section(result)
+def build_report(result: AnalysisResult, options: AnalysisOptions, context: ReportContext | None = None
+                 ) -> list[Block]:
+    """Every block of the report."""
+    blocks: list[Block] = [Heading(1, options.title)]
+    if not result.measures:
+        return [*blocks, Paragraph("No measure was analysed.")]
+    blocks += quality_section(result, context)
+    blocks += method_section(result, options)
+    blocks += finished_section(result.tables.get("finished.csv"))
+    blocks += reliability_section(result.tables.get("reliability.csv"))
+    for measure in result.measures:
+        blocks += measure_section(measure)
     return blocks
 
 
-def measure_section(result: MeasureResult) -> list[Block]:
-    """The blocks for one measure."""
-    a, b = result.within
-    blocks: list[Block] = [
-        Heading(2, result.measure),
-        Paragraph(
-            f"n used = {result.n_used} of {result.n_total} subjects "
-            f"({len(result.excluded)} excluded)."
-        ),
+def method_section(result: AnalysisResult, options: AnalysisOptions) -> list[Block]:
+    first = result.measures[0]
+    within = first.within
+    levels = "; ".join(f"{f}: {', '.join(str(v) for v in first.descriptives[f].drop_duplicates())}"
+                       for f in within if f in first.descriptives) or ", ".join(within)
+    return [
+        Heading(2, "Method"),
+        Paragraph(f"Design: {' × '.join(within)}, all within participants (participant column: {first.subject}); "
+                  f"levels in the study's order ({levels}). Each measure was analysed with a repeated-measures "
+                  "ANOVA of every main effect and interaction, each tested against its own participant × effect "
+                  "error term (MSE in the table); participants without a value in every cell of a measure were "
+                  "left out of that measure (complete cases)."),
+        Paragraph("Which p to read: an effect with one degree of freedom is spherical, so its uncorrected test is "
+                  "read. For an effect with more, Mauchly's test is reported but does not decide: the "
+                  f"Greenhouse–Geisser corrected test is read when ε_GG ≤ {GG_THRESHOLD}, the Huynh–Feldt "
+                  "corrected test (ε_HF capped at 1) otherwise (Huynh & Feldt, 1976; Girden, 1992). The sentences "
+                  "below use the degrees of freedom and p of the test read; the table shows all of them."),
+        Paragraph("Follow-ups: simple main effects of every factor at every combination of the other factors' "
+                  "levels (one-way repeated-measures ANOVAs with their own error term, Holm-adjusted within each "
+                  "factor); for factors with more than two levels, paired t tests between all pairs of levels on "
+                  "the participants' marginal means (Holm-adjusted within the factor), with the mean difference "
+                  "and its 95% CI and Cohen's d_z (mean difference / SD of the differences) with its exact 95% CI "
+                  "(noncentral t). Rating measures also get Wilcoxon signed-rank and Friedman tests."),
+        Paragraph("Effect sizes: generalized eta squared η²G (Olejnik & Algina, 2003; Bakeman, 2005) with a 90% "
+                  f"percentile bootstrap CI ({BOOTSTRAP_RESAMPLES} resamples of participants, seed {options.seed}), "
+                  "and partial eta squared with a 90% CI from the noncentral F distribution (Steiger, 2004). "
+                  "Error bars and cell CIs: within-subject 95% CIs (Cousineau, 2005; Morey, 2008). "
+                  f"Computed with {_versions()}."),
     ]
-    if result.excluded.empty:
-        blocks.append(Paragraph("No subject was excluded."))
-    else:
-        blocks.append(Paragraph("Excluded subjects:"))
-        blocks.append(
-            BulletList(
-                tuple(f"subject {r.subject}: {r.reason}" for r in result.excluded.itertuples())
-            )
-        )
-    blocks += [Heading(3, "Results"), BulletList(tuple(apa_sentences(result)))]
-    blocks += [Heading(3, "Two-way repeated-measures ANOVA"), _anova_table(result.anova)]
-    blocks += [
-        Heading(3, f"Simple main effects of {a} within each level of {b}"),
-        _simple_table(result.simple_effects, b),
-    ]
-    blocks += [
-        Heading(3, "Descriptives (within-subject 95% CI)"),
-        _descriptives_table(result.descriptives, result.within),
-        Heading(3, "Plots"),
-    ]
-    pngs = [path for path in result.plots if path.endswith(".png")]
-    blocks += [Image(path, f"{result.measure}: {Path(path).stem}") for path in pngs]
-    blocks.append(
-        Paragraph(
-            "Interaction plot error bars: within-subject 95% CIs (Cousineau-Morey). "
-            "SVG versions: " + ", ".join(p for p in result.plots if p.endswith(".svg")) + "."
-        )
-    )
-    return blocks
 
 
-def apa_sentences(result: MeasureResult) -> list[str]:
-    """One ready-to-paste sentence per ANOVA effect and per simple main effect."""
-    a, b = result.within
-    names = {
-        a: f"Main effect of {a}",
-        b: f"Main effect of {b}",
-        f"{a} * {b}": f"Interaction {a} × {b}",
-    }
-    lines = [
-        f"{names.get(row['effect'], row['effect'])}: {apa_f_sentence(row)}."
-        for _, row in result.anova.iterrows()
-    ]
-    for _, row in result.simple_effects.iterrows():
-        lines.append(
-            f"Effect of {row['effect']} in {b} = {row['level']}: {apa_f_sentence(row)} "
-            f"(Holm-adjusted {p_clause(float(row['p_holm']))})."
-        )
-    return lines
+def finished_section(finished: pd.DataFrame | None) -> list[Block]:
+    if finished is None:
+        return []
+    rows = [(str(r.factor), str(r.at), str(r.test), str(int(r.n)), number(r.statistic, 2),
+             "" if pd.isna(r.df) else str(int(r.df)), format_p(float(r.p)), str(r.note))
+            for r in finished.itertuples()]
+    return [Heading(2, "finished (every order delivered before the horizon)"),
+            Paragraph("Paired binary outcome: McNemar's exact test for two conditions, Cochran's Q for more; "
+                      "across all conditions and for each factor within each cell of the others."),
+            table(("factor", "at", "test", "n", "statistic", "df", "p", "note"), rows)]
 
 
-def write_report(results: Sequence[MeasureResult], out_dir: Path) -> tuple[Path, Path]:
+def reliability_section(reliability: pd.DataFrame | None) -> list[Block]:
+    if reliability is None or reliability.empty:
+        return []
+    rows = [(str(r.scale), str(r.condition), str(int(r.n)), str(int(r.items)),
+             format_proportion(float(r.alpha), 2), interval(r.ci95_low, r.ci95_high, True), str(r.note))
+            for r in reliability.itertuples()]
+    return [Heading(2, "Questionnaire scales"),
+            Paragraph("Scale scores are the mean of their items after reverse-coded items are reversed "
+                      "(max + min − value); reliability is Cronbach's α with Feldt's 95% CI, over all responses "
+                      "and per condition."),
+            table(("scale", "condition", "n", "items", "α", "95% CI", "note"), rows),
+            BulletList(("α over all conditions pools several responses of each participant; compare the "
+                        "per-condition values with published norms.",))]
+
+
+def write_report(result: AnalysisResult, out_dir: Path, options: AnalysisOptions,
+                 context: ReportContext | None = None) -> tuple[Path, Path]:
     """Write ``report.md`` and ``report.html`` into ``out_dir``; return their paths."""
-    blocks = build_report(results)
+    blocks = build_report(result, options, context)
     md, page = out_dir / "report.md", out_dir / "report.html"
     md.write_text(render_markdown(blocks), encoding="utf-8")
-    page.write_text(render_html(blocks, TITLE), encoding="utf-8")
+    page.write_text(render_html(blocks, options.title), encoding="utf-8")
     return md, page
 
 
-def _anova_table(anova: pd.DataFrame) -> Block:
-    columns = ("effect", "df1", "df2", "SS", "MS", "F", "p", "η²G", "partial η²")
-    rows = [
-        (
-            str(r["effect"]),
-            format_df(float(r["df1"])),
-            format_df(float(r["df2"])),
-            _number(r["SS"]),
-            _number(r["MS"]),
-            _number(r["F"], 2),
-            format_p(float(r["p"])),
-            format_proportion(float(r["ges"]), 3),
-            format_proportion(float(r["partial_eta2"]), 3),
-        )
-        for _, r in anova.iterrows()
-    ]
-    return table(columns, rows)
-
-
-def _simple_table(simple: pd.DataFrame, by: str) -> Block:
-    columns = (by, "effect", "df1", "df2", "F", "p", "p (Holm)", "η²G")
-    rows = [
-        (
-            str(r["level"]),
-            str(r["effect"]),
-            format_df(float(r["df1"])),
-            format_df(float(r["df2"])),
-            _number(r["F"], 2),
-            format_p(float(r["p"])),
-            format_p(float(r["p_holm"])),
-            format_proportion(float(r["ges"]), 3),
-        )
-        for _, r in simple.iterrows()
-    ]
-    return table(columns, rows)
-
-
-def _descriptives_table(desc: pd.DataFrame, within: Sequence[str]) -> Block:
-    columns = (*within, "n", "mean", "sd", "se (within)", "95% CI")
-    rows = [
-        (
-            *(str(r[f]) for f in within),
-            str(int(r["n"])),
-            _number(r["mean"]),
-            _number(r["sd"]),
-            _number(r["se_ws"]),
-            f"[{_number(r['ci95_low'])}, {_number(r['ci95_high'])}]",
-        )
-        for _, r in desc.iterrows()
-    ]
-    return table(columns, rows)
-
-
-def _number(value: float, digits: int | None = None) -> str:
-    """Fixed decimals: 2 for magnitudes of 10 and more, else 3, unless ``digits`` is given."""
-    x = float(value)
-    if math.isnan(x):
-        return "n/a"
-    if digits is None:
-        digits = 2 if abs(x) >= 10 else 3
-    return f"{x:.{digits}f}"
-
-
 def _versions() -> str:
-    names = ("pingouin", "pandas", "numpy", "scipy")
+    names = ("pingouin", "statsmodels", "pandas", "numpy", "scipy")
     return ", ".join(f"{name} {importlib.metadata.version(name)}" for name in names)

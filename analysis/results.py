@@ -11,36 +11,62 @@ from pathlib import Path
 
 import pandas as pd
 
+from analysis.measure_info import MeasureInfo
+from analysis.normality import Normality
+from analysis.order_check import OrderCheck
+
 
 @dataclass(frozen=True, slots=True, eq=False)
 class MeasureResult:
     """Everything computed for one dependent variable.
 
-    ``anova`` has the columns of ``analysis.anova.rm_anova_2way``; ``simple_effects`` those of
-    ``simple_main_effects``; ``descriptives`` those of ``cell_descriptives``; ``excluded`` has
-    ``subject, reason``. ``plots`` are paths relative to the output directory.
+    ``anova`` has the columns of ``analysis.anova.ANOVA_COLUMNS`` plus ``ges_ci_low, ges_ci_high``;
+    ``simple_effects``, ``pairwise``, ``rank_tests`` and ``descriptives`` those of their modules (empty when they
+    do not apply); ``excluded`` has ``subject, reason``. ``notes`` are the warnings and explanations the report
+    prints for the measure (a test that could not be computed, a censored cell, a clipped error bar); ``plots``
+    are paths relative to the output directory.
     """
 
     measure: str
-    within: tuple[str, str]
+    within: tuple[str, ...]
     subject: str
+    info: MeasureInfo
     n_used: int
     n_total: int
     anova: pd.DataFrame
     simple_effects: pd.DataFrame
+    pairwise: pd.DataFrame
+    rank_tests: pd.DataFrame
     descriptives: pd.DataFrame
     excluded: pd.DataFrame
-    plots: tuple[str, ...]
+    normality: Normality
+    order: OrderCheck
+    notes: tuple[str, ...] = ()
+    plots: tuple[str, ...] = ()
+
+    @property
+    def testable(self) -> bool:
+        """Whether the ANOVA could be run at all (at least two complete participants)."""
+        return not self.anova.empty
 
 
 @dataclass(frozen=True, slots=True, eq=False)
 class AnalysisResult:
-    """All measures of one run, the combined tables as written to CSV, and the files written."""
+    """All measures of one run, the combined tables as written to CSV (by file name), the run's warnings and the
+    files written."""
 
     measures: tuple[MeasureResult, ...]
-    anova: pd.DataFrame
-    simple_effects: pd.DataFrame
-    descriptives: pd.DataFrame
-    excluded: pd.DataFrame
+    tables: dict[str, pd.DataFrame]
+    warnings: tuple[str, ...]
     out_dir: Path
     files: tuple[Path, ...]
+    checked_rules: tuple[str, ...] = ()
+    """Exclusion rules whose column the table has (:mod:`analysis.exclusions`)."""
+
+    @property
+    def anova(self) -> pd.DataFrame:
+        return self.tables["anova.csv"]
+
+    @property
+    def simple_effects(self) -> pd.DataFrame:
+        return self.tables["simple_effects.csv"]

@@ -1,141 +1,143 @@
 """``analyze_long``: the whole statistics pipeline for a long table, written to one folder.
 
-For each measure (dependent variable): complete cases (``analysis.cells``), the two-way RM-ANOVA
-and the simple main effects of the first within factor within each level of the second
-(``analysis.anova``; robot within kitchen in the Steakhouse study, paper §VII), cell descriptives
-with within-subject CIs (``analysis.descriptives``), an interaction plot and a paired-lines plot
-(``analysis.plots``). Then the combined CSV files and the report.
+The table has one row per participant (``subject``) and cell of the within design (one to three factors).
+In order: levels put in the study's order (:mod:`analysis.levels`), questionnaire scales scored
+(:mod:`analysis.scales`), rows excluded by rule set aside with their reasons (:mod:`analysis.exclusions`), the
+censoring of ``ticks`` and the analysis of ``finished`` (:mod:`analysis.censoring`), scale reliability, then each
+measure (:mod:`analysis.measure_run`), its plots, the CSV files and the report.
 
 Files written into ``out_dir``::
 
-    anova.csv           measure, effect, df1, df2, SS, F, p, ges, partial_eta2
-    simple_effects.csv  measure, level, effect, df1, df2, F, p, p_holm, ges
+    anova.csv           measure, the columns of analysis.anova.ANOVA_COLUMNS, ges_ci_low, ges_ci_high
+    simple_effects.csv  measure, the columns of analysis.followups.SIMPLE_EFFECT_COLUMNS
+    pairwise.csv        measure, the columns of analysis.pairwise.PAIRWISE_COLUMNS
+    rank_tests.csv      measure, the columns of analysis.nonparametric.RANK_TEST_COLUMNS (rating measures)
     descriptives.csv    measure, <within factors>, n, mean, sd, se_ws, ci95_low, ci95_high
-    excluded.csv        measure, subject, reason
+    excluded.csv        measure, subject, reason (the complete-case rule)
+    exclusions.csv      subject, cell, rule, reason, included (rows left out by rule)
+    normality.csv       measure, n_residuals, W, p, note
+    order.csv           measure and the order check (analysis.order_check.ORDER_COLUMNS)
+    censoring.csv       cell, n, reached_horizon, share           (when the table has ``finished``)
+    finished.csv        factor, at, test, n, statistic, df, p, note (when the table has ``finished``)
+    reliability.csv     scale, condition, n, items, alpha, ci95_low, ci95_high, note (when scales are declared)
     plots/<measure>_interaction.png|.svg, plots/<measure>_paired.png|.svg
     report.md, report.html
+
+A measure that cannot be tested is reported as such with the reason; every other measure still runs, and the
+run's ``warnings`` list each such case.
 """
 
 from __future__ import annotations
 
 import re
+import zlib
 from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 
-from analysis.anova import rm_anova_2way, simple_main_effects
-from analysis.cells import complete_cases, require_columns
-from analysis.descriptives import DESCRIPTIVE_STATS, cell_descriptives
+from analysis.cells import require_columns, validate_design
+from analysis.censoring import censoring_table, finished_tests
 from analysis.errors import AnalysisInputError
+from analysis.exclusions import RULES, apply_exclusions, missing_reasons
+from analysis.levels import apply_level_order
+from analysis.measure_info import measure_info
+from analysis.measure_run import analyze_measure
+from analysis.normality import NORMALITY_COLUMNS
+from analysis.options import AnalysisOptions
+from analysis.order_check import ORDER_COLUMNS
 from analysis.plots import interaction_plot, paired_plot
 from analysis.report import write_report
+from analysis.report_quality import ReportContext
 from analysis.results import AnalysisResult, MeasureResult
+from analysis.scales import scale_reliability, score_scales
 
-ANOVA_CSV_COLUMNS = ["measure", "effect", "df1", "df2", "SS", "F", "p", "ges", "partial_eta2"]
-SIMPLE_CSV_COLUMNS = ["measure", "level", "effect", "df1", "df2", "F", "p", "p_holm", "ges"]
-EXCLUDED_CSV_COLUMNS = ["measure", "subject", "reason"]
-MIN_SUBJECTS = 2
+MAX_FACTORS = 3
+PER_MEASURE = ("anova", "simple_effects", "pairwise", "rank_tests", "descriptives", "excluded")
 
 
-def analyze_long(
-    df: pd.DataFrame,
-    measures: Sequence[str],
-    within: Sequence[str],
-    subject: str,
-    out_dir: Path | str,
-) -> AnalysisResult:
+def analyze_long(df: pd.DataFrame, measures: Sequence[str], within: Sequence[str], subject: str,
+                 out_dir: Path | str, options: AnalysisOptions | None = None,
+                 context: ReportContext | None = None) -> AnalysisResult:
     """Analyse each of ``measures`` in the long table ``df`` and write the results to ``out_dir``.
 
-    ``within = [A, B]``: simple main effects of A are tested within each level of B. Raises
-    ``AnalysisInputError`` for a missing column, a malformed design, or a measure with fewer than
-    two complete subjects; nothing is written then.
+    Raises ``AnalysisInputError`` (nothing written) for a missing or non-numeric column, a malformed design (a
+    factor with one level, two rows for one participant and cell) or a level order that does not fit.
     """
-    factors = _check_arguments(df, measures, within, subject)
+    options = options or AnalysisOptions()
+    within = _check_arguments(df, measures, within, subject, options)
+    table = apply_level_order(df, within, options.levels, options.strict_levels)
+    table = score_scales(table, options.items, options.scales) if options.scales else table
+    for measure in measures:
+        validate_design(table, measure, within, subject)
+    kept, exclusions = apply_exclusions(table, within, subject, options.include)
+    has_finished = options.finished in kept.columns
+    censoring = censoring_table(kept, within, options.finished) if has_finished else None
     out = Path(out_dir)
-    analysed = [_analyze_measure(df, m, factors, subject) for m in measures]
-
     out.mkdir(parents=True, exist_ok=True)
+    results: list[MeasureResult] = []
     files: list[Path] = []
-    final = []
-    for (result, clean), stem in zip(analysed, _file_stems(measures), strict=True):
-        plot_dir = out / "plots"
-        plots = interaction_plot(
-            result.descriptives, result.measure, factors, plot_dir / f"{stem}_interaction"
-        )
-        plots += paired_plot(clean, result.measure, factors, subject, plot_dir / f"{stem}_paired")
-        files += plots
-        final.append(replace(result, plots=tuple(p.relative_to(out).as_posix() for p in plots)))
-
-    anova = _stack(final, "anova", ANOVA_CSV_COLUMNS)
-    simple = _stack(final, "simple_effects", SIMPLE_CSV_COLUMNS)
-    descriptives = _stack(final, "descriptives", ["measure", *factors, *DESCRIPTIVE_STATS])
-    excluded = _stack(final, "excluded", EXCLUDED_CSV_COLUMNS)
-    for name, frame in [
-        ("anova.csv", anova),
-        ("simple_effects.csv", simple),
-        ("descriptives.csv", descriptives),
-        ("excluded.csv", excluded),
-    ]:
+    for measure, stem in zip(measures, _file_stems(measures), strict=True):
+        info = measure_info(measure, kept[measure], options.horizon, options.ratings)
+        result, clean = analyze_measure(kept, measure, within, subject, info, options, missing_reasons(exclusions),
+                                        censoring)
+        if result.testable and options.plots:
+            result, written = _plots(result, clean, out, stem, options.seed)
+            files += written
+        results.append(result)
+    tables = {
+        **{f"{name}.csv": _stack(results, name) for name in PER_MEASURE},
+        "exclusions.csv": exclusions,
+        "normality.csv": pd.DataFrame([{"measure": r.measure, "n_residuals": r.normality.n_residuals,
+                                        "W": r.normality.w, "p": r.normality.p, "note": r.normality.note}
+                                       for r in results], columns=NORMALITY_COLUMNS),
+        "order.csv": pd.DataFrame([r.order.row() for r in results], columns=ORDER_COLUMNS),
+    }
+    if censoring is not None:
+        tables["censoring.csv"] = censoring
+        tables["finished.csv"] = finished_tests(kept, within, subject, options.finished)
+    if options.scales:
+        tables["reliability.csv"] = scale_reliability(kept, options.items, options.scales, within)
+    for name, frame in tables.items():
         frame.to_csv(out / name, index=False)
         files.append(out / name)
-    files += write_report(final, out)
-    return AnalysisResult(
-        measures=tuple(final),
-        anova=anova,
-        simple_effects=simple,
-        descriptives=descriptives,
-        excluded=excluded,
-        out_dir=out,
-        files=tuple(files),
-    )
+    warnings = tuple(f"{r.measure}: {note}" for r in results for note in r.notes if "not testable" in note)
+    checked = tuple(rule.name for rule in RULES if rule.column in df.columns)
+    analysis = AnalysisResult(tuple(results), tables, warnings, out, (), checked)
+    files += write_report(analysis, out, options, context)
+    return replace(analysis, files=tuple(files))
 
 
-def _analyze_measure(
-    df: pd.DataFrame, measure: str, within: tuple[str, str], subject: str
-) -> tuple[MeasureResult, pd.DataFrame]:
-    """The statistics of one measure, and the complete-case table they were computed from."""
-    clean, excluded = complete_cases(df, measure, within, subject)
-    n_used = int(clean[subject].nunique())
-    if n_used < MIN_SUBJECTS:
-        raise AnalysisInputError(
-            f"measure {measure!r}: {n_used} subject(s) have a value in every cell of "
-            f"{' × '.join(within)}; at least {MIN_SUBJECTS} are needed"
-        )
-    a, b = within
-    result = MeasureResult(
-        measure=measure,
-        within=within,
-        subject=subject,
-        n_used=n_used,
-        n_total=int(df[subject].nunique()),
-        anova=rm_anova_2way(clean, measure, within, subject),
-        simple_effects=simple_main_effects(clean, measure, a, b, subject),
-        descriptives=cell_descriptives(clean, measure, within, subject),
-        excluded=excluded,
-        plots=(),
-    )
-    return result, clean
+def _plots(result: MeasureResult, clean: pd.DataFrame, out: Path, stem: str, seed: int
+           ) -> tuple[MeasureResult, list[Path]]:
+    plot_dir = out / "plots"
+    paths, clipped = interaction_plot(result.descriptives, result.info, result.within,
+                                      plot_dir / f"{stem}_interaction")
+    rng = np.random.default_rng([seed, zlib.crc32(result.measure.encode()), 1])
+    paths += paired_plot(clean, result.info, result.within, result.subject, plot_dir / f"{stem}_paired", rng)
+    notes = result.notes
+    if clipped:
+        notes += (f"error bars of the interaction plot are cut at the natural bounds of {result.measure} "
+                  f"({_bounds(result.info.lower, result.info.upper)}); the CIs in the table are not",)
+    return replace(result, notes=notes, plots=tuple(p.relative_to(out).as_posix() for p in paths)), paths
 
 
-def _check_arguments(
-    df: pd.DataFrame, measures: Sequence[str], within: Sequence[str], subject: str
-) -> tuple[str, str]:
+def _check_arguments(df: pd.DataFrame, measures: Sequence[str], within: Sequence[str], subject: str,
+                     options: AnalysisOptions) -> tuple[str, ...]:
     if isinstance(measures, str):
-        raise AnalysisInputError(
-            f"measures must be a list of column names, got the string {measures!r}"
-        )
+        raise AnalysisInputError(f"measures must be a list of column names, got the string {measures!r}")
     if not measures:
         raise AnalysisInputError("no measure given")
     if len(set(measures)) != len(measures):
         raise AnalysisInputError(f"a measure is named twice: {list(measures)}")
-    if len(within) != 2:
-        raise AnalysisInputError(
-            f"the analysis needs exactly two within factors, got {list(within)}"
-        )
-    require_columns(df, [*within, subject, *measures])
-    return within[0], within[1]
+    if not 1 <= len(within) <= MAX_FACTORS or len(set(within)) != len(within):
+        raise AnalysisInputError(f"the analysis takes one to {MAX_FACTORS} distinct within factors, got "
+                                 f"{list(within)}")
+    scale_columns = {s.column for s in options.scales}
+    require_columns(df, [*within, subject, *(m for m in measures if m not in scale_columns)])
+    return tuple(within)
 
 
 def _file_stems(measures: Sequence[str]) -> list[str]:
@@ -150,9 +152,14 @@ def _file_stems(measures: Sequence[str]) -> list[str]:
     return stems
 
 
-def _stack(results: list[MeasureResult], attribute: str, columns: list[str]) -> pd.DataFrame:
-    frames = [getattr(r, attribute).assign(measure=r.measure) for r in results]
-    non_empty = [frame for frame in frames if not frame.empty]
+def _stack(results: list[MeasureResult], attribute: str) -> pd.DataFrame:
+    frames = [getattr(r, attribute) for r in results]
+    columns = ["measure", *next((list(f.columns) for f in frames), [])]
+    non_empty = [f.assign(measure=r.measure) for r, f in zip(results, frames, strict=True) if not f.empty]
     if not non_empty:
         return pd.DataFrame(columns=columns)
     return pd.concat(non_empty, ignore_index=True)[columns]
+
+
+def _bounds(lower: float, upper: float) -> str:
+    return f"{lower:g} to {upper:g}"

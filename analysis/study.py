@@ -1,33 +1,39 @@
 """``analyze_study``: export a stored study, then run the repeated-measures analysis on its cells.
 
-The export goes to ``<out>/data/`` (see :mod:`analysis.export`); ``cells.csv`` is read back from there and
-handed to :func:`analysis.run.analyze_long` with ``within = (robot, kitchen)`` and ``subject =
-participant``, so the statistics are exactly those of the exported file. The report gets a section listing
-every participant left out of the analysis with the reason: flagged as a test run, excluded by the
-experimenter, or missing a cell (per measure, the complete-case rule of :mod:`analysis.cells` applies too).
+The export goes to ``<out>/data/`` (see :mod:`analysis.export`); ``cells.csv`` is read back from there, so the
+statistics are exactly those of the exported file. The design comes from the configuration stored with the
+study (:mod:`analysis.study_design`): the within factors of ``factors`` that have two or more levels, their
+levels in the study's order, the horizon (``ticks``' bound), the rating items and the scales, which are scored
+and analysed by default beside :data:`DEFAULT_MEASURES`. Each cell carries its trial's ``invalid_reason`` and
+``missed_decisions_pct`` from ``trials.csv`` when the export records them, so invalid trials are left out and
+listed (:mod:`analysis.exclusions`). The report's data-quality section lists everyone the export left out (test
+runs, exclusions by the experimenter, missing cells with why each is missing) and every invalid trial.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 import pandas as pd
 from sqlalchemy import Engine
 
-from analysis.document import Block, BulletList, Heading, Paragraph, render_html, render_markdown
 from analysis.errors import AnalysisInputError
+from analysis.exclusions import INVALID
 from analysis.export import ExportResult, export_study
-from analysis.report import TITLE, build_report
+from analysis.options import AnalysisOptions
+from analysis.report_quality import ReportContext
 from analysis.results import AnalysisResult
 from analysis.run import analyze_long
+from analysis.study_design import StudyDesign
 
 DEFAULT_MEASURES: tuple[str, ...] = (
     "kb_gap_mean", "kb_gap_ticks_pct", "interrupts", "interrupts_per_selection", "ticks", "robot_in_fov_pct")
-WITHIN: tuple[str, str] = ("robot", "kitchen")
 SUBJECT = "participant"
 DATA_DIR = "data"
+TRIAL_COLUMNS = (INVALID.column, INVALID.detail_column)
+"""Columns of ``trials.csv`` the exclusion rules read, joined onto the cells by ``trial_id``."""
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -36,48 +42,69 @@ class StudyAnalysis:
     result: AnalysisResult
     cells: pd.DataFrame
     """``cells.csv`` as read back from the export (the analysis input)."""
+    design: StudyDesign
 
 
-def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str,
-                  measures: Sequence[str] = DEFAULT_MEASURES) -> StudyAnalysis:
-    """Export ``study_id`` into ``<out_dir>/data`` and analyse ``measures`` into ``out_dir``."""
+def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, measures: Sequence[str] | None = None,
+                  include: Collection[str] = (), seed: int = 0, plots: bool = True) -> StudyAnalysis:
+    """Export ``study_id`` into ``<out_dir>/data`` and analyse ``measures`` (default: :data:`DEFAULT_MEASURES`
+    and the study's scales) into ``out_dir``; ``include`` names exclusion rules whose rows are kept."""
     out = Path(out_dir)
     export = export_study(source, study_id, out / DATA_DIR)
-    cells = pd.read_csv(out / DATA_DIR / "cells.csv")
+    cells = pd.read_csv(out / DATA_DIR / "cells.csv", dtype={SUBJECT: str})
+    trials = pd.read_csv(out / DATA_DIR / "trials.csv", dtype={SUBJECT: str})
     if cells.empty:
         raise AnalysisInputError(
             f"study {study_id!r} has no analysable main trial (cells.csv is empty); "
             f"see {out / DATA_DIR / 'excluded.csv'} and participants.csv")
-    result = analyze_long(cells, list(measures), list(WITHIN), SUBJECT, out)
-    _write_report(result, export, study_id)
-    return StudyAnalysis(export, result, cells)
+    design = StudyDesign.from_config(export.dataset.config)
+    within = [f for f in design.factors if f in cells.columns and cells[f].nunique() > 1]
+    if not within:
+        raise AnalysisInputError(f"study {study_id!r} has no within factor with two levels in its cells "
+                                 f"(factors {list(design.factors) or 'none'}; see {out / DATA_DIR / 'cells.csv'})")
+    ratings = {i.column: (float(i.minimum), float(i.maximum)) for i in design.items}
+    ratings.update({s.column: _scale_range(s.items, ratings) for s in design.scales})
+    options = AnalysisOptions(
+        levels=design.levels, strict_levels=False, ratings=ratings, items=design.items, scales=design.scales,
+        include=frozenset(include), horizon=design.horizon, seed=seed, plots=plots,
+        title=f"Repeated-measures analysis: study {study_id}")
+    chosen = list(measures) if measures is not None else [*DEFAULT_MEASURES, *(s.column for s in design.scales)]
+    result = analyze_long(attach_trial_columns(cells, trials), chosen, within, SUBJECT, out, options,
+                          _context(export, trials, study_id, design, within))
+    return StudyAnalysis(export, result, cells, design)
 
 
-def participants_section(export: ExportResult, study_id: str) -> list[Block]:
-    """Who is in the store, who is in the cells, and every participant left out with the reason."""
-    tables = export.dataset.tables
-    people, excluded = tables["participants.csv"], tables["excluded.csv"]
-    blocks: list[Block] = [
-        Heading(2, "Participants"),
-        Paragraph(
-            f"Study {study_id}: {len(people)} participants in the store, "
-            f"{int((people['cells'] > 0).sum())} with at least one cell in {DATA_DIR}/cells.csv, "
-            f"{int(people['complete'].sum())} with a cell in every condition. "
-            f"The exported files and their data dictionary are in {DATA_DIR}/."),
-    ]
-    if excluded.empty:
-        blocks.append(Paragraph("No participant was left out."))
-        return blocks
-    blocks.append(Paragraph(f"Left out of the complete-case analysis ({DATA_DIR}/excluded.csv):"))
-    blocks.append(BulletList(tuple(
-        f"participant {row.participant} ({row.category}): {row.reason}" for row in excluded.itertuples())))
-    return blocks
+def attach_trial_columns(cells: pd.DataFrame, trials: pd.DataFrame) -> pd.DataFrame:
+    """``cells`` with the rule columns of their trial (:data:`TRIAL_COLUMNS`) that ``trials`` has and ``cells``
+    lacks, joined on ``trial_id``."""
+    columns = [c for c in TRIAL_COLUMNS if c in trials.columns and c not in cells.columns]
+    if not columns or "trial_id" not in cells.columns:
+        return cells
+    return cells.merge(trials[["trial_id", *columns]], on="trial_id", how="left")
 
 
-def _write_report(result: AnalysisResult, export: ExportResult, study_id: str) -> None:
-    blocks = build_report(result.measures)
-    first_measure = next((i for i, b in enumerate(blocks) if isinstance(b, Heading) and b.level == 2),
-                         len(blocks))
-    blocks[first_measure:first_measure] = participants_section(export, study_id)
-    (result.out_dir / "report.md").write_text(render_markdown(blocks), encoding="utf-8")
-    (result.out_dir / "report.html").write_text(render_html(blocks, TITLE), encoding="utf-8")
+def _context(export: ExportResult, trials: pd.DataFrame, study_id: str, design: StudyDesign,
+             within: list[str]) -> ReportContext:
+    people = export.dataset.tables["participants.csv"]
+    excluded = export.dataset.tables["excluded.csv"]
+    single = [f for f in design.single_level] + [f for f in design.factors if f not in within]
+    summary = (f"Study {study_id}: {len(people)} participants in the store, {int((people['cells'] > 0).sum())} "
+               f"with at least one cell in {DATA_DIR}/cells.csv, {int(people['complete'].sum())} with a cell in "
+               f"every condition. Within factors: {', '.join(within)}"
+               + (f" ({', '.join(single)} has a single level here and is not a factor)" if single else "")
+               + f". The exported files and their data dictionary are in {DATA_DIR}/.")
+    left_out = tuple(f"participant {r.participant} ({r.category}): {r.reason}" for r in excluded.itertuples())
+    invalid: tuple[str, ...] | None = None
+    if INVALID.column in trials.columns:
+        marked = trials[(trials["kind"] == "main") & trials[INVALID.column].notna()
+                        & (trials[INVALID.column].astype(str).str.strip() != "")]
+        invalid = tuple(f"participant {r.participant}, main trial {int(r.index) + 1} ({r.condition}, attempt "
+                        f"{int(r.attempt)}): {getattr(r, INVALID.column)}" for r in marked.itertuples())
+    return ReportContext(summary, left_out, invalid)
+
+
+def _scale_range(columns: Sequence[str], ratings: dict[str, tuple[float, float]]) -> tuple[float, float]:
+    bounds = [ratings[c] for c in columns if c in ratings]
+    if not bounds:
+        return (float("-inf"), float("inf"))
+    return (min(b[0] for b in bounds), max(b[1] for b in bounds))

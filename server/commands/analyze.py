@@ -1,19 +1,21 @@
-"""``steakhouse analyze``: two-way repeated-measures analysis of a long CSV or of a stored study.
+"""``steakhouse analyze``: repeated-measures analysis of a long CSV or of a stored study.
 
     steakhouse analyze --csv cells.csv --dv ticks,interrupts --within robot,kitchen \\
-        --subject participant --out results/
-    steakhouse analyze --study paper_study --out results/ [--dv kb_gap_mean,ticks] [--database-url URL]
+        --subject participant --out results/ [--levels robot=fov_aware,baseline] [--ratings q.trust=1..7]
+    steakhouse analyze --study paper_study --out results/ [--dv kb_gap_mean,ticks] [--include-invalid]
+        [--database-url URL]
 
-The CSV has one row per subject and within cell. The first within factor is the one whose simple
-main effects are tested within each level of the second (robot within kitchen). Output files are
-listed in ``analysis.run``. A stored study is first exported to ``<out>/data/`` (``analysis.export``);
-its ``cells.csv`` is analysed with ``within = robot, kitchen`` and ``subject = participant`` (default
-measures: ``analysis.study.DEFAULT_MEASURES``).
+The CSV has one row per subject and within cell, with one to three within factors. Levels are taken in the order
+they first appear unless ``--levels`` gives it. A stored study is first exported to ``<out>/data/``
+(``analysis.export``) and analysed with the factors, level order, horizon and scales its configuration declares
+(``analysis.study``). Output files are listed in ``analysis.run``. A test that cannot be computed is reported as
+not testable with the reason (a warning on stderr); the exit code is still 0.
 """
 
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -24,28 +26,39 @@ def register(subparsers: Any) -> None:
     """Add the ``analyze`` subcommand to the ``steakhouse`` parser."""
     p = subparsers.add_parser(
         "analyze",
-        help="two-way repeated-measures ANOVA, descriptives, plots and report",
+        help="repeated-measures ANOVA with sphericity corrections, follow-ups, data quality, plots and report",
         description=(
-            "Two-way repeated-measures ANOVA of each --dv on the two --within factors, simple "
-            "main effects of the first factor within each level of the second (Holm-adjusted), "
-            "descriptives with within-subject 95 % CIs, plots, and a Markdown/HTML report. "
-            "The CSV has one row per subject and within cell. With --study the stored study is "
-            "exported to OUT/data/ first and its cells.csv analysed (robot × kitchen, subject "
-            "participant; participants left out are listed with reasons in the report)."
+            "Repeated-measures ANOVA of each --dv on one to three --within factors (Mauchly's test, "
+            "Greenhouse-Geisser and Huynh-Feldt corrections, effect sizes with CIs), simple main effects of every "
+            "factor, Holm-adjusted pairwise comparisons for factors with more than two levels, rank tests for "
+            "ratings, descriptives with within-subject 95% CIs, plots, and a Markdown/HTML report that opens with "
+            "data quality (who was left out and why, invalid trials, censored cells, order effects, residual "
+            "normality). With --study the stored study is exported to OUT/data/ first and analysed with the "
+            "design its configuration declares."
         ),
         epilog="examples: steakhouse analyze --csv cells.csv --dv ticks,interrupts "
         "--within robot,kitchen --subject participant --out results/ | "
         "steakhouse analyze --study paper_study --out results/",
     )
     source = p.add_mutually_exclusive_group(required=True)
-    source.add_argument("--csv", metavar="FILE", type=Path, help="long table, one row per cell")
+    source.add_argument("--csv", metavar="FILE", type=Path, help="long table, one row per subject and cell")
     source.add_argument("--study", metavar="ID", help="analyse a study from the store")
     p.add_argument("--dv", metavar="COL[,COL...]",
                    help="dependent variable column(s) (with --study default: kb_gap_mean, kb_gap_ticks_pct, "
-                        "interrupts, interrupts_per_selection, ticks, robot_in_fov_pct)")
-    p.add_argument("--within", metavar="A,B", help="the two within factors, e.g. robot,kitchen")
+                        "interrupts, interrupts_per_selection, ticks, robot_in_fov_pct and the study's scales)")
+    p.add_argument("--within", metavar="A[,B[,C]]", help="one to three within factors, e.g. robot,kitchen")
     p.add_argument("--subject", metavar="COL", help="subject (participant) id column")
     p.add_argument("--out", metavar="DIR", type=Path, help="output folder (created if needed)")
+    p.add_argument("--levels", metavar="FACTOR=A,B,...", action="append", default=[],
+                   help="with --csv: the order of a factor's levels (repeat per factor; default: order of first "
+                        "appearance)")
+    p.add_argument("--ratings", metavar="COL[=MIN..MAX][,...]",
+                   help="with --csv: columns that are ratings (rank tests beside the ANOVA), with their scale")
+    p.add_argument("--include-invalid", action="store_true",
+                   help="keep trials the server marked invalid (listed either way)")
+    p.add_argument("--no-plots", action="store_true", help="skip the plots (the slowest part of a run)")
+    p.add_argument("--seed", metavar="N", type=int, default=0,
+                   help="seed of the bootstrap CI of generalized eta squared and of the plots' jitter (default 0)")
     p.add_argument("--database-url", metavar="URL",
                    help="with --study: SQLAlchemy URL of the store (default: the one steakhouse serve uses)")
     p.set_defaults(handler=handle, subparser=p)
@@ -53,8 +66,9 @@ def register(subparsers: Any) -> None:
 
 def handle(args: argparse.Namespace) -> int:
     """Run the analysis; usage problems raise ``UsageError`` (exit code 2)."""
+    include = frozenset({"invalid"} if args.include_invalid else ())
     if args.study is not None:
-        return _handle_study(args)
+        return _handle_study(args, include)
     if args.database_url is not None:
         raise UsageError("--database-url goes with --study")
     missing = [flag for flag in ("dv", "within", "subject", "out") if getattr(args, flag) is None]
@@ -62,48 +76,55 @@ def handle(args: argparse.Namespace) -> int:
         raise UsageError(f"--csv needs {', '.join('--' + m for m in missing)}")
     measures = _names(args.dv, "--dv")
     within = _names(args.within, "--within")
-    if len(within) != 2:
-        raise UsageError(f"--within needs exactly two factors (A,B), got {args.within!r}")
+    if not 1 <= len(within) <= 3:
+        raise UsageError(f"--within takes one to three factors (A, A,B or A,B,C), got {args.within!r}")
     df = _read_csv(args.csv)
 
     from analysis.errors import AnalysisInputError
+    from analysis.levels import parse_level_option
+    from analysis.options import AnalysisOptions
     from analysis.run import analyze_long
 
     try:
-        result = analyze_long(df, measures, within, args.subject, args.out)
+        options = AnalysisOptions(levels=parse_level_option(args.levels), ratings=_ratings(args.ratings),
+                                  include=include, seed=args.seed, plots=not args.no_plots)
+        result = analyze_long(df, measures, within, args.subject, args.out, options)
     except AnalysisInputError as exc:
         raise UsageError(f"{args.csv}: {exc}") from exc
-    for m in result.measures:
-        print(f"{m.measure}: n = {m.n_used} of {m.n_total} subjects, {len(m.excluded)} excluded")
-    print(f"wrote {len(result.files)} files to {result.out_dir}")
+    _print(result)
     return 0
 
 
-def _handle_study(args: argparse.Namespace) -> int:
+def _handle_study(args: argparse.Namespace, include: frozenset[str]) -> int:
     """Export the stored study and analyse its cells."""
-    given = [flag for flag in ("within", "subject") if getattr(args, flag) is not None]
+    given = [flag for flag in ("within", "subject", "levels", "ratings") if getattr(args, flag)]
     if given:
-        raise UsageError(f"--study uses within = robot,kitchen and subject = participant; drop "
-                         f"{', '.join('--' + g for g in given)}")
+        raise UsageError(f"--study takes the design from the study; drop {', '.join('--' + g for g in given)}")
     if args.out is None:
         raise UsageError("--study needs --out")
 
     from analysis.errors import AnalysisInputError
-    from analysis.study import DEFAULT_MEASURES, analyze_study
+    from analysis.study import analyze_study
     from server.commands.export import database_url
 
-    measures = _names(args.dv, "--dv") if args.dv is not None else list(DEFAULT_MEASURES)
+    measures = _names(args.dv, "--dv") if args.dv is not None else None
     try:
-        done = analyze_study(database_url(args.database_url), args.study, args.out, measures)
+        done = analyze_study(database_url(args.database_url), args.study, args.out, measures, include, args.seed,
+                             plots=not args.no_plots)
     except AnalysisInputError as exc:
         raise UsageError(f"study {args.study}: {exc}") from exc
-    left_out = done.export.dataset.excluded
-    for m in done.result.measures:
-        print(f"{m.measure}: n = {m.n_used} of {m.n_total} subjects, {len(m.excluded)} excluded")
-    for row in left_out.itertuples():
+    for row in done.export.dataset.excluded.itertuples():
         print(f"left out: participant {row.participant} ({row.category}): {row.reason}")
-    print(f"wrote {len(done.result.files) + len(done.export.files)} files to {done.result.out_dir}")
+    _print(done.result, len(done.export.files))
     return 0
+
+
+def _print(result: Any, extra_files: int = 0) -> None:
+    for m in result.measures:
+        print(f"{m.measure}: n = {m.n_used} of {m.n_total} subjects, {len(m.excluded)} excluded")
+    for warning in result.warnings:
+        print(f"warning: {warning}", file=sys.stderr)
+    print(f"wrote {len(result.files) + extra_files} files to {result.out_dir}")
 
 
 def _names(value: str, flag: str) -> list[str]:
@@ -111,6 +132,21 @@ def _names(value: str, flag: str) -> list[str]:
     if not all(names):
         raise UsageError(f"{flag} {value!r} has an empty column name")
     return names
+
+
+def _ratings(value: str | None) -> dict[str, tuple[float, float]]:
+    """``fluency=1..7,trust`` → ``{"fluency": (1, 7), "trust": (-inf, inf)}``."""
+    out: dict[str, tuple[float, float]] = {}
+    for part in _names(value, "--ratings") if value else []:
+        name, sep, bounds = part.partition("=")
+        low, dots, high = bounds.partition("..")
+        try:
+            out[name] = (float(low), float(high)) if sep else (float("-inf"), float("inf"))
+        except ValueError:
+            raise UsageError(f"--ratings {part!r}: expected COL or COL=MIN..MAX (e.g. trust=1..7)") from None
+        if sep and (not dots or out[name][0] >= out[name][1]):
+            raise UsageError(f"--ratings {part!r}: expected COL=MIN..MAX with MIN < MAX")
+    return out
 
 
 def _read_csv(path: Path) -> Any:

@@ -79,8 +79,9 @@ def test_malformed_designs_are_refused(cells, change, message) -> None:
         complete_cases(change(cells()), "ticks", WITHIN, "participant")
 
 
-def test_factor_levels_are_sorted_or_in_category_order(cells) -> None:
+def test_factor_levels_in_order_of_first_appearance_or_category_order(cells) -> None:
     df = cells()
-    assert factor_levels(df, "kitchen") == ["mid_2", "none_3"]
+    assert factor_levels(df, "kitchen") == ["none_3", "mid_2"]
+    assert factor_levels(df.iloc[::-1], "kitchen") == ["mid_2", "none_3"]
     df["kitchen"] = pd.Categorical(df["kitchen"], categories=["none_3", "mid_2", "unused"])
     assert factor_levels(df, "kitchen") == ["none_3", "mid_2"]

@@ -1,9 +1,15 @@
-"""The Markdown and HTML report."""
+"""The Markdown and HTML report: data quality first, then method, then each measure."""
 
 from __future__ import annotations
 
+import numpy as np
+import pandas as pd
+from steakhouse_published import reacttime_long
+
 from analysis.document import render_markdown
-from analysis.report import apa_sentences, build_report, write_report
+from analysis.options import AnalysisOptions
+from analysis.report import build_report
+from analysis.report_measure import apa_sentences
 from analysis.run import analyze_long
 
 
@@ -15,28 +21,50 @@ def test_report_lists_exclusions_sentences_tables_and_plots(cells, tmp_path) -> 
     md = (tmp_path / "report.md").read_text()
     page = (tmp_path / "report.html").read_text()
     for text in (md, page):
-        assert "n used = 11 of 12 subjects (1 excluded)" in text
-        assert "subject P09: missing cell robot=fov_aware, kitchen=mid_2" in text
+        assert text.index("Data quality") < text.index("Method") < text.index("Results")
+        assert "n used = 11 of 12 participants (1 left out by the complete-case rule)" in text
+        assert "participant P09: missing cell robot=fov_aware, kitchen=mid_2" in text
         assert "Main effect of robot: F(1, 10) = " in text
-        assert "Effect of robot in kitchen = mid_2: F(1, 10) = " in text
+        assert "Effect of robot at kitchen=mid_2: F(1, 10) = " in text
+        assert "Effect of kitchen at robot=baseline: F(1, 10) = " in text
         assert "Holm-adjusted p" in text
-        assert "within-subject 95% CI" in text
+        assert "95% CI (within)" in text
     assert "![ticks: ticks_interaction](plots/ticks_interaction.png)" in md
-    assert "![ticks: ticks_paired](plots/ticks_paired.png)" in md
     assert '<img src="plots/ticks_interaction.png"' in page
     assert "| robot * kitchen | 1 | 10 |" in md
     assert "| fov_aware | mid_2 | 11 |" in md
     sentences = apa_sentences(result.measures[0])
-    assert len(sentences) == 5
+    assert len(sentences) == 3 + 4
     assert all(sentence in md for sentence in sentences)
 
 
-def test_no_exclusion_is_said_explicitly(cells, tmp_path) -> None:
-    result = analyze_long(cells(), ["ticks"], ["robot", "kitchen"], "participant", tmp_path)
-    assert "No subject was excluded." in render_markdown(build_report(result.measures))
+def test_corrected_degrees_of_freedom_reach_the_sentence_and_the_rule_is_stated(tmp_path) -> None:
+    df = reacttime_long()
+    df["cell"] = df["noise"] + df["deg"]
+    result = analyze_long(df, ["rt"], ["cell"], "subject", tmp_path, AnalysisOptions(plots=False))
+    row = result.anova.iloc[0]
+    sentence = apa_sentences(result.measures[0])[0]
+    assert row["correction"] == "GG"
+    assert sentence.startswith(f"Main effect of cell: F({row['df1_gg']:.2f}, {row['df2_gg']:.2f}) = 38.03, p < .001")
+    assert sentence.endswith("(Greenhouse–Geisser, ε = .49).")
+    md = (tmp_path / "report.md").read_text()
+    assert "Greenhouse–Geisser corrected test is read when ε_GG ≤ 0.75" in md
+    assert "| cell | 0.031 | 24.64 | 14 | .048 | 0.485 | 0.678 |" in md  # Mauchly's test
 
 
-def test_empty_report(tmp_path) -> None:
-    md, page = write_report([], tmp_path)
-    assert "No measure was analysed." in md.read_text()
-    assert "No measure was analysed." in page.read_text()
+def test_a_measure_that_cannot_be_tested_says_so_and_the_others_run(cells, tmp_path) -> None:
+    df = cells().assign(flat=1.0)
+    result = analyze_long(df, ["flat", "ticks"], ["robot", "kitchen"], "participant", tmp_path,
+                          AnalysisOptions(plots=False))
+    assert result.warnings == ("flat: not testable: every value is 1, nothing varies",)
+    assert not result.measures[0].testable and result.measures[1].testable
+    md = (tmp_path / "report.md").read_text()
+    assert "- flat: not testable: every value is 1, nothing varies" in md
+    assert "Main effect of robot" in md
+
+
+def test_no_measure_is_said_explicitly(tmp_path) -> None:
+    result = analyze_long(pd.DataFrame({"s": [1, 1, 2, 2], "f": ["a", "b"] * 2, "y": np.arange(4.0)}), ["y"], ["f"],
+                          "s", tmp_path, AnalysisOptions(plots=False))
+    blocks = build_report(result.__class__((), result.tables, (), tmp_path, ()), AnalysisOptions())
+    assert "No measure was analysed." in render_markdown(blocks)

@@ -1,0 +1,52 @@
+"""Simple main effects: each within factor tested within every combination of the levels of the others.
+
+In a robot × kitchen design that is the robot effect in each kitchen *and* the kitchen effect with each robot
+(both directions); with three factors, the effect of each factor in each cell of the other two. Each simple
+effect is a one-way repeated-measures ANOVA on the participants' values in that slice (its own error term,
+Maxwell & Delaney 2004, ch. 12), with the same sphericity columns and reading rule as the omnibus table
+(:mod:`analysis.anova`). The p values read are Holm-adjusted (Holm 1979) within each family: the simple effects
+of one factor across the levels of the others.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import pandas as pd
+
+from analysis.anova import rm_anova
+from analysis.cells import slices
+
+SIMPLE_EFFECT_COLUMNS = [
+    "factor", "at", "df1", "df2", "MSE", "F", "p", "ges", "eps_gg", "eps_hf", "correction",
+    "df1_read", "df2_read", "p_read", "p_holm", "note",
+]
+
+
+def simple_effects(df: pd.DataFrame, dv: str, within: Sequence[str], subject: str) -> pd.DataFrame:
+    """One row per factor and combination of the other factors' levels (``at``: ``kitchen=mid_2``); empty for a
+    one-factor design. ``df`` is complete."""
+    within = list(within)
+    rows: list[pd.DataFrame] = []
+    for factor in within if len(within) > 1 else []:
+        family = []
+        for label, part in slices(df, within, factor):
+            row = rm_anova(part, dv, [factor], subject).iloc[[0]].copy()
+            row.insert(0, "factor", factor)
+            row.insert(1, "at", label)
+            family.append(row)
+        block = pd.concat(family, ignore_index=True)
+        block["p_holm"] = holm(block["p_read"])
+        rows.append(block)
+    if not rows:
+        return pd.DataFrame(columns=SIMPLE_EFFECT_COLUMNS)
+    return pd.concat(rows, ignore_index=True)[SIMPLE_EFFECT_COLUMNS]
+
+
+def holm(pvalues: pd.Series) -> pd.Series:
+    """Holm (1979) step-down adjustment, ``p_(i) → max_{j ≤ i} min(1, (m − j + 1) p_(j))``; NaN p values (tests
+    that could not be computed) are left out of m and stay NaN."""
+    import pingouin as pg
+
+    _, adjusted = pg.multicomp(pvalues.to_numpy(dtype=float), method="holm")
+    return pd.Series(adjusted, index=pvalues.index, name="p_holm")

@@ -1,0 +1,80 @@
+"""The statistics of one measure: complete cases, the ANOVA with sphericity and effect-size intervals, follow-ups,
+rank tests for ratings, descriptives, residual normality and the order check.
+
+Nothing here raises for data a study can produce: a measure with fewer than two complete participants gets
+empty tables and a note; a test that cannot be computed is a row with NaN statistics and a note (see
+:mod:`analysis.anova`). Malformed input (a missing or non-numeric column) is refused earlier, in
+:mod:`analysis.run`.
+"""
+
+from __future__ import annotations
+
+import zlib
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import pandas as pd
+
+from analysis.anova import ANOVA_COLUMNS, anova_table, ges_bootstrap
+from analysis.cells import complete_cases, factor_levels, wide_matrix
+from analysis.censoring import censoring_note
+from analysis.descriptives import DESCRIPTIVE_STATS, cell_descriptives
+from analysis.followups import SIMPLE_EFFECT_COLUMNS, simple_effects
+from analysis.measure_info import MeasureInfo
+from analysis.nonparametric import RANK_TEST_COLUMNS, rank_tests
+from analysis.normality import Normality, residual_normality
+from analysis.options import AnalysisOptions
+from analysis.order_check import OrderCheck, order_check
+from analysis.pairwise import PAIRWISE_COLUMNS, pairwise_comparisons
+from analysis.results import MeasureResult
+
+MIN_SUBJECTS = 2
+ANOVA_RESULT_COLUMNS = [*ANOVA_COLUMNS, "ges_ci_low", "ges_ci_high"]
+
+
+def analyze_measure(df: pd.DataFrame, measure: str, within: Sequence[str], subject: str, info: MeasureInfo,
+                    options: AnalysisOptions, why_missing: Mapping[tuple[object, str], str],
+                    censoring: pd.DataFrame | None) -> tuple[MeasureResult, pd.DataFrame]:
+    """The result for ``measure`` and the complete-case table it was computed from."""
+    within = tuple(within)
+    clean, excluded = complete_cases(df, measure, within, subject, why_missing)
+    n_used = int(clean[subject].nunique())
+    notes = [censoring_note(censoring, measure)] if censoring is not None else []
+    base = dict(measure=measure, within=within, subject=subject, info=info, n_used=n_used,
+                n_total=int(df[subject].nunique()), excluded=excluded)
+    constant = clean[measure].nunique() == 1
+    if n_used < MIN_SUBJECTS or constant or any(len(factor_levels(clean, f)) < 2 for f in within):
+        reason = (f"not testable: every value is {clean[measure].iloc[0]:g}, nothing varies" if constant and
+                  n_used >= MIN_SUBJECTS else
+                  f"not testable: {n_used} participant(s) have a value in every cell of {' × '.join(within)}; "
+                  f"at least {MIN_SUBJECTS} are needed")
+        empty = MeasureResult(**base, anova=_empty(ANOVA_RESULT_COLUMNS), simple_effects=_empty(
+            SIMPLE_EFFECT_COLUMNS), pairwise=_empty(PAIRWISE_COLUMNS), rank_tests=_empty(RANK_TEST_COLUMNS),
+            descriptives=cell_descriptives(clean, measure, within, subject) if n_used >= MIN_SUBJECTS and not any(
+                len(factor_levels(clean, f)) < 2 for f in within) else _empty([*within, *DESCRIPTIVE_STATS]),
+            normality=Normality(0, note=reason),
+            order=OrderCheck(measure, n_used, 0, note=reason), notes=(reason, *filter(None, notes)))
+        return empty, clean
+    values, _ = wide_matrix(clean, measure, within, subject)
+    levels = [len(factor_levels(clean, f)) for f in within]
+    anova = anova_table(values, levels, within)
+    rng = np.random.default_rng([options.seed, zlib.crc32(measure.encode())])
+    intervals = ges_bootstrap(values, levels, within, rng)
+    anova["ges_ci_low"] = [low for low, _ in intervals]
+    anova["ges_ci_high"] = [high for _, high in intervals]
+    simple = simple_effects(clean, measure, within, subject)
+    pairwise = pairwise_comparisons(clean, measure, within, subject)
+    notes += [f"{row.effect}: {row.note}" for row in anova.itertuples() if row.note]
+    notes += [f"simple effect of {row.factor} at {row.at}: {row.note}" for row in simple.itertuples() if row.note]
+    notes += [f"{row.level_1} vs {row.level_2}: {row.note}" for row in pairwise.itertuples() if row.note]
+    ranks = rank_tests(clean, measure, within, subject) if info.rating else _empty(RANK_TEST_COLUMNS)
+    result = MeasureResult(
+        **base, anova=anova[ANOVA_RESULT_COLUMNS], simple_effects=simple, pairwise=pairwise, rank_tests=ranks,
+        descriptives=cell_descriptives(clean, measure, within, subject),
+        normality=residual_normality(values),
+        order=order_check(clean, measure, within, subject, options.position), notes=tuple(filter(None, notes)))
+    return result, clean
+
+
+def _empty(columns: list[str]) -> pd.DataFrame:
+    return pd.DataFrame(columns=columns)

@@ -1,0 +1,35 @@
+"""The choices an analysis run takes besides the table and the roles of its columns (one home for each default)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+from analysis.levels import LevelOrder
+from analysis.study_design import RatingItem, ScaleSpec
+
+
+@dataclass(frozen=True, slots=True)
+class AnalysisOptions:
+    levels: LevelOrder | None = None
+    """Level order per factor (see :mod:`analysis.levels`); first appearance for a factor not given."""
+    strict_levels: bool = True
+    """Whether a present level missing from ``levels`` is an error (``--levels``) or appended (a stored study)."""
+    ratings: Mapping[str, tuple[float, float]] = field(default_factory=dict)
+    """Rating columns (rank tests beside the ANOVA) and their scale's (min, max)."""
+    items: tuple[RatingItem, ...] = ()
+    scales: tuple[ScaleSpec, ...] = ()
+    """Questionnaire scales to score (:mod:`analysis.scales`)."""
+    include: frozenset[str] = frozenset()
+    """Exclusion rules whose rows are kept (:mod:`analysis.exclusions`), e.g. ``{"invalid"}``."""
+    horizon: int | None = None
+    """The study's horizon: ``ticks``' upper bound."""
+    position: str = "position"
+    """Column of the trial's position in the participant's sequence (the order check)."""
+    finished: str = "finished"
+    """Column of the 0/1 outcome 'every order delivered' (censoring of ``ticks``)."""
+    plots: bool = True
+    """Whether to draw the plots (the slowest part of a run)."""
+    seed: int = 0
+    """Seed of the bootstrap of η²G's interval and of the plots' jitter."""
+    title: str = "Repeated-measures analysis"

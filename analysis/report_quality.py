@@ -1,0 +1,95 @@
+"""The report's first section, "Data quality": who is in the analysis and who was left out and why, trials the
+server marked invalid, censored cells, the order check and residual normality, and every test that could not be
+computed."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import pandas as pd
+
+from analysis.apa import format_proportion
+from analysis.document import Block, BulletList, Heading, Paragraph, table
+from analysis.exclusions import INVALID
+from analysis.report_measure import normality_line
+from analysis.results import AnalysisResult
+
+
+@dataclass(frozen=True, slots=True)
+class ReportContext:
+    """What the table alone does not say, given by the caller (a stored study's export)."""
+
+    summary: str = ""
+    """One sentence on the participants of the study."""
+    left_out: tuple[str, ...] = ()
+    """Participants the export left out of the cells, with the reason."""
+    invalid_trials: tuple[str, ...] | None = None
+    """Main trials the server marked invalid (``None``: the export does not record robot health)."""
+
+
+def quality_section(result: AnalysisResult, context: ReportContext | None) -> list[Block]:
+    context = context or ReportContext()
+    blocks: list[Block] = [Heading(2, "Data quality")]
+    if context.summary:
+        blocks.append(Paragraph(context.summary))
+    blocks.append(table(("measure", "n used", "of", "left out (complete cases)"), [
+        (r.measure, str(r.n_used), str(r.n_total), str(len(r.excluded))) for r in result.measures]))
+    blocks += _left_out(result, context)
+    blocks += _invalid(result, context)
+    blocks += _censoring(result)
+    blocks += [Heading(3, "Order and carry-over"), BulletList(tuple(r.order.sentence for r in result.measures))]
+    blocks += [Heading(3, "Residual normality (Shapiro–Wilk on the ANOVA residuals)"),
+               BulletList(tuple(normality_line(r) for r in result.measures))]
+    if result.warnings:
+        blocks += [Heading(3, "Not testable"), BulletList(result.warnings)]
+    return blocks
+
+
+def _left_out(result: AnalysisResult, context: ReportContext) -> list[Block]:
+    rules = result.tables["exclusions.csv"]
+    lines = list(context.left_out)
+    lines += [f"participant {r.subject}, {r.cell}: {r.reason}" + (" (kept on request)" if r.included else "")
+              for r in rules.itertuples()]
+    by_reason: dict[tuple[str, str], list[str]] = {}
+    for r in result.measures:
+        for x in r.excluded.itertuples():
+            by_reason.setdefault((str(x.subject), str(x.reason)), []).append(r.measure)
+    lines += [f"participant {who}, left out of {', '.join(measures)}: {reason}"
+              for (who, reason), measures in by_reason.items()]
+    blocks: list[Block] = [Heading(3, "Left out, and why")]
+    blocks.append(BulletList(tuple(lines)) if lines else Paragraph("Nobody was left out."))
+    return blocks
+
+
+def _invalid(result: AnalysisResult, context: ReportContext) -> list[Block]:
+    blocks: list[Block] = [Heading(3, "Invalid robot trials")]
+    marked = result.tables["exclusions.csv"]
+    marked = marked[marked["rule"] == INVALID.name]
+    if context.invalid_trials is not None:
+        lines = context.invalid_trials
+    elif INVALID.name in result.checked_rules:
+        lines = tuple(f"participant {r.subject}, {r.cell}: {r.reason}" for r in marked.itertuples())
+    else:
+        return [*blocks, Paragraph(f"The table has no {INVALID.column} column: robot health was not recorded for "
+                                   "these trials, so none could be left out for it.")]
+    kept = "kept (--include-invalid)" if marked["included"].astype(bool).any() else "left out of the analysis"
+    blocks.append(BulletList(tuple(lines)) if lines else Paragraph("No trial was marked invalid."))
+    if lines:
+        blocks.append(Paragraph(f"Invalid trials are {kept}."))
+    return blocks
+
+
+def _censoring(result: AnalysisResult) -> list[Block]:
+    blocks: list[Block] = [Heading(3, "Trials that reached the horizon (ticks censored)")]
+    censoring = result.tables.get("censoring.csv")
+    if censoring is None:
+        return [*blocks, Paragraph("The table has no finished column: censoring was not checked.")]
+    blocks.append(table(("cell", "trials", "reached the horizon", "share"), [
+        (str(r.cell), str(int(r.n)), str(int(r.reached_horizon)), "n/a" if pd.isna(r.share) else
+         format_proportion(float(r.share), 2)) for r in censoring.itertuples()]))
+    censored = int((censoring["reached_horizon"] > 0).sum())
+    blocks.append(Paragraph(
+        f"{censored} cell(s) have trials that reached the horizon; their ticks are the horizon, not the time needed "
+        "(see the note under ticks and the analysis of finished)." if censored else
+        "Every trial finished before the horizon: ticks is not censored."))
+    return blocks

@@ -1,0 +1,104 @@
+"""The design a stored study declares, as the statistics need it: within factors with their levels in the study's
+order, the horizon, and the after-trial rating items and scales.
+
+Read from the resolved configuration stored with the study (``studies.config``):
+
+* factors: ``factors`` (default ``[robot, kitchen]``); the levels of ``robot`` are ``robots``, of ``kitchen`` the
+  names in ``kitchens``, of ``view`` the ``views`` (or the single ``view``). A factor named in ``factors`` with a
+  single level is not a factor of the analysis (it is reported as such).
+* questionnaire items: ``type`` ``rating`` (the default) are analysed, with their ``scale`` range and
+  ``reverse: true`` for reverse-coded items; ``choice`` (a nominal index) and ``text`` items are not.
+  ``scales: [{id, title, items}]`` of a questionnaire shown after each trial become measures of the cell
+  (:mod:`analysis.scales`). End-of-study questionnaires are answered once per participant and are not
+  within-subject measures.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from analysis.dictionary import item_column
+
+LEVEL_KEYS = {"robot": ("robots", "robot"), "kitchen": ("kitchens", "kitchen"), "view": ("views", "view")}
+"""Config keys listing a factor's levels, then the key of its single level."""
+DEFAULT_FACTORS = ("robot", "kitchen")
+
+
+@dataclass(frozen=True, slots=True)
+class RatingItem:
+    column: str
+    """``<questionnaire>.<item>`` in cells.csv."""
+    minimum: int
+    maximum: int
+    reverse: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class ScaleSpec:
+    column: str
+    """``<questionnaire>.<scale id>``: the scale score's column."""
+    title: str
+    items: tuple[str, ...]
+    """Columns of its rating items."""
+
+
+@dataclass(frozen=True, slots=True)
+class StudyDesign:
+    factors: tuple[str, ...]
+    levels: Mapping[str, tuple[str, ...]]
+    single_level: tuple[str, ...] = ()
+    """Factors named in ``factors`` that have one level in this study."""
+    horizon: int | None = None
+    items: tuple[RatingItem, ...] = ()
+    scales: tuple[ScaleSpec, ...] = field(default=())
+
+    @classmethod
+    def from_config(cls, config: Mapping[str, Any]) -> StudyDesign:
+        declared = tuple(str(f) for f in config.get("factors") or DEFAULT_FACTORS)
+        levels = {f: factor_levels(config, f) for f in declared}
+        factors = tuple(f for f in declared if len(levels[f]) > 1)
+        world = config.get("world") or {}
+        horizon = world.get("horizon") if isinstance(world, Mapping) else None
+        items, scales = _questionnaires(config.get("questionnaires") or ())
+        return cls(factors, {f: levels[f] for f in factors}, tuple(f for f in declared if f not in factors),
+                   int(horizon) if horizon is not None else None, items, scales)
+
+    @property
+    def rating_columns(self) -> tuple[str, ...]:
+        return tuple(i.column for i in self.items) + tuple(s.column for s in self.scales)
+
+
+def factor_levels(config: Mapping[str, Any], factor: str) -> tuple[str, ...]:
+    """The levels of ``factor`` in the study's order (``kitchens`` entries may be ``{name: ...}`` mappings)."""
+    many, one = LEVEL_KEYS.get(factor, (f"{factor}s", factor))
+    values = config.get(many)
+    if not values:
+        values = [config[one]] if config.get(one) is not None else []
+    return tuple(str(v["name"]) if isinstance(v, Mapping) else str(v) for v in values)
+
+
+def _questionnaires(questionnaires: Any) -> tuple[tuple[RatingItem, ...], tuple[ScaleSpec, ...]]:
+    items: list[RatingItem] = []
+    scales: list[ScaleSpec] = []
+    for q in questionnaires:
+        if q.get("when", "after_each_trial") != "after_each_trial":
+            continue
+        qid = str(q["id"])
+        mine = {}
+        for item in q.get("items", ()):
+            scale = item.get("scale") or {}
+            if item.get("type", "rating") != "rating" or "min" not in scale or "max" not in scale:
+                continue
+            rating = RatingItem(item_column(qid, str(item["id"])), int(scale["min"]), int(scale["max"]),
+                                bool(item.get("reverse", False)))
+            mine[str(item["id"])] = rating
+            items.append(rating)
+        taken = {item_column(qid, str(i["id"])) for i in q.get("items", ())}
+        for spec in q.get("scales", ()) or ():
+            members = tuple(mine[i].column for i in spec.get("items", ()) if i in mine)
+            column = item_column(qid, str(spec["id"]))
+            scales.append(ScaleSpec(column + "_scale" if column in taken else column,
+                                    str(spec.get("title") or spec["id"]), members))
+    return tuple(items), tuple(scales)

@@ -1,0 +1,109 @@
+"""``steakhouse analyze --study`` on studies stored through the server's own store and flow functions (SQLite and
+PostgreSQL): a measure that does not vary no longer stops the analysis (issue 15's ``KeyError: 'F'``), a
+one-factor study with three robots is analysed in the study's order with sphericity and pairwise comparisons, a
+robot × kitchen × view study gets its three-factor ANOVA, and the report opens with data quality."""
+
+from __future__ import annotations
+
+import pandas as pd
+import pytest
+from steakhouse_store_study import Participant, join, play_participant, study_overrides
+from steakhouse_testing import write_study
+
+from analysis.study import attach_trial_columns
+from server.catalog import load_one
+from server.cli import main
+from server.store.engine import Store
+from server.store.studies import sync_study
+
+THREE_ROBOTS = ("stay", "baseline", "fov_aware")
+
+
+@pytest.fixture(scope="module")
+def stored(module_db_url, tmp_path_factory):
+    """A 2 × 2 study whose three participants never interrupt (``interrupts`` is 0 everywhere), a one-factor
+    study of three robots in one kitchen with four participants, and a 2 × 2 × 2 robot × kitchen × view study with
+    three."""
+    store = Store(module_db_url)
+    store.migrate()
+    folder = tmp_path_factory.mktemp("studies")
+    studies = {
+        "quiet": load_one(write_study(folder, "quiet", **study_overrides())),
+        "robots3": load_one(write_study(folder, "robots3", **study_overrides(
+            robots=list(THREE_ROBOTS), kitchens=["none_3"], factors=["robot"], practice=[]))),
+        "views": load_one(write_study(folder, "views", **study_overrides(
+            views=["top_down", "first_person"], factors=["robot", "kitchen", "view"], practice=[]))),
+    }
+    for loaded in studies.values():
+        with store.transaction() as session:
+            sync_study(session, loaded.study)
+    for n in range(3):
+        play_participant(store, studies["quiet"], join(store, studies["quiet"], f"q{n}"),
+                         Participant(seed=n, interrupt_rate=0.0))
+    for n in range(4):
+        play_participant(store, studies["robots3"], join(store, studies["robots3"], f"r{n}"),
+                         Participant(seed=10 + n, interrupt_rate=0.05))
+    for n in range(3):
+        play_participant(store, studies["views"], join(store, studies["views"], f"v{n}"),
+                         Participant(seed=20 + n, interrupt_rate=0.05))
+    store.dispose()
+    return module_db_url
+
+
+def analyze(url: str, study: str, out, *extra: str) -> int:
+    return main(["analyze", "--study", study, "--out", str(out), "--database-url", url, "--no-plots", *extra])
+
+
+def test_a_measure_without_variance_is_not_testable_and_the_rest_runs(stored, tmp_path, capsys) -> None:
+    assert analyze(stored, "quiet", tmp_path) == 0
+    captured = capsys.readouterr()
+    assert "warning: interrupts: not testable: every value is 0, nothing varies" in captured.err
+    anova = pd.read_csv(tmp_path / "anova.csv")
+    assert set(anova["measure"]) == {"kb_gap_mean", "kb_gap_ticks_pct", "ticks", "robot_in_fov_pct"}
+    assert (anova.groupby("measure").size() == 3).all()
+    report = (tmp_path / "report.md").read_text()
+    assert report.index("## Data quality") < report.index("## Method") < report.index("## kb_gap_mean")
+    assert "Study quiet: 3 participants in the store" in report
+    assert "- interrupts: not testable: every value is 0, nothing varies" in report
+    descriptives = pd.read_csv(tmp_path / "descriptives.csv")
+    assert descriptives["robot"].drop_duplicates().tolist() == ["stay", "baseline"]  # the study's order
+    assert descriptives["kitchen"].drop_duplicates().tolist() == ["none_3", "mid_2"]
+
+
+def test_one_factor_of_three_robots_in_the_study_order(stored, tmp_path) -> None:
+    assert analyze(stored, "robots3", tmp_path, "--dv", "ticks,robot_in_fov_pct,q.a") == 0
+    anova = pd.read_csv(tmp_path / "anova.csv")
+    assert anova["effect"].unique().tolist() == ["robot"]
+    assert (anova["df1"] == 2).all() and anova["eps_gg"].between(0.5, 1).all()
+    assert set(anova["correction"]) <= {"GG", "HF"}
+    pairwise = pd.read_csv(tmp_path / "pairwise.csv")
+    assert list(zip(pairwise["level_1"], pairwise["level_2"], strict=True))[:3] == [
+        ("stay", "baseline"), ("stay", "fov_aware"), ("baseline", "fov_aware")]
+    ranks = pd.read_csv(tmp_path / "rank_tests.csv")
+    assert ranks["measure"].unique().tolist() == ["q.a"] and ranks["test"].tolist() == ["Friedman"]
+    assert pd.read_csv(tmp_path / "simple_effects.csv").empty
+    report = (tmp_path / "report.md").read_text()
+    assert "Within factors: robot." in report and "Plots" not in report  # --no-plots
+    assert "### Order and carry-over" in report and "### Sphericity (Mauchly's test)" in report
+
+
+def test_robot_kitchen_view_gets_the_three_factor_analysis(stored, tmp_path) -> None:
+    assert analyze(stored, "views", tmp_path, "--dv", "ticks,robot_in_fov_pct") == 0
+    anova = pd.read_csv(tmp_path / "anova.csv").query("measure == 'ticks'")
+    assert anova["effect"].tolist() == ["robot", "kitchen", "view", "robot * kitchen", "robot * view",
+                                        "kitchen * view", "robot * kitchen * view"]
+    assert (anova["df2"] == 2).all()
+    simple = pd.read_csv(tmp_path / "simple_effects.csv").query("measure == 'ticks'")
+    assert simple.groupby("factor", sort=False).size().to_dict() == {"robot": 4, "kitchen": 4, "view": 4}
+    descriptives = pd.read_csv(tmp_path / "descriptives.csv")
+    assert descriptives["view"].drop_duplicates().tolist() == ["top_down", "first_person"]
+    assert "Within factors: robot, kitchen, view." in (tmp_path / "report.md").read_text()
+
+
+def test_cells_carry_their_trials_validity_when_the_export_records_it() -> None:
+    cells = pd.DataFrame({"participant": ["a", "a"], "trial_id": [1, 2], "ticks": [10, 12]})
+    trials = pd.DataFrame({"trial_id": [1, 2, 3], "invalid_reason": [None, "missed 20%", None],
+                           "missed_decisions_pct": [0.0, 20.0, 1.0]})
+    joined = attach_trial_columns(cells, trials)
+    assert joined["invalid_reason"].tolist()[1] == "missed 20%" and joined["missed_decisions_pct"].tolist() == [0, 20]
+    assert attach_trial_columns(cells, trials.drop(columns=["invalid_reason", "missed_decisions_pct"])).equals(cells)
