@@ -17,6 +17,7 @@ from typing import Literal
 
 from planner.events import Event, EventKind
 from planner.geometry import Pos
+from planner.kb import KnowledgeBase
 from planner.layout import Layout, Terrain
 from planner.objects import CLEAN_PLATE, DIRTY_PLATE, DISH, MEAT, ONION, STEAK_PLATE
 from planner.rules import Rules
@@ -123,6 +124,28 @@ def _sink(status: int | None, held: str | None) -> Reason | None:
     if held is None:
         return None
     return Reason("sink_busy") if held == DIRTY_PLATE else Reason("hands_full", held)
+
+
+_NO_TARGET: dict[Subtask, Reason] = {
+    Subtask.PICKUP_CLEAN_PLATE: Reason("no_clean_plate"), Subtask.DROP_MEAT: Reason("grill_busy"),
+    Subtask.DROP_ONION: Reason("board_busy"), Subtask.DROP_PLATE: Reason("sink_busy"),
+}
+
+
+def no_target_reason(subtask: Subtask | None) -> Reason:
+    """Why the cook has nowhere to go for ``subtask``: its targets are judged on the participant's modelled
+    knowledge (what they have seen), so this is what they know, never hidden state."""
+    return _NO_TARGET.get(subtask, Reason("unknown_place")) if subtask is not None else Reason("unknown_place")
+
+
+def nothing_left(subtask: Subtask, kb: KnowledgeBase, rules: Rules) -> Reason:
+    """Why chopping or washing ended with nothing done: the work is already done, or nothing waits for it
+    (as the participant knows the boards and sinks)."""
+    if subtask is Subtask.WASH_PLATE:
+        clean = any(s is not None and s >= rules.wash_time for s in kb.sinks)
+        return Reason("already_washed") if clean else Reason("nothing_to_wash")
+    chopped = any(s is not None and s >= rules.chop_time for s in kb.boards)
+    return Reason("already_chopped") if chopped else Reason("nothing_to_chop")
 
 
 def progressed(layout: Layout, before: WorldState, after: WorldState, events: tuple[Event, ...]) -> bool:

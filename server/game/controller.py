@@ -30,7 +30,7 @@ from typing import Any
 
 import numpy as np
 
-from planner.events import Event
+from planner.events import Event, EventKind
 from planner.fov import view
 from planner.geometry import Action, Pos, manhattan
 from planner.human import HumanModel
@@ -39,8 +39,8 @@ from planner.layout import Layout
 from planner.rules import Rules
 from planner.state import WorldState
 from planner.subtasks import Believed, Subtask, available, is_done, targets
-from server.game.blocked import (Blocked, Intent, Reason, Stall, hands_reason, interaction_reason,
-                                 progressed)
+from server.game.blocked import (Blocked, Intent, Reason, Stall, hands_reason, interaction_reason, no_target_reason,
+                                 nothing_left, progressed)
 
 QUEUE_LIMIT = 3
 STILL_TICKS = 2
@@ -77,6 +77,10 @@ class ParticipantController:
         self.robot_still = 0
         self.intent: Intent = "idle"
         self.stall = Stall()
+        self.worked = False
+        """Whether the avatar did anything (an interaction with an effect) during the current subtask."""
+        self.ended: Subtask | None = None
+        """The subtask :meth:`observe` ended at the last step, for :meth:`review`."""
 
     def select(self, subtask: Subtask, held: str | None) -> Blocked | None:
         """Make ``subtask`` the current one (dropping queued interrupts), unless it cannot work with ``held``
@@ -87,6 +91,7 @@ class ParticipantController:
         self.subtask = self.last = subtask
         self.queue.clear()
         self.stall = Stall()
+        self.worked = False
         return None
 
     def interrupt(self, which: Interrupt) -> bool:
@@ -139,14 +144,22 @@ class ParticipantController:
         if self.subtask is None:
             return False
         if is_done(self.subtask, before.human.held, after.human.held, self.believed(after, kb), self.rules):
-            self.subtask = None
+            self.ended, self.subtask = self.subtask, None
             return True
         return False
 
-    def review(self, before: WorldState, after: WorldState, events: tuple[Event, ...]) -> Blocked | None:
+    def review(self, before: WorldState, after: WorldState, events: tuple[Event, ...],
+               kb: KnowledgeBase) -> Blocked | None:
         """After a step of the current subtask (call after :meth:`observe`): a notice when it did not get
         anywhere for a reason the participant should hear, or its end when it made no progress for
-        ``blocked_ticks`` steps (the subtask is then dropped)."""
+        ``blocked_ticks`` steps (the subtask is then dropped). Chopping or washing that ends with nothing done
+        (no onion or plate waiting, as far as the participant knows) ends with its reason too."""
+        self.worked = self.worked or any(e.agent == "human" and e.kind is not EventKind.BLOCKED for e in events)
+        ended, self.ended = self.ended, None
+        if ended is not None:
+            idle_end = ended in (Subtask.CHOP_ONION, Subtask.WASH_PLATE) and not self.worked
+            self.worked, self.stall = False, Stall()
+            return Blocked(ended, nothing_left(ended, kb, self.rules), ended=True) if idle_end else None
         subtask = self.subtask
         if subtask is None or self.intent == "idle":
             self.stall = Stall()
@@ -166,7 +179,7 @@ class ParticipantController:
         if self.intent == "interact":
             return interaction_reason(self.layout, after, self.rules)
         if self.intent == "no_target":
-            return Reason("unknown_place")
+            return no_target_reason(self.subtask)
         if moved_on:
             return None
         human, robot = after.human, after.robot.pos

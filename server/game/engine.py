@@ -90,7 +90,7 @@ class TrialEngine:
         kb = update_kb(self.kb, self.layout, world, angle=self.angle, kb_delay=self.kb_delay,
                        own_events=[e for e in events if e.agent == "human"])
         finished = self.controller.observe(before, world, kb)
-        blocked = self.controller.review(before, world, events)
+        blocked = self.controller.review(before, world, events, kb)
         self.world, self.kb, self.last_events = world, kb, events
         kb_sum, world_sum = summarize(kb, self.rules), summarize(world, self.rules)
         return TickOutcome(

@@ -16,7 +16,7 @@ from pydantic import BaseModel, ConfigDict, Field, TypeAdapter
 BlockedReason = Literal[
     "hands_full", "hands_empty", "needs_item", "nothing_there", "counter_empty", "grill_busy", "steak_cooking",
     "board_busy", "nothing_to_chop", "no_garnish", "not_chopped", "already_chopped", "sink_busy", "nothing_to_wash",
-    "robot_in_way", "no_way", "unknown_place", "stuck"]
+    "already_washed", "no_clean_plate", "robot_in_way", "no_way", "unknown_place", "stuck"]
 """Why a subtask is not getting anywhere (``blocked`` messages; docs/protocol.md lists each with its words)."""
 TerrainName = Literal["floor", "counter", "onion", "meat", "plate", "grill", "board", "sink", "serve"]
 StationState = Literal["empty", "cooking", "ready", "chopping", "washing", "clean"]

@@ -43,8 +43,8 @@ def test_a_blocked_choice_is_explained_and_logged_and_the_game_goes_on(live_serv
     assert hello["trial"]["scored"] is True
     assert refused == {**refused, "subtask": "deliver_dish", "reason": "needs_item", "item": "dish", "ended": True}
     assert ack["subtask"] is None, "the refused choice did not become the task"
-    assert notice == {**notice, "subtask": "pickup_clean_plate", "reason": "unknown_place", "ended": False}
-    assert ended == {**ended, "subtask": "pickup_clean_plate", "reason": "unknown_place", "ended": True}
+    assert notice == {**notice, "subtask": "pickup_clean_plate", "reason": "no_clean_plate", "ended": False}
+    assert ended == {**ended, "subtask": "pickup_clean_plate", "reason": "no_clean_plate", "ended": True}
     assert after["subtask"] is None and meat["you"]["held"] == "meat"
 
     trial_id = hello["trial"]["id"]
@@ -55,4 +55,4 @@ def test_a_blocked_choice_is_explained_and_logged_and_the_game_goes_on(live_serv
 
     found = eventually(logged, lambda rows: len(rows) == 2)
     assert found == [("subtask_blocked", {"subtask": "deliver_dish", "reason": "needs_item", "item": "dish"}),
-                     ("subtask_blocked", {"subtask": "pickup_clean_plate", "reason": "unknown_place", "item": None})]
+                     ("subtask_blocked", {"subtask": "pickup_clean_plate", "reason": "no_clean_plate", "item": None})]

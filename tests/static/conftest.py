@@ -126,13 +126,14 @@ class PageProblems(list[str]):
 
 @pytest.fixture
 def new_page(browser: Any) -> Iterator[Callable[..., tuple[Any, PageProblems]]]:
-    """``new_page(viewport=(1280, 720), scale=1)``: a page in a fresh browser context (a new participant)
-    with the recruiting site stubbed; fails the test if the page logged a console error."""
+    """``new_page(viewport=(1280, 720), scale=1, **context)``: a page in a fresh browser context (a new
+    participant; ``context``: more Playwright context options, e.g. ``is_mobile``, ``has_touch``) with the
+    recruiting site stubbed; fails the test if the page logged a console error."""
     contexts: list[tuple[Any, PageProblems]] = []
 
-    def make(viewport: tuple[int, int] = (1280, 720), scale: float = 1) -> tuple[Any, PageProblems]:
+    def make(viewport: tuple[int, int] = (1280, 720), scale: float = 1, **options: Any) -> tuple[Any, PageProblems]:
         context = browser.new_context(viewport={"width": viewport[0], "height": viewport[1]},
-                                      device_scale_factor=scale)
+                                      device_scale_factor=scale, **options)
         context.route(f"{RECRUIT_SITE}**", lambda route: route.fulfill(
             status=200, content_type="text/html", body="<!doctype html><title>Recruiting site</title><p>Welcome back"))
         page = context.new_page()

@@ -122,7 +122,37 @@ def test_a_subtask_with_nothing_known_to_walk_to_says_so_and_ends():
     engine.controller.select(Subtask.PICKUP_CLEAN_PLATE, None)
     outcomes = run(engine, 4)
     assert [(o.blocked.reason.code, o.blocked.ended) for o in outcomes if o.blocked] == [
-        ("unknown_place", False), ("unknown_place", True)]
+        ("no_clean_plate", False), ("no_clean_plate", True)]
+
+
+@pytest.mark.parametrize(("subtask", "station", "expected"), [
+    (Subtask.CHOP_ONION, {"board": None}, "nothing_to_chop"),
+    (Subtask.CHOP_ONION, {"board": 2}, "already_chopped"),
+    (Subtask.WASH_PLATE, {"sink": None}, "nothing_to_wash"),
+    (Subtask.WASH_PLATE, {"sink": 2}, "already_washed"),
+])
+def test_chopping_or_washing_with_nothing_waiting_ends_at_once_and_says_why(subtask, station, expected):
+    engine = engine_at(world_with(**station))
+    engine.controller.select(subtask, None)
+    (first,) = run(engine, 1)
+    assert first.subtask_finished and first.blocked is not None
+    assert (first.blocked.reason.code, first.blocked.ended) == (expected, True)
+
+
+def test_chopping_that_did_its_work_ends_quietly():
+    engine = engine_at(world_with(pos=BOARD_SPOT, facing=Direction.NORTH, board=0))
+    engine.controller.select(Subtask.CHOP_ONION, None)
+    outcomes = run(engine, 2)
+    assert outcomes[-1].subtask_finished and engine.world.boards == (2,)
+    assert all(o.blocked is None for o in outcomes)
+
+
+def test_putting_meat_on_a_grill_known_to_be_busy_names_the_grill():
+    engine = engine_at(world_with(held=MEAT, grill=3), blocked_ticks=2)
+    engine.controller.select(Subtask.DROP_MEAT, MEAT)
+    outcomes = run(engine, 2)
+    assert [(o.blocked.reason.code, o.blocked.ended) for o in outcomes if o.blocked] == [
+        ("grill_busy", False), ("grill_busy", True)]
 
 
 def test_a_choice_that_does_not_fit_the_hands_is_refused_and_changes_nothing():
