@@ -9,8 +9,8 @@ never in ``cells.csv``. Flagged participants, and participants missing a cell, a
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
 from typing import Any
 
 import pandas as pd
@@ -39,6 +39,8 @@ class Dataset:
     design: Design
     tables: dict[str, pd.DataFrame]
     columns: dict[str, tuple[Column, ...]]
+    config: Mapping[str, Any] = field(default_factory=dict)
+    """The study's resolved configuration as stored (questionnaire items and scales for the data dictionary)."""
 
     @property
     def cells(self) -> pd.DataFrame:
@@ -90,7 +92,7 @@ def build_dataset(conn: Connection, study_id: str) -> Dataset:
                          if (row := excluded_row(p, data.trials, used, design)) is not None],
     }
     tables = {name: _frame(rows[name], columns[name]) for name in FILES}
-    return Dataset(study_id, design, tables, columns)
+    return Dataset(study_id, design, tables, columns, data.config)
 
 
 def _frame(rows: list[dict[str, Any]], columns: Sequence[Column]) -> pd.DataFrame:
@@ -219,6 +221,7 @@ def _answer_rows(data: Any, people: dict[int, StoredParticipant], design: Design
             design.condition_of(condition) if condition else None)
         rows.append({
             "participant": p.public_id, "questionnaire": a.questionnaire_id, "item": a.item_id, "value": a.value,
+            "text": a.text,
             "after_trial": a.after_trial, "condition": trial.condition if trial else condition,
             "robot": robot_kitchen[0] if robot_kitchen else None,
             "kitchen": robot_kitchen[1] if robot_kitchen else None, "trial_id": a.trial_id,

@@ -42,6 +42,12 @@ from planner.subtasks import Believed, Subtask, available, is_done, targets
 from server.game.blocked import (Blocked, Intent, Reason, Stall, hands_reason, interaction_reason, no_target_reason,
                                  nothing_left, progressed)
 
+class Unchecked:
+    """The type of :data:`UNCHECKED`: ``select`` was not told what the avatar holds."""
+
+
+UNCHECKED = Unchecked()
+
 QUEUE_LIMIT = 3
 STILL_TICKS = 2
 OFF_GRID: Pos = (-1, -1)
@@ -82,10 +88,11 @@ class ParticipantController:
         self.ended: Subtask | None = None
         """The subtask :meth:`observe` ended at the last step, for :meth:`review`."""
 
-    def select(self, subtask: Subtask, held: str | None) -> Blocked | None:
+    def select(self, subtask: Subtask, held: str | None | Unchecked = UNCHECKED) -> Blocked | None:
         """Make ``subtask`` the current one (dropping queued interrupts), unless it cannot work with ``held``
-        in hand: then nothing changes and the refusal says why."""
-        reason = hands_reason(subtask, held)
+        in hand: then nothing changes and the refusal says why. Without ``held`` (scripted players choosing
+        from :meth:`available`, which always fits the hands) nothing is checked."""
+        reason = None if isinstance(held, Unchecked) else hands_reason(subtask, held)
         if reason is not None:
             return Blocked(subtask, reason, ended=True)
         self.subtask = self.last = subtask
