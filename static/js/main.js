@@ -46,7 +46,7 @@ async function route(session) {
   ctx.session = current;
   document.body.dataset.state = current.state;
   setProgress(current.state === "done" || current.state === "screened_out" ? "" :
-    `Step ${current.step + 1} of ${current.steps}`);
+    `Part ${current.step + 1} of ${current.steps}`);
   if (deviceRefused(current)) {
     devicePage(root, ctx);
     return;
