@@ -149,3 +149,11 @@ def new_page(browser: Any) -> Iterator[Callable[..., tuple[Any, PageProblems]]]:
     for context, _ in contexts:
         context.close()
     assert failures == [], failures
+
+
+@pytest.fixture
+def module_page(study_server: StudyServer, new_page: Callable[..., tuple[Any, PageProblems]]) -> Any:
+    """A page on the study server (a static file, no study page) for importing the client's modules one by one."""
+    page, _ = new_page()
+    page.goto(f"{study_server.url}/data/example_view.json")
+    return page
