@@ -131,7 +131,8 @@ def _tick_rows(participant: str, trial: StoredTrial, ticks: Sequence[StoredTick]
         world, kb = tick.world_summary, tick.kb_summary
         row: dict[str, Any] = {
             "participant": participant, "trial_id": trial.id, "kind": trial.kind, "index": trial.index,
-            "attempt": trial.attempt, "robot": trial.robot, "kitchen": trial.kitchen, "tick": tick.tick,
+            "attempt": trial.attempt, "robot": trial.robot, "kitchen": trial.kitchen, "view": trial.view,
+            "tick": tick.tick,
             "human_action": tick.human_action, "robot_action": tick.robot_action,
             "action_source": tick.action_source, "subtask": tick.subtask, "subtask_switch": switch,
             "redundant_action": extra, "human_held": tick.world_state.get("human", {}).get("held"),
@@ -164,7 +165,7 @@ def _cell_rows(p: StoredParticipant, used: dict[int, StoredTrial], measures: dic
     rows = []
     for index, trial in sorted(used.items()):
         row: dict[str, Any] = {"participant": p.public_id, "robot": trial.robot, "kitchen": trial.kitchen,
-                               "condition": trial.condition, "trial_id": trial.id, "position": index + 1}
+                               "view": trial.view, "condition": trial.condition, "trial_id": trial.id, "position": index + 1}
         row.update({m: measures[trial.id][m] for m in TRIAL_MEASURES})
         given = answers.get(index, {})
         row.update({name: given.get(name) for name in design.item_names(design.trial_items)})
@@ -178,7 +179,7 @@ def _trial_row(p: StoredParticipant, trial: StoredTrial, measures: dict[str, Any
     return {
         "participant": p.public_id, "trial_id": trial.id, "kind": trial.kind, "index": trial.index,
         "attempt": trial.attempt, "condition": trial.condition, "robot": trial.robot, "kitchen": trial.kitchen,
-        "seed": trial.seed, "status": trial.status, "end_reason": trial.end_reason,
+        "view": trial.view, "seed": trial.seed, "status": trial.status, "end_reason": trial.end_reason,
         "started_at": iso_time(trial.started_at), "ended_at": iso_time(trial.ended_at),
         "config_hash": trial.config_hash,
         "in_cells": int(in_cells), "participant_test_run": int(p.test_run), "participant_excluded": int(p.excluded),

@@ -45,9 +45,10 @@ class Design:
         return cls(robots, kitchens, conditions, tuple(trial_items), tuple(end_items))
 
     def condition_of(self, condition_id: str) -> tuple[str, str] | None:
-        """``(robot, kitchen)`` of a condition id, or ``None`` when the id is malformed."""
-        robot, sep, kitchen = condition_id.partition("@")
-        return (robot, kitchen) if sep else None
+        """``(robot, kitchen)`` of a condition id (``robot@kitchen``, or ``robot@kitchen@view`` in a study with
+        a view factor), or ``None`` when the id is malformed."""
+        robot, sep, rest = condition_id.partition("@")
+        return (robot, rest.partition("@")[0]) if sep else None
 
     @property
     def trial_item_columns(self) -> list[Column]:

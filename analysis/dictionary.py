@@ -66,13 +66,15 @@ _PARTICIPANT = Column("participant", TEXT, "participant's public id (random; not
 _TRIAL_ID = Column("trial_id", INT, "trial attempt id in the store (trials.csv, ticks.csv)")
 _ROBOT = Column("robot", TEXT, "robot planner of the condition (within factor)")
 _KITCHEN = Column("kitchen", TEXT, "kitchen of the condition (within factor)")
+_VIEW = Column("view", TEXT, "how the participant saw the kitchen: top_down or first_person (within factor when "
+                             "the study lists views)")
 
 TICK_COLUMNS: tuple[Column, ...] = (
     _PARTICIPANT, _TRIAL_ID,
     Column("kind", TEXT, "practice or main"),
     Column("index", INT, "trial index within its kind (0-based, in the participant's order)"),
     Column("attempt", INT, "attempt number at this trial (a restarted trial has several)"),
-    _ROBOT, _KITCHEN,
+    _ROBOT, _KITCHEN, _VIEW,
     Column("tick", INT, "world step (1, 2, …)"),
     Column("human_action", TEXT, "the participant's avatar action in this step"),
     Column("robot_action", TEXT, "the robot's action in this step"),
@@ -104,7 +106,8 @@ TICK_COLUMNS: tuple[Column, ...] = (
 
 TRIAL_COLUMNS: tuple[Column, ...] = (
     _PARTICIPANT, _TRIAL_ID, *TICK_COLUMNS[2:5],
-    Column("condition", TEXT, "condition id robot@kitchen"), _ROBOT, _KITCHEN,
+    Column("condition", TEXT, "condition id robot@kitchen (robot@kitchen@view with a view factor)"), _ROBOT,
+    _KITCHEN, _VIEW,
     Column("seed", INT, "the trial's random seed"),
     Column("status", TEXT, "finished, abandoned or running"),
     Column("end_reason", TEXT, "delivered, horizon, grace_expired or restarted"),
@@ -121,8 +124,8 @@ TRIAL_COLUMNS: tuple[Column, ...] = (
 )
 
 CELL_COLUMNS: tuple[Column, ...] = (
-    _PARTICIPANT, _ROBOT, _KITCHEN,
-    Column("condition", TEXT, "condition id robot@kitchen"),
+    _PARTICIPANT, _ROBOT, _KITCHEN, _VIEW,
+    Column("condition", TEXT, "condition id robot@kitchen (robot@kitchen@view with a view factor)"),
     _TRIAL_ID,
     Column("position", INT, "position of the condition in the participant's order (1 = first main trial)"),
     *(MEASURES[m] for m in TRIAL_MEASURES),

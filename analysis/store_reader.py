@@ -63,6 +63,7 @@ class StoredTrial:
     condition: str
     kitchen: str
     robot: str
+    view: str
     seed: int
     config_hash: str
     status: str
@@ -226,7 +227,7 @@ def _trials(conn: Connection, study_id: str) -> tuple[StoredTrial, ...]:
     t = TrialRow
     rows = conn.execute(
         select(t.id, t.participant_id, t.kind, t.index, t.attempt, t.condition_id.label("condition"), t.kitchen,
-               t.robot, t.seed, t.config_hash, t.status, t.end_reason, t.started_at, t.ended_at, t.ticks,
+               t.robot, t.view, t.seed, t.config_hash, t.status, t.end_reason, t.started_at, t.ended_at, t.ticks,
                t.delivered, t.score, t.initial_state)
         .where(t.study_id == study_id)
         .order_by(t.id))

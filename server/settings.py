@@ -17,7 +17,7 @@ from pydantic_settings import BaseSettings, SettingsConfigDict
 from study_config import STUDY_DIR
 
 DEFAULT_DATABASE_URL = "sqlite:///./data/steakhouse.sqlite3"
-DEFAULT_STUDIES = (STUDY_DIR / "demo.yaml", STUDY_DIR / "paper_study.yaml")
+DEFAULT_STUDIES = (STUDY_DIR / "demo.yaml", STUDY_DIR / "demo_first_person.yaml", STUDY_DIR / "paper_study.yaml")
 _REPO_STATIC = Path(__file__).resolve().parents[1] / "static"
 
 

@@ -1,9 +1,9 @@
 """``steakhouse serve``: run the study server (FastAPI on uvicorn).
 
 Options override the ``STEAKHOUSE_*`` environment (see :mod:`server.settings`); without ``--study`` the
-shipped ``demo.yaml`` and ``paper_study.yaml`` are served; without ``--database-url`` (or ``DATABASE_URL``)
-the store is the SQLite file ``./data/steakhouse.sqlite3``, created with its folder. Invalid settings or
-study files stop the command with every problem listed (exit 1).
+shipped ``demo.yaml``, ``demo_first_person.yaml`` and ``paper_study.yaml`` are served; without
+``--database-url`` (or ``DATABASE_URL``) the store is the SQLite file ``./data/steakhouse.sqlite3``, created
+with its folder. Invalid settings or study files stop the command with every problem listed (exit 1).
 
 Participant tokens never reach the log: the websocket takes ``?token=…`` (browsers cannot set headers
 there) and uvicorn logs the path with its query (``"WebSocket /ws/play?token=…" [accepted]`` at info, and
@@ -60,7 +60,7 @@ def register(subparsers: Any) -> None:
     parser.add_argument("--host", help="interface to listen on (default 127.0.0.1; 0.0.0.0 in a container)")
     parser.add_argument("--port", type=int, help="TCP port (default 8000)")
     parser.add_argument("--study", action="append", metavar="FILE", dest="studies",
-                        help="study YAML to serve (repeatable; default: the shipped demo and paper studies)")
+                        help="study YAML to serve (repeatable; default: the shipped demo studies and the paper study)")
     parser.add_argument("--database-url", metavar="URL",
                         help="SQLAlchemy URL of the store (default: sqlite:///./data/steakhouse.sqlite3)")
     parser.add_argument("--workers", type=int, metavar="N", dest="robot_workers",

@@ -45,7 +45,7 @@ def validate_files(args: argparse.Namespace) -> int:
         print(
             f"{file}: ok: {study.id}: {len(study.conditions)} conditions ({conditions}); "
             f"{orders} condition order{'s' if orders != 1 else ''} ({scheme}); "
-            f"config {study.config_hash()[:12]}"
+            f"view {' / '.join(study.view_levels)}; config {study.config_hash()[:12]}"
         )
         for warning in study_warnings(study):
             print(f"{file}: {warning}", file=sys.stderr)

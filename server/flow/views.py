@@ -2,8 +2,9 @@
 
 Never the condition's robot or kitchen names beyond the assigned order given at join: the pages show
 "round 2 of 5", not which robot is playing. ``fov_angle`` (the study's field of view, the same in every trial)
-lets the instructions draw the cone the participant will have. Consent and instructions have their duration
-placeholders filled in from the study (:mod:`server.study.duration`).
+lets the instructions draw the cone the participant will have; a trial's ``view`` (top-down or first-person)
+lets the round's intro card explain its controls (the participant sees the view anyway). Consent and
+instructions have their duration placeholders filled in from the study (:mod:`server.study.duration`).
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from server.store.types import utcnow
 from server.study.device import DeviceRequirements
 from server.study.duration import fill_placeholders, study_length
 from server.study.questionnaire import Item
+from server.study.views import DEFAULT_VIEW
 
 
 def load_session_view(session: Session, loaded: LoadedStudy, participant_id: int) -> dict[str, Any]:
@@ -74,7 +76,7 @@ def session_view(loaded: LoadedStudy, row: ParticipantRow, order: AssignmentRow 
                          "kind_total": sum(1 for s in progress.plan if s.trial_kind == step.trial_kind),
                          "scored": step.trial_kind == "main",
                          "status": facts.current if facts is not None else None,
-                         "websocket": "/ws/play"}
+                         "view": step.view or DEFAULT_VIEW, "websocket": "/ws/play"}
     elif phase is Phase.QUESTIONNAIRE:
         questionnaire = next(q for q in study.questionnaires if q.id == step.questionnaire)
         view["questionnaire"] = {

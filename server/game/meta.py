@@ -23,6 +23,8 @@ class TrialMeta:
     condition: str
     robot: str
     kitchen: str
+    view: str
+    """How the participant sees the kitchen (``server.study.views``); the one condition fact they may be told."""
     seed: int
     test_run: bool
 

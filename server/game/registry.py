@@ -141,8 +141,8 @@ class GameRegistry:
                          participant=participant.public_id, study_id=loaded.id, kind=row.kind, index=row.index,
                          number=step.number or 0, total=step.total or 0,
                          kind_total=sum(1 for s in progress.plan if s.trial_kind == row.kind),
-                         condition=row.condition_id, robot=row.robot, kitchen=row.kitchen, seed=row.seed,
-                         test_run=participant.test_run)
+                         condition=row.condition_id, robot=row.robot, kitchen=row.kitchen, view=row.view,
+                         seed=row.seed, test_run=participant.test_run)
         return LiveGame(meta, loaded, engine, self.deps, resumed=prepared.outcome == "resume")
 
     def detach(self, game: LiveGame, conn: Connection) -> None:

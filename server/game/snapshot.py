@@ -17,6 +17,7 @@ from server.game.needs import NEEDS
 from server.game.view import agent_view, drawn_bounds, visible_world
 from server.protocol.server import Blocked as BlockedMessage
 from server.protocol.server import Bounds, Hello, Hud, State, TrialInfo
+from server.study.views import ViewName
 
 TrialKind = Literal["practice", "main"]
 Mode = Literal["fixed_rate", "wait_for_participant"]
@@ -32,7 +33,8 @@ def hello(meta: TrialMeta, engine: TrialEngine, *, mode: str, rate: float, resum
         width=layout.width, height=layout.height, subtasks=[s.value for s in SUBTASKS],
         interrupts=[i.value for i in Interrupt], mode=cast(Mode, mode), tick_rate_hz=rate, fov_angle=engine.angle,
         horizon=rules.horizon, orders=rules.orders, tick=engine.tick, resumed=resumed, max_message_bytes=limit,
-        bounds=Bounds(left=left, top=top, width=width, height=height), needs={s.value: NEEDS[s] for s in SUBTASKS})
+        bounds=Bounds(left=left, top=top, width=width, height=height), needs={s.value: NEEDS[s] for s in SUBTASKS},
+        view=cast(ViewName, meta.view))
 
 
 def blocked_message(blocked: Blocked) -> BlockedMessage:

@@ -13,11 +13,14 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, TypeAdapter
 
+from server.study.views import ViewName
+
 BlockedReason = Literal[
     "hands_full", "hands_empty", "needs_item", "nothing_there", "counter_empty", "grill_busy", "steak_cooking",
     "board_busy", "nothing_to_chop", "no_garnish", "not_chopped", "already_chopped", "sink_busy", "nothing_to_wash",
     "already_washed", "no_clean_plate", "robot_in_way", "no_way", "unknown_place", "stuck"]
 """Why a subtask is not getting anywhere (``blocked`` messages; docs/protocol.md lists each with its words)."""
+
 TerrainName = Literal["floor", "counter", "onion", "meat", "plate", "grill", "board", "sink", "serve"]
 StationState = Literal["empty", "cooking", "ready", "chopping", "washing", "clean"]
 
@@ -79,6 +82,9 @@ class Hello(ServerMessage):
     needs: dict[str, str]
     """Subtask → what must be in hand for it: ``nothing``, ``something`` or an object name (the task buttons
     are disabled from this and what the cook holds)."""
+    view: ViewName
+    """How to draw the kitchen: from above, or through the cook's eyes (camera field of view ``fov_angle``).
+    The only fact about the trial's condition a participant may be told: they see it anyway."""
 
 
 class StationView(BaseModel):

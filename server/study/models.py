@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+from collections.abc import Sequence
 from typing import Annotated, Any
 
 from pydantic import Field, ValidationInfo, field_validator
@@ -23,8 +24,9 @@ from server.study.questionnaire import Questionnaire
 from server.study.quiz import Quiz
 from server.study.sections import Assignment, Counterbalancing, Practice, Reconnect, Recruiting, Timing, World
 from server.study.texts import DEFAULT_CONSENT, DEFAULT_INSTRUCTIONS
+from server.study.views import DEFAULT_VIEW, ViewName
 
-_FACTOR_LEVELS = {"robot": "robots", "kitchen": "kitchens"}
+_FACTOR_LEVELS = {"robot": "robots", "kitchen": "kitchens", "view": "views"}
 
 
 class Study(StudyModel):
@@ -40,9 +42,16 @@ class Study(StudyModel):
     """Levels of the kitchen factor: shipped kitchen names or layout paths relative to the study file."""
     robots: Annotated[tuple[RobotName, ...], NotEmpty]
     """Levels of the robot factor: planner names (``fov_aware``, ``baseline``, ``no_rollout``, ``stay``)."""
-    factors: Annotated[tuple[Factor, ...], NotEmpty] = ("robot", "kitchen")
-    """Within-subject factors, crossed into the conditions; the first varies slowest in the condition
-    list. A dimension left out must have a single level (e.g. one kitchen with ``factors: [robot]``)."""
+    view: ViewName | None = None
+    """How participants see the kitchen in every trial: ``top_down`` (the default) or ``first_person``
+    (``server.study.views``). Shorthand for ``views`` with one entry; write one of the two."""
+    views: Annotated[tuple[ViewName, ...], NotEmpty] | None = None
+    """Levels of the view factor, e.g. ``[top_down, first_person]`` with ``view`` in ``factors``. The stored
+    study always has ``views`` (from ``view`` when only that was written)."""
+    factors: Annotated[tuple[Factor, ...], NotEmpty] = Field(default=("robot", "kitchen"), validate_default=True)
+    """Within-subject factors (``robot``, ``kitchen``, ``view``), crossed into the conditions; the first varies
+    slowest in the condition list. A dimension left out must have a single level (e.g. one kitchen with
+    ``factors: [robot]``)."""
     counterbalancing: Counterbalancing = Counterbalancing()
     """How each participant's condition order is chosen."""
     practice: tuple[Practice, ...] = ()
@@ -84,12 +93,24 @@ class Study(StudyModel):
         raise_problems(duplicate_problems(robots, "robot"), robots)
         return robots
 
+    @field_validator("views")
+    @classmethod
+    def _check_views(cls, views: tuple[ViewName, ...] | None, info: ValidationInfo) -> tuple[ViewName, ...] | None:
+        problems: list[tuple[Loc, str]] = []
+        if views is not None:
+            problems += duplicate_problems(views, "view")
+            if info.data.get("view") is not None:
+                problems.append(((), "write either view (one view for every trial) or views (the levels of "
+                                     "the view factor), not both"))
+        raise_problems(problems, views)
+        return views
+
     @field_validator("factors")
     @classmethod
     def _check_factors(cls, factors: tuple[Factor, ...], info: ValidationInfo) -> tuple[Factor, ...]:
         problems = duplicate_problems(factors, "factor")
         for factor, field in _FACTOR_LEVELS.items():
-            levels = info.data.get(field)
+            levels = _view_levels(info.data) if factor == "view" else info.data.get(field)
             if factor not in factors and levels is not None and len(levels) != 1:
                 problems.append(
                     ((), f"{field} has {len(levels)} entries but {factor!r} is not a factor; "
@@ -101,7 +122,7 @@ class Study(StudyModel):
     @field_validator("counterbalancing")
     @classmethod
     def _check_counterbalancing(cls, value: Counterbalancing, info: ValidationInfo) -> Counterbalancing:
-        if not all(field in info.data for field in ("kitchens", "robots", "factors")):
+        if not all(field in info.data for field in ("kitchens", "robots", "view", "views", "factors")):
             return value
         ids = [c.id for c in _conditions(info.data)]
         problems: list[tuple[Loc, str]] = []
@@ -130,14 +151,24 @@ class Study(StudyModel):
         return value
 
     @property
+    def view_levels(self) -> tuple[ViewName, ...]:
+        """The views trials are played in: ``views``, else ``(view,)``, else the default (top-down)."""
+        return _view_levels({"view": self.view, "views": self.views})
+
+    @property
     def conditions(self) -> tuple[Condition, ...]:
-        """Every robot × kitchen condition, in study order (first factor slowest)."""
-        return _conditions({"robots": self.robots, "kitchens": self.kitchens, "factors": self.factors})
+        """Every robot × kitchen (× view) condition, in study order (first factor slowest)."""
+        return _conditions({"robots": self.robots, "kitchens": self.kitchens, "view": self.view,
+                            "views": self.views, "factors": self.factors})
 
     def condition_orders(self) -> list[tuple[str, ...]]:
         """The condition orders participants are assigned to (lists of condition ids)."""
         scheme = self.counterbalancing
         return condition_orders([c.id for c in self.conditions], scheme.scheme, scheme.order)
+
+    def practice_view(self, practice: Practice) -> ViewName:
+        """The view of a practice round: its own ``view``, else the study's first view level."""
+        return practice.view or self.view_levels[0]
 
     def kitchen(self, name: str) -> Kitchen:
         """The kitchen called ``name`` among the study's and the practice kitchens."""
@@ -147,11 +178,14 @@ class Study(StudyModel):
         raise KeyError(name)
 
     def canonical_json(self) -> str:
-        """The resolved study as canonical JSON (sorted keys, no spaces), without machine paths."""
+        """The resolved study as canonical JSON (sorted keys, no spaces), without machine paths; ``views``
+        always lists the view levels (``view`` is folded into it)."""
         data = self.model_dump(
             mode="json",
-            exclude={"kitchens": {"__all__": {"path"}}, "practice": {"__all__": {"kitchen": {"path"}}}},
+            exclude={"view": True, "kitchens": {"__all__": {"path"}},
+                     "practice": {"__all__": {"kitchen": {"path"}}}},
         )
+        data["views"] = list(self.view_levels)
         return json.dumps(data, sort_keys=True, separators=(",", ":"), ensure_ascii=False)
 
     def config_hash(self) -> str:
@@ -159,6 +193,16 @@ class Study(StudyModel):
         return hashlib.sha256(self.canonical_json().encode("utf-8")).hexdigest()
 
 
+def _view_levels(data: dict[str, Any]) -> tuple[ViewName, ...]:
+    views: tuple[ViewName, ...] | None = data.get("views")
+    if views:
+        return views
+    view: ViewName | None = data.get("view")
+    return (view or DEFAULT_VIEW,)
+
+
 def _conditions(data: dict[str, Any]) -> tuple[Condition, ...]:
-    return cross_conditions(data["robots"], [k.name for k in data["kitchens"]], data["factors"])
+    levels: dict[Factor, Sequence[str]] = {"robot": data["robots"], "kitchen": [k.name for k in data["kitchens"]],
+                                           "view": _view_levels(data)}
+    return cross_conditions(levels, data["factors"])
 

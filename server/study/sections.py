@@ -9,6 +9,7 @@ from pydantic import Field, field_validator, model_validator
 
 from server.study.base import Loc, RobotName, StudyModel, duplicate_problems, raise_problems
 from server.study.kitchens import KitchenEntry
+from server.study.views import ViewName
 
 CODE_PLACEHOLDER = "{code}"
 _URL_PARAMETER = re.compile(r"^[A-Za-z0-9_.-]+$")
@@ -89,6 +90,8 @@ class Practice(StudyModel):
     """Robot partner for practice, e.g. ``stay`` (a robot that does not move)."""
     count: int = Field(default=1, ge=1)
     """How many practice trials of this kind."""
+    view: ViewName | None = None
+    """How the participant sees this practice round; default: the study's first view (``views[0]``)."""
 
 
 class Recruiting(StudyModel):

@@ -261,6 +261,24 @@ async def play_to_end(sock: Socket, *, on_state: Callable[[dict[str, Any]], Any]
                 await sock.send("select_subtask", subtask=choice)
 
 
+async def play_every_trial(player: Player, answers: dict[str, int] | None = None) -> list[tuple[dict[str, Any],
+                                                                                                dict[str, Any]]]:
+    """Play the participant's remaining trials to their end (answering questionnaire ``q`` with ``answers``);
+    returns each trial's ``(session["trial"], hello)``."""
+    played = []
+    while (session := await player.session())["state"] in ("practice", "trial", "questionnaire"):
+        if session["state"] == "questionnaire":
+            (await player.post("/api/session/questionnaire",
+                               {"questionnaire_id": "q", "answers": answers or {"a": 1}})).raise_for_status()
+            continue
+        sock = await player.socket()
+        hello = await sock.recv()
+        await play_to_end(sock)
+        await sock.close()
+        played.append((session["trial"], hello))
+    return played
+
+
 async def play_until(sock: Socket, tick: int) -> dict[str, Any]:
     """Read ``sock`` (choosing the first available subtask whenever none is chosen) until a ``state`` of
     ``tick`` or later; returns that state."""

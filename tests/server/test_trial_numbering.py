@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import asyncio
 
-from steakhouse_testing import Player, play_to_end
+from steakhouse_testing import Player, play_every_trial
 
 
 def test_practice_and_main_rounds_have_their_own_numbering(live_server, study_file):
@@ -16,19 +16,9 @@ def test_practice_and_main_rounds_have_their_own_numbering(live_server, study_fi
     async def scenario():
         player = Player(server.url)
         await player.ready()
-        sessions, hellos = [], []
-        while (session := await player.session())["state"] in ("practice", "trial", "questionnaire"):
-            if session["state"] == "questionnaire":
-                (await player.post("/api/session/questionnaire",
-                                   {"questionnaire_id": "q", "answers": {"a": 1}})).raise_for_status()
-                continue
-            sessions.append(session["trial"])
-            sock = await player.socket()
-            hellos.append((await sock.recv())["trial"])
-            await play_to_end(sock)
-            await sock.close()
+        played = await play_every_trial(player)
         await player.close()
-        return sessions, hellos
+        return [trial for trial, _ in played], [hello["trial"] for _, hello in played]
 
     sessions, hellos = asyncio.run(scenario())
     expected = [("practice", 1, 2, 1, 4), ("practice", 2, 2, 2, 4), ("main", 1, 2, 3, 4), ("main", 2, 2, 4, 4)]

@@ -25,6 +25,10 @@ STUDIES = HERE / "studies"
 ADMIN_TOKEN = "browser-admin-secret"
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",
                  "--disable-sync", "--no-first-run"]
+WEBGL_ARGS = ["--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
+              "--ignore-gpu-blocklist", "--disable-background-networking", "--disable-component-update",
+              "--disable-sync", "--no-first-run"]
+"""Chromium with software WebGL (SwiftShader through ANGLE), for the first-person view."""
 
 sys.path.insert(0, str(REPO / "tests" / "server"))
 sys.path.insert(0, str(HERE))
@@ -44,17 +48,27 @@ def chromium_or_skip() -> str:
     return path
 
 
-@pytest.fixture(scope="module")
-def browser() -> Iterator[Any]:
+def _launch(args: list[str]) -> Iterator[Any]:
     path = chromium_or_skip()
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as playwright:
-        launched = playwright.chromium.launch(executable_path=path, headless=True, args=CHROMIUM_ARGS)
+        launched = playwright.chromium.launch(executable_path=path, headless=True, args=args)
         try:
             yield launched
         finally:
             launched.close()
+
+
+@pytest.fixture(scope="module")
+def browser() -> Iterator[Any]:
+    yield from _launch(CHROMIUM_ARGS)
+
+
+@pytest.fixture(scope="module")
+def gl_browser() -> Iterator[Any]:
+    """Chromium with software WebGL (``WEBGL_ARGS``)."""
+    yield from _launch(WEBGL_ARGS)
 
 
 class StudyServer:
@@ -129,6 +143,16 @@ def new_page(browser: Any) -> Iterator[Callable[..., tuple[Any, PageProblems]]]:
     """``new_page(viewport=(1280, 720), scale=1, **context)``: a page in a fresh browser context (a new
     participant; ``context``: more Playwright context options, e.g. ``is_mobile``, ``has_touch``) with the
     recruiting site stubbed; fails the test if the page logged a console error."""
+    yield from _pages(browser)
+
+
+@pytest.fixture
+def new_gl_page(gl_browser: Any) -> Iterator[Callable[..., tuple[Any, PageProblems]]]:
+    """``new_page`` in Chromium with software WebGL."""
+    yield from _pages(gl_browser)
+
+
+def _pages(browser: Any) -> Iterator[Callable[..., tuple[Any, PageProblems]]]:
     contexts: list[tuple[Any, PageProblems]] = []
 
     def make(viewport: tuple[int, int] = (1280, 720), scale: float = 1, **options: Any) -> tuple[Any, PageProblems]:

@@ -42,7 +42,8 @@ def kitchen(name: str) -> Layout:
 
 @dataclass(frozen=True)
 class Drawn:
-    """What the kitchen canvas says it drew (its data attributes, set in the same frame as the pixels)."""
+    """What the kitchen canvas says it drew (its data attributes, set in the same frame as the pixels); the
+    first-person canvas has no cells, so ``cell_css`` and ``dpr`` are NaN there."""
 
     trial: int
     tick: int
@@ -61,10 +62,12 @@ def drawn(page: Any) -> Drawn:
     data = page.eval_on_selector("#kitchen", "el => ({...el.dataset})")
     x, y, facing = data["you"].split(",")
     width, height = data["grid"].split("x")
-    left, top, shown_w, shown_h = (int(v) for v in data["bounds"].split(","))
+    bounds = data.get("bounds") or f"0,0,{width},{height}"  # the first-person view draws no grid
+    left, top, shown_w, shown_h = (int(v) for v in bounds.split(","))
     return Drawn(trial=int(data["trial"]), tick=int(data["tick"]), pos=(int(x), int(y)), facing=Direction(facing),
                  held=data["held"], robot=data["robot"], grid=(int(width), int(height)),
-                 bounds=(left, top, shown_w, shown_h), cell_css=float(data["cell"]), dpr=float(data["dpr"]))
+                 bounds=(left, top, shown_w, shown_h), cell_css=float(data.get("cell", "nan")),
+                 dpr=float(data.get("dpr", "nan")))
 
 
 def wait_drawn(page: Any, condition: str = "true", timeout: float = TIMEOUT_MS) -> Drawn:

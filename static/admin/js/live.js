@@ -9,6 +9,7 @@ import { h, show } from "../../js/dom.js";
 import { subtaskLabel } from "../../js/labels.js";
 import { beliefPanel, decisionPanel, facts, gapPanel } from "./panels.js";
 import { Stage, beliefLabel, beliefState, worldLabel, worldState } from "./scene.js";
+import { ParticipantCamera } from "./camera.js";
 import { badge, errorText, ms, pageFrame, poll, table, who } from "./ui.js";
 
 const LIST_MS = 2000;
@@ -44,7 +45,7 @@ function header(view) {
   const t = view.trial;
   return h("p", { class: "trial-meta", id: "live-meta" },
     who(t.recruit_id, t.participant), ` · ${t.study_id} · ${t.kind} ${t.index + 1} of ${t.kind_total} · ${t.condition}` +
-    ` · seed ${t.seed}`, t.test_run ? [" ", badge("test run", "test")] : null,
+    ` · ${t.view.replace("_", "-")} view · seed ${t.seed}`, t.test_run ? [" ", badge("test run", "test")] : null,
     " ", view.connected ? badge("connected", "ok") : badge("participant away: paused", "warn"));
 }
 
@@ -57,8 +58,10 @@ export function liveTrialPage(root, { api, args }) {
   const meta = h("div", {});
   const side = h("div", { class: "viewer-side" });
   const caption = h("p", { class: "muted caption" });
+  const camera = new ParticipantCamera();
+  camera.node.hidden = true;
   frame.body.append(meta, h("div", { class: "viewer" },
-    h("div", { class: "viewer-main" }, world.node, caption,
+    h("div", { class: "viewer-main" }, world.node, caption, camera.node,
       h("h3", {}, "The kitchen as the participant's model has it"), belief.node,
       h("p", { class: "muted caption" }, "Objects and stations as last seen (after the KB delay); the robot where it was last seen.")),
     side));
@@ -73,6 +76,8 @@ export function liveTrialPage(root, { api, args }) {
       if (!world.label) world.label = worldLabel(view.fov_angle);
       world.show(view.grid, worldState(view.grid, view.frame), { fov: view.frame.fov });
       belief.show(view.grid, beliefState(view.grid, view.frame));
+      camera.node.hidden = view.trial.view !== "first_person";
+      if (!camera.node.hidden) camera.show(view.grid, view.frame, view.fov_angle, VIEW_MS);
       world.node.dataset.tick = String(view.tick);
       meta.replaceChildren(header(view));
       caption.textContent = `Tick ${view.tick}. Dimmed cells are outside the participant's ${view.fov_angle}° field of view ` +
@@ -115,5 +120,6 @@ export function liveTrialPage(root, { api, args }) {
     stop();
     world.destroy();
     belief.destroy();
+    camera.destroy();
   };
 }

@@ -10,6 +10,7 @@ import { h, show } from "../../js/dom.js";
 import { subtaskLabel } from "../../js/labels.js";
 import { beliefPanel, decisionPanel, facts, gapPanel } from "./panels.js";
 import { Stage, beliefLabel, beliefState, worldLabel, worldState } from "./scene.js";
+import { ParticipantCamera } from "./camera.js";
 import { badge, errorText, ms, pageFrame, who } from "./ui.js";
 
 const PAGE = 2000;
@@ -29,7 +30,8 @@ async function loadFrames(api, trialId, onProgress) {
 function metaLine(replay) {
   const t = replay.trial;
   return h("p", { class: "trial-meta", id: "replay-meta" },
-    who(t.recruit_id, t.participant_id), ` · ${t.study_id} · ${t.kind} ${t.index + 1} · ${t.condition} · seed ${t.seed} · ` +
+    who(t.recruit_id, t.participant_id), ` · ${t.study_id} · ${t.kind} ${t.index + 1} · ${t.condition} · ` +
+    `${t.view.replace("_", "-")} view · seed ${t.seed} · ` +
     `${t.status}${t.end_reason ? ` (${t.end_reason})` : ""} · ${t.delivered} delivered · score ${t.score}`,
     replay.config_changed ? [" ", badge("study file changed since this trial", "warn")] : null);
 }
@@ -60,6 +62,7 @@ export function replayPage(root, { api, args }) {
   let removeKeys = () => {};
   const world = new Stage("admin-kitchen");
   const belief = new Stage("belief-kitchen", { maxCell: 60, className: "model", label: beliefLabel });
+  const camera = new ParticipantCamera();
 
   loadFrames(api, trialId, (n) => { frame.body.firstChild.textContent = `Loading the ticks… ${n}`; })
     .then((replay) => { if (!left) removeKeys = build(replay); })
@@ -94,6 +97,7 @@ export function replayPage(root, { api, args }) {
       }
     } }, label);
     let index = 0;
+    const firstPerson = replay.trial.view === "first_person";
 
     function draw() {
       const f = frames[index];
@@ -103,6 +107,7 @@ export function replayPage(root, { api, args }) {
       label.dataset.tick = String(f.tick);
       world.show(replay.grid, worldState(replay.grid, f), { fov: f.fov });
       belief.show(replay.grid, beliefState(replay.grid, f));
+      if (firstPerson) camera.show(replay.grid, f, replay.fov_angle, 1000 / (replay.tick_rate_hz * Number(speed.value)));
       side.replaceChildren(tickFacts(f), gapPanel(f.kb_summary, f.world_summary, f.kb_gap, f.kb_gap_total),
         beliefPanel(f.decision, f.subtask), decisionPanel(f.decision));
     }
@@ -145,7 +150,7 @@ export function replayPage(root, { api, args }) {
     frame.body.replaceChildren(metaLine(replay),
       h("div", { class: "timeline", role: "group", "aria-label": "Timeline" }, first, back, play, forward, scrubber, label, speed),
       h("div", { class: "viewer" },
-        h("div", { class: "viewer-main" }, world.node, caption,
+        h("div", { class: "viewer-main" }, world.node, caption, firstPerson ? camera.node : null,
           h("h3", {}, "The kitchen as the participant's model had it"), belief.node,
           h("div", { class: "actions tight" }, download("Download ticks (JSON)", `/api/admin/trials/${trialId}`, `trial-${trialId}-ticks.json`),
             download("Download events (JSON)", `/api/admin/trials/${trialId}/events`, `trial-${trialId}-events.json`)), status),
@@ -160,5 +165,6 @@ export function replayPage(root, { api, args }) {
     removeKeys();
     world.destroy();
     belief.destroy();
+    camera.destroy();
   };
 }

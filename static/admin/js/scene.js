@@ -9,7 +9,8 @@
 import { h } from "../../js/dom.js";
 import { KitchenView } from "../../js/game/renderer.js";
 
-function cellsOf(grid, contents) {
+/** Every cell of `grid` with the objects and station statuses of `contents` (a frame or its `kb`). */
+export function cellsOf(grid, contents) {
   const objects = new Map(contents.objects.map((o) => [`${o.x},${o.y}`, o.object]));
   const stations = new Map(contents.stations.map((s) => [`${s.x},${s.y}`, s]));
   const cells = [];

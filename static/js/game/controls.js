@@ -15,8 +15,9 @@ import { INTERRUPTS, SUBTASK_GROUPS, SUBTASKS, subtaskLabel } from "../labels.js
 import { handsReason } from "./reasons.js";
 
 export class Controls {
-  /** `onRefused(subtask, reason)`: a disabled task was chosen. */
-  constructor({ subtasks, interrupts, needs = {}, onSelect, onInterrupt, onRefused = () => {} }) {
+  /** `onRefused(subtask, reason)`: a disabled task was chosen; `labels`: interrupt id → label replacing the usual
+   * one (the first-person view's "Forward", …). */
+  constructor({ subtasks, interrupts, needs = {}, onSelect, onInterrupt, onRefused = () => {}, labels = {} }) {
     this.enabled = false;
     this.buttons = new Map();
     this.reasons = new Map();
@@ -59,7 +60,7 @@ export class Controls {
       type: "button", class: `interrupt-button interrupt-${i.id}`, dataset: { interrupt: i.id },
       "aria-keyshortcuts": i.keys.map(ariaKey).join(" "),
       onclick: () => this.enabled && onInterrupt(i.id),
-    }, h("span", { class: "interrupt-label" }, i.label),
+    }, h("span", { class: "interrupt-label" }, labels[i.id] || i.label),
        h("span", { class: "keys" }, i.keys.map((k) => h("kbd", {}, k)))));
     this.interrupts = h("div", { class: "interrupts", role: "group", "aria-label": "Interrupt actions" },
       this.interruptButtons);

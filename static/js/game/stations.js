@@ -189,7 +189,7 @@ export function drawCell(ctx, cell, x0, y0, s) {
   if (cell.station) drawProgress(ctx, cell.terrain, cell.station, x0, y0, s);
 }
 
-const BAR_COLOR = { grill: COLORS.barCook, board: COLORS.barChop, sink: COLORS.barWash };
+export const BAR_COLOR = { grill: COLORS.barCook, board: COLORS.barChop, sink: COLORS.barWash };
 
 /** A segmented bar along the cell's bottom edge, and a check badge when the work is done. */
 export function drawProgress(ctx, terrain, station, x0, y0, s) {

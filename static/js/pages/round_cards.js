@@ -14,6 +14,8 @@ const INTRO = {
     "The round starts as soon as you press the button."],
     main: ["Work with the robot to deliver the orders as quickly as you can. Remember: black cells are " +
       "outside your view.", "The round starts as soon as you press the button."],
+    main_first_person: ["Work with the robot to deliver the orders as quickly as you can.",
+      "The round starts as soon as you press the button."],
     button: { practice: "Start practice", main: "Start round" },
   },
   in_progress: {
@@ -37,14 +39,22 @@ export function introCard(root, trial, onStart) {
   const practice = trial.kind === "practice";
   const status = INTRO[trial.status] ? trial.status : "new";
   const words = INTRO[status];
-  const text = status === "new" ? words[practice ? "practice" : "main"] : words.text;
+  const firstPerson = trial.view === "first_person";
+  const text = status === "new" ? words[practice ? "practice" : firstPerson ? "main_first_person" : "main"]
+    : words.text;
   const label = status === "new" ? words.button[practice ? "practice" : "main"] : words.button;
   const button = h("button", { type: "button", class: "primary", id: "start-round", onclick: onStart }, label);
   show(root, h("section", { class: "card narrow", id: "round-intro", dataset: { status },
                             "aria-labelledby": "round-title" },
     h("h1", { id: "round-title", tabindex: "-1" }, practice ? "Practice round" : roundLabel(trial)),
     practice ? h("p", { class: "muted", id: "round-number" }, roundLabel(trial)) : null,
-    text.map((t, i) => h("p", { class: i ? "muted" : null, id: i ? null : "round-text" }, t)),
+    text.slice(0, 1).map((t) => h("p", { id: "round-text" }, t)),
+    firstPerson
+      ? h("p", { id: "first-person-note" }, "In this round you see the kitchen through the cook's eyes; what is " +
+          "outside your view is dark. ↑ or W steps forward, ← → or A D turn left and right (stepping that way " +
+          "when the floor is free), ↓ or S turns around, Space interacts with what you face.")
+      : null,
+    text.slice(1).map((t) => h("p", { class: "muted" }, t)),
     h("div", { class: "actions" }, button)), button);
 }
 

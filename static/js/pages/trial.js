@@ -10,7 +10,7 @@
 
 import { h, show } from "../dom.js";
 import { GameConnection, Link } from "../game/connection.js";
-import { KitchenView } from "../game/renderer.js";
+import { kitchenViewFor } from "../game/views.js";
 import { Hud } from "../game/hud.js";
 import { Controls } from "../game/controls.js";
 import { Activity } from "../game/activity.js";
@@ -21,7 +21,6 @@ import { subtaskLabel } from "../labels.js";
 import { introCard, summaryCard } from "./round_cards.js";
 
 const IDLE_MS = 30000;
-const MAX_CELL = 200;
 
 function playingKey(session) {
   const t = session.trial;
@@ -82,7 +81,7 @@ function playRound(root, ctx, onFinished) {
   document.body.classList.add("playing");
   window.addEventListener("beforeunload", confirmLeaving);
 
-  const view = new KitchenView(canvas, stage, { maxCell: MAX_CELL });
+  let view = null;
   let controls = null;
   let removeKeys = null;
   let lastTask = null;
@@ -94,9 +93,12 @@ function playRound(root, ctx, onFinished) {
     if (text) cover.append(h("p", { class: "cover-text" }, text));
     if (action) cover.append(action);
   };
-  const sendInterrupt = (action) => {
-    if (conn.send("interrupt", { action }) === null) return;
-    controls.flash(action);
+  const sendInterrupt = (key) => {
+    const action = view.interruptFor(key);
+    const seq = conn.send("interrupt", { action });
+    view.interruptSent(seq);
+    if (seq === null) return;
+    controls.flash(key);
     if (action === "stop") controls.setCurrent(null, true);
   };
   const select = (subtask) => {
@@ -113,12 +115,13 @@ function playRound(root, ctx, onFinished) {
   const conn = new GameConnection(ctx.api.token, {
     onHello(message) {
       hello = message;
-      view.setGrid(message.width, message.height, message.bounds);
+      if (!view) view = kitchenViewFor(message.view, stage, canvas, { xr: true, onInterrupt: (a) => sendInterrupt(a) });
+      view.configure(message);
       hud.setRound(message.trial);
       canvas.dataset.trial = String(message.trial.id);
       if (!controls) {
         controls = new Controls({ subtasks: message.subtasks, interrupts: message.interrupts, needs: message.needs,
-                                  onSelect: select, onInterrupt: sendInterrupt,
+                                  onSelect: select, onInterrupt: sendInterrupt, labels: view.interruptLabels,
                                   onRefused: (id, reason) => note.say(`${subtaskLabel(id)}: ${reason}.`, "blocked") });
         main.querySelector(".interrupts-slot").replaceWith(controls.interrupts);
         side.append(controls.tasks);
@@ -131,7 +134,7 @@ function playRound(root, ctx, onFinished) {
       activity.resync();
     },
     onState(state) {
-      view.update(state);
+      if (view) view.update(state);
       hud.update(state);
       recipe.update(state.you.held, state.subtask);
       taskChanged(state.subtask);
@@ -180,7 +183,7 @@ function playRound(root, ctx, onFinished) {
   function cleanup() {
     window.removeEventListener("beforeunload", confirmLeaving);
     conn.stop();
-    view.destroy();
+    if (view) view.destroy();
     note.destroy();
     activity.destroy();
     if (removeKeys) removeKeys();

@@ -1,7 +1,7 @@
 """The participant's checks: the device their browser reported, comprehension-quiz attempts, free-text answers.
 
 Revision ID: 0005
-Revises: 0002
+Revises: 0003
 Create Date: 2026-12-01
 """
 
@@ -12,7 +12,7 @@ from alembic import op
 from sqlalchemy.dialects import postgresql
 
 revision = "0005"
-down_revision = "0002"
+down_revision = "0003"  # 0002 when written; main has since gained 0003 (the trial view)
 branch_labels = None
 depends_on = None
 
