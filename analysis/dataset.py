@@ -9,7 +9,7 @@ never in ``cells.csv``. Flagged participants, and participants missing a cell, a
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -39,8 +39,9 @@ class Dataset:
     design: Design
     tables: dict[str, pd.DataFrame]
     columns: dict[str, tuple[Column, ...]]
-    config: dict[str, Any] = field(default_factory=dict)
-    """The study's resolved configuration as stored (the analysis reads factors, levels and scales from it)."""
+    config: Mapping[str, Any] = field(default_factory=dict)
+    """The study's resolved configuration as stored (the analysis reads factors, levels and scales from it; the
+    data dictionary its questionnaire items and scales)."""
 
     @property
     def cells(self) -> pd.DataFrame:
@@ -222,6 +223,7 @@ def _answer_rows(data: Any, people: dict[int, StoredParticipant], design: Design
             design.condition_of(condition) if condition else None)
         rows.append({
             "participant": p.public_id, "questionnaire": a.questionnaire_id, "item": a.item_id, "value": a.value,
+            "text": a.text,
             "after_trial": a.after_trial, "condition": trial.condition if trial else condition,
             "robot": robot_kitchen[0] if robot_kitchen else None,
             "kitchen": robot_kitchen[1] if robot_kitchen else None, "trial_id": a.trial_id,

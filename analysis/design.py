@@ -39,6 +39,8 @@ class Design:
         for questionnaire in config.get("questionnaires", ()):
             target = end_items if questionnaire.get("when") == "end_of_study" else trial_items
             for item in questionnaire.get("items", ()):
+                if item.get("type") == "text":
+                    continue  # free text is exported in answers.csv only
                 target.append((str(questionnaire["id"]), str(item["id"]), str(item.get("text", ""))))
         return cls(robots, kitchens, conditions, tuple(trial_items), tuple(end_items))
 

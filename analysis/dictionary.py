@@ -9,7 +9,10 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
+from analysis.dictionary_items import item_key as item_column
+from analysis.dictionary_items import md_cell, questionnaire_items, questionnaire_markdown, questionnaire_scales
 from analysis.measures import CONDUCT_COUNTS, GAP_COMPONENTS, TRIAL_MEASURES
 
 
@@ -142,7 +145,13 @@ ANSWER_COLUMNS: tuple[Column, ...] = (
     _PARTICIPANT,
     Column("questionnaire", TEXT, "questionnaire id"),
     Column("item", TEXT, "item id"),
-    Column("value", INT, "answer on the item's scale (empty: not answered, optional item)"),
+    Column("value", INT, "a rating as given on the item's scale (reverse-coded items are not reversed here), or "
+                         "the 0-based index of the chosen option of a choice item (empty: not answered, or a text "
+                         "item)"),
+    Column("text", TEXT, "a free-text answer, or the chosen option's text of a choice item (empty: a rating or "
+                         "not answered). Quoted as CSV needs (commas, quotes, line breaks); text beginning with =, "
+                         "+, -, @, a tab or a carriage return is written with a leading ' so that spreadsheets "
+                         "show it instead of running it as a formula (the store keeps it as written)"),
     Column("after_trial", INT, "main trial index the questionnaire followed (empty: end of study)"),
     Column("condition", TEXT, "condition of that trial"), _ROBOT, _KITCHEN,
     _TRIAL_ID,
@@ -178,11 +187,6 @@ EXCLUDED_COLUMNS: tuple[Column, ...] = (
     Column("reason", TEXT, "why the participant is not in the complete-case analysis"),
     Column("in_cells", FLAG, "1 when the participant's available cells are still in cells.csv"),
 )
-
-
-def item_column(questionnaire: str, item: str) -> str:
-    """An answer's column name in cells.csv and wide.csv: ``<questionnaire id>.<item id>``."""
-    return f"{questionnaire}.{item}"
 
 
 def wide_column(measure: str, robot: str, kitchen: str) -> str:
@@ -221,24 +225,28 @@ FILE_NOTES: dict[str, str] = {
 }
 
 
-def render_markdown(files: Mapping[str, Sequence[Column]], study_id: str, exported_at: str) -> str:
-    """``data_dictionary.md``: a section per file with a table of its columns."""
+def render_markdown(files: Mapping[str, Sequence[Column]], study_id: str, exported_at: str,
+                    config: Mapping[str, Any] | None = None) -> str:
+    """``data_dictionary.md``: a section per file with a table of its columns, then the questionnaires' items and
+    scales from the study's ``config``."""
     lines = [f"# Data dictionary: study {study_id}", "", f"Exported {exported_at}.", "",
              "Empty cells are missing values. Flags are 0/1. Times are UTC (ISO 8601). Measures are defined in "
              "docs/analysis.md (docs/domain.md §6).", ""]
     for name, columns in files.items():
         lines += [f"## {name}", "", FILE_NOTES.get(name, ""), "", "| column | type | unit | description |",
                   "|---|---|---|---|"]
-        lines += [f"| {c.name} | {c.type} | {UNITS.get(c.name, '')} | {_md_cell(c.description)} |" for c in columns]
+        lines += [f"| {c.name} | {c.type} | {UNITS.get(c.name, '')} | {md_cell(c.description)} |" for c in columns]
         lines.append("")
-    return "\n".join(lines)
+    return "\n".join(lines + questionnaire_markdown(config or {}))
 
 
-def rows(files: Mapping[str, Sequence[Column]]) -> list[dict[str, str]]:
-    """``data_dictionary.csv``: one row per file and column."""
-    return [{"file": name, "column": c.name, "type": c.type, "unit": UNITS.get(c.name, ""),
-             "description": c.description} for name, columns in files.items() for c in columns]
-
-
-def _md_cell(text: str) -> str:
-    return text.replace("|", "\\|")
+def rows(files: Mapping[str, Sequence[Column]], config: Mapping[str, Any] | None = None) -> list[dict[str, str]]:
+    """``data_dictionary.csv``: one row per file and column; then one row per questionnaire item (file
+    ``items``) and per named scale (file ``scales``) of the study's ``config``."""
+    out = [{"file": name, "column": c.name, "type": c.type, "unit": UNITS.get(c.name, ""),
+            "description": c.description} for name, columns in files.items() for c in columns]
+    out += [{"file": "items", "column": i.column, "type": i.kind, "unit": "", "description": i.description}
+            for i in questionnaire_items(config or {})]
+    out += [{"file": "scales", "column": sc.column, "type": NUM, "unit": "", "description": sc.description}
+            for sc in questionnaire_scales(config or {})]
+    return out

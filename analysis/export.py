@@ -24,11 +24,13 @@ from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
 
+import pandas as pd
 from sqlalchemy import Engine
 from sqlalchemy.exc import OperationalError
 
 from analysis.dataset import FILES, Dataset, build_dataset
 from analysis.dictionary import render_markdown, rows
+from analysis.dictionary_items import spreadsheet_safe
 from analysis.store_reader import StoreReadError, open_engine
 
 DICTIONARY_FILES = ("data_dictionary.md", "data_dictionary.csv")
@@ -68,17 +70,33 @@ def write_dataset(dataset: Dataset, out_dir: Path | str) -> ExportResult:
     out.mkdir(parents=True, exist_ok=True)
     files: list[Path] = []
     for name in FILES:
-        dataset.tables[name].to_csv(out / name, index=False)
+        _csv_safe(dataset.tables[name], name).to_csv(out / name, index=False)
         files.append(out / name)
     stamp = datetime.now(UTC).isoformat(timespec="seconds")
-    markdown = render_markdown(dataset.columns, dataset.study_id, stamp)
+    markdown = render_markdown(dataset.columns, dataset.study_id, stamp, dataset.config)
     (out / DICTIONARY_FILES[0]).write_text(markdown, encoding="utf-8")
     with (out / DICTIONARY_FILES[1]).open("w", newline="", encoding="utf-8") as handle:
         writer = csv.DictWriter(handle, fieldnames=["file", "column", "type", "unit", "description"])
         writer.writeheader()
-        writer.writerows(rows(dataset.columns))
+        writer.writerows(rows(dataset.columns, dataset.config))
     files += [out / name for name in DICTIONARY_FILES]
     return ExportResult(dataset, out, tuple(files))
+
+
+TEXT_COLUMNS = {"answers.csv": ("text",)}
+"""Columns holding what participants typed: written spreadsheet-safe (see ``analysis.dictionary``)."""
+
+
+def _csv_safe(table: pd.DataFrame, name: str) -> pd.DataFrame:
+    """``table`` with its participant-typed text columns made safe to open in a spreadsheet. Quoting of
+    commas, quotes and line breaks is the CSV writer's (RFC 4180 style, so every reader gets the text back)."""
+    typed = [c for c in TEXT_COLUMNS.get(name, ()) if c in table.columns]
+    if not typed:
+        return table
+    safe = table.copy()
+    for column in typed:
+        safe[column] = safe[column].map(spreadsheet_safe)
+    return safe
 
 
 def export_zip(source: Engine | str, study_id: str) -> bytes:

@@ -119,6 +119,8 @@ class StoredAnswer:
     item_id: str
     value: int | None
     created_at: datetime
+    text: str | None = None
+    """A free-text answer, or the chosen option's text of a choice item."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -235,7 +237,7 @@ def _trials(conn: Connection, study_id: str) -> tuple[StoredTrial, ...]:
 def _answers(conn: Connection, study_id: str) -> tuple[StoredAnswer, ...]:
     rows = conn.execute(
         select(AnswerRow.participant_id, AnswerRow.questionnaire_id, AnswerRow.step, AnswerRow.after_trial,
-               AnswerRow.trial_id, AnswerRow.item_id, AnswerRow.value, AnswerRow.created_at)
+               AnswerRow.trial_id, AnswerRow.item_id, AnswerRow.value, AnswerRow.created_at, AnswerRow.text)
         .join(ParticipantRow, ParticipantRow.id == AnswerRow.participant_id)
         .where(ParticipantRow.study_id == study_id)
         .order_by(AnswerRow.participant_id, AnswerRow.step, AnswerRow.id))

@@ -1,6 +1,7 @@
 """A participant's questionnaire answers for the admin: one entry per questionnaire step they submitted, in
-the order they answered, each item with its text and scale from the study (when the study still has it) and
-the stored value (``None`` for an optional item left out)."""
+the order they answered, each item with its text, type and scale from the study (when the study still has it)
+and the stored value and text (``None`` for an optional item left out; ``text`` is a free-text answer or the
+chosen option of a choice item)."""
 
 from __future__ import annotations
 
@@ -26,8 +27,10 @@ def participant_answers(session: Session, row: ParticipantRow, loaded: LoadedStu
         items = []
         for answer in stored:
             item = texts.get(answer.item_id)
-            items.append({"id": answer.item_id, "value": answer.value, "text": item.text if item else None,
-                          "scale": {"min": item.scale.min, "max": item.scale.max} if item else None})
+            scale = item.scale if item else None
+            items.append({"id": answer.item_id, "value": answer.value, "answer_text": answer.text,
+                          "text": item.text if item else None, "type": item.type if item else None,
+                          "scale": {"min": scale.min, "max": scale.max} if scale else None})
         out.append({"questionnaire_id": questionnaire_id, "title": known.title if known else None, "step": step,
                     "after_trial": stored[0].after_trial, "trial_id": stored[0].trial_id,
                     "answered_at": stored[0].created_at.isoformat(), "items": items})

@@ -1,7 +1,8 @@
 """``steakhouse study validate FILE...``: check study files before anything starts.
 
 Prints one summary line per valid file and every problem of the invalid ones (``FILE: field: reason``);
-exits 0 when all files are valid, 1 otherwise.
+exits 0 when all files are valid, 1 otherwise. Warnings (``FILE: field: warning: reason``, on stderr) do not
+make a file invalid.
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ def register(subparsers: Any) -> None:
 def validate_files(args: argparse.Namespace) -> int:
     """Validate each file in ``args.files``; 0 when all are valid, 1 otherwise."""
     from server.study import StudyConfigError, load_study
+    from server.study.warnings import study_warnings
 
     invalid = 0
     for file in args.files:
@@ -45,6 +47,8 @@ def validate_files(args: argparse.Namespace) -> int:
             f"{orders} condition order{'s' if orders != 1 else ''} ({scheme}); "
             f"view {' / '.join(study.view_levels)}; config {study.config_hash()[:12]}"
         )
+        for warning in study_warnings(study):
+            print(f"{file}: {warning}", file=sys.stderr)
     if invalid:
         print(f"{invalid} of {len(args.files)} study file(s) invalid", file=sys.stderr)
     return 1 if invalid else 0

@@ -1,6 +1,6 @@
 """A participant's plan: the fixed list of steps they go through, made once at join and stored with them.
 
-consent → instructions → practice trial(s) → for each condition of the assigned order: the trial, then
+consent → instructions → the comprehension quiz (when the study has one) → practice trial(s) → for each condition of the assigned order: the trial, then
 every ``after_each_trial`` questionnaire → the ``end_of_study`` questionnaires → done.
 
 Storing the plan (rather than recomputing it from the study file) keeps a participant's progress stable
@@ -15,7 +15,7 @@ from typing import Any, Literal
 
 from server.study import Study, condition_id
 
-StepKind = Literal["consent", "instructions", "trial", "questionnaire", "done"]
+StepKind = Literal["consent", "instructions", "quiz", "trial", "questionnaire", "done"]
 TrialKind = Literal["practice", "main"]
 
 
@@ -52,6 +52,8 @@ def build_plan(study: Study, order: Sequence[str]) -> tuple[Step, ...]:
     practice = [(p.kitchen.name, p.robot, study.practice_view(p)) for p in study.practice for _ in range(p.count)]
     total = len(practice) + len(order)
     steps: list[Step] = [Step("consent"), Step("instructions")]
+    if study.quiz is not None:
+        steps.append(Step("quiz"))
     for i, (kitchen, robot, view) in enumerate(practice):
         steps.append(Step("trial", "practice", i, i + 1, total, condition_id(robot, kitchen), robot, kitchen,
                           view=view))

@@ -1,8 +1,8 @@
 """The participant's progress as an explicit state machine (STYLE 8): illegal transitions are refused.
 
-States (what the participant is shown now): ``consent`` (just joined) → ``instructions`` → ``practice``
-(one state per practice trial) → ``trial`` and ``questionnaire`` alternating → ``done``; declining
-consent leads to ``screened_out``. Transitions:
+States (what the participant is shown now): ``consent`` (just joined) → ``instructions`` → ``quiz`` (when the
+study has one) → ``practice`` (one state per practice trial) → ``trial`` and ``questionnaire`` alternating →
+``done``; declining consent, or failing the quiz too often, leads to ``screened_out``. Transitions:
 
 =================  ============================  ====================================
 action             legal in                      leads to
@@ -10,6 +10,8 @@ action             legal in                      leads to
 accept_consent     consent                       the next step (instructions)
 decline_consent    consent                       screened_out
 finish_instructions instructions                 the next step
+pass_quiz          quiz                          the next step
+fail_quiz          quiz                          screened_out (the last allowed attempt failed)
 end_trial          practice / trial (same trial) the next step (finished or abandoned)
 submit_questionnaire questionnaire (same id)     the next step
 =================  ============================  ====================================
@@ -28,6 +30,7 @@ from server.flow.plan import Step
 class Phase(str, Enum):
     CONSENT = "consent"
     INSTRUCTIONS = "instructions"
+    QUIZ = "quiz"
     PRACTICE = "practice"
     TRIAL = "trial"
     QUESTIONNAIRE = "questionnaire"
@@ -39,6 +42,8 @@ class Move(str, Enum):
     ACCEPT_CONSENT = "accept_consent"
     DECLINE_CONSENT = "decline_consent"
     FINISH_INSTRUCTIONS = "finish_instructions"
+    PASS_QUIZ = "pass_quiz"
+    FAIL_QUIZ = "fail_quiz"
     END_TRIAL = "end_trial"
     SUBMIT_QUESTIONNAIRE = "submit_questionnaire"
 
@@ -46,6 +51,7 @@ class Move(str, Enum):
 _LEGAL: dict[Phase, frozenset[Move]] = {
     Phase.CONSENT: frozenset({Move.ACCEPT_CONSENT, Move.DECLINE_CONSENT}),
     Phase.INSTRUCTIONS: frozenset({Move.FINISH_INSTRUCTIONS}),
+    Phase.QUIZ: frozenset({Move.PASS_QUIZ, Move.FAIL_QUIZ}),
     Phase.PRACTICE: frozenset({Move.END_TRIAL}),
     Phase.TRIAL: frozenset({Move.END_TRIAL}),
     Phase.QUESTIONNAIRE: frozenset({Move.SUBMIT_QUESTIONNAIRE}),
@@ -93,6 +99,13 @@ class Progress:
         return Phase(step.kind)
 
     @property
+    def screen_out_reason(self) -> str | None:
+        """Why a screened-out participant ended: ``declined_consent`` or ``failed_quiz``."""
+        if not self.screened_out:
+            return None
+        return {"consent": "declined_consent", "quiz": "failed_quiz"}.get(self.current.kind, "screened_out")
+
+    @property
     def status(self) -> str:
         if self.screened_out:
             return STATUS_SCREENED_OUT
@@ -110,6 +123,6 @@ class Progress:
             raise IllegalTransition(phase, move, f"the current trial is {step.trial_kind} {step.index}")
         if move is Move.SUBMIT_QUESTIONNAIRE and questionnaire != step.questionnaire:
             raise IllegalTransition(phase, move, f"the current questionnaire is {step.questionnaire!r}")
-        if move is Move.DECLINE_CONSENT:
+        if move in (Move.DECLINE_CONSENT, Move.FAIL_QUIZ):
             return Progress(self.plan, self.step, screened_out=True)
         return Progress(self.plan, self.step + 1)

@@ -41,7 +41,15 @@ class QuestionnaireRequest(BaseModel):
 
     questionnaire_id: Annotated[str, StringConstraints(max_length=64)]
     answers: dict[Annotated[str, StringConstraints(max_length=64)], Any] = Field(max_length=100)
-    """Item id → integer on the item's scale (``null`` or absent for an unanswered optional item)."""
+    """Item id → a rating (integer on the item's scale), a choice (the option's 0-based index) or a text
+    (``null`` or absent for an unanswered optional item)."""
+
+
+class QuizRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    answers: dict[Annotated[str, StringConstraints(max_length=64)], Any] = Field(max_length=100)
+    """Question id → the chosen option's 0-based index."""
 
 
 class StudyPublic(BaseModel):

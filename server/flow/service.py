@@ -5,6 +5,9 @@
   returns the same participant with a fresh token (the old one stops working): never two assignments.
 - :func:`move`: one state-machine transition, applied only if nobody moved the participant meanwhile.
 - :func:`submit_questionnaire`: answers checked, stored and the transition made, all or nothing.
+- :func:`submit_quiz`: one attempt at the comprehension quiz stored; passed → the next step, the last allowed
+  attempt failed → screened out.
+- :func:`record_device`: the device the browser reported, stored with the participant (and as an event).
 - :func:`end_trial`: the trial row ended and the participant moved past it, together.
 """
 
@@ -15,16 +18,20 @@ import uuid
 from dataclasses import dataclass
 from typing import Any
 
+from sqlalchemy import func, select
+from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
 from server.catalog import LoadedStudy
 from server.errors import AnswerProblems, ApiError
-from server.flow.answers import check_answers
+from server.flow.answers import check_answers, stored_answer
+from server.flow.quiz import QuizResult, quiz_problems
 from server.flow.plan import build_plan, plan_from_json, plan_to_json
-from server.flow.progress import IllegalTransition, Move, Progress
+from server.flow.progress import IllegalTransition, Move, Phase, Progress
 from server.store import assignment, participants, trials
 from server.store.engine import Store
-from server.store.tables import AnswerRow, AssignmentRow, ParticipantRow
+from server.store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, QuizAttemptRow
+from server.study.device import DeviceInfo, device_problems
 from server.store.types import utcnow
 
 
@@ -106,11 +113,59 @@ def submit_questionnaire(store: Store, loaded: LoadedStudy, participant_id: int,
                  if step.after_trial is not None else None)
         now = utcnow()
         for item in questionnaire.items:
+            value, text = stored_answer(item, answers.get(item.id))
             session.add(AnswerRow(participant_id=row.id, questionnaire_id=questionnaire.id, step=progress.step,
                                   after_trial=step.after_trial, trial_id=trial.id if trial else None,
-                                  item_id=item.id, value=answers.get(item.id), created_at=now))
+                                  item_id=item.id, value=value, text=text, created_at=now))
         _apply(session, row, progress, new, Move.SUBMIT_QUESTIONNAIRE)
         return new
+
+
+def submit_quiz(store: Store, loaded: LoadedStudy, participant_id: int, answers: dict[str, Any]) -> QuizResult:
+    """Store one attempt at the quiz (every question answered, or 422 and nothing stored) and move on."""
+    quiz = loaded.study.quiz
+    with store.transaction() as session:
+        row = _load(session, participant_id)
+        progress = progress_of(row)
+        if quiz is None or progress.phase is not Phase.QUIZ:
+            raise IllegalTransition(progress.phase, Move.PASS_QUIZ)
+        problems = quiz_problems(quiz, answers)
+        if problems:
+            raise AnswerProblems(problems)
+        attempt = quiz_attempts(session, row.id) + 1
+        wrong = quiz.wrong(answers)
+        session.add(QuizAttemptRow(participant_id=row.id, attempt=attempt, answers=dict(answers),
+                                   wrong=[q.id for q in wrong], passed=not wrong, created_at=utcnow()))
+        try:
+            session.flush()
+        except IntegrityError as exc:  # the same attempt submitted twice at once (two tabs)
+            raise IllegalTransition(progress.phase, Move.PASS_QUIZ, "the attempt was already submitted") from exc
+        if not wrong:
+            _apply(session, row, progress, progress.apply(Move.PASS_QUIZ), Move.PASS_QUIZ)
+        elif attempt >= quiz.max_attempts:
+            _apply(session, row, progress, progress.apply(Move.FAIL_QUIZ), Move.FAIL_QUIZ)
+        return QuizResult(not wrong, attempt, max(quiz.max_attempts - attempt, 0) if wrong else 0,
+                          {q.id: q.explanation for q in wrong})
+
+
+def quiz_attempts(session: Session, participant_id: int) -> int:
+    """How many times the participant submitted the quiz."""
+    found = session.scalar(select(func.count()).select_from(QuizAttemptRow)
+                           .where(QuizAttemptRow.participant_id == participant_id))
+    return int(found or 0)
+
+
+def record_device(store: Store, loaded: LoadedStudy, participant_id: int, info: DeviceInfo) -> list[str]:
+    """Store what the browser reported about its device and what stops it taking part (none: it may)."""
+    problems: list[str] = list(device_problems(loaded.study.device, info))
+    now = utcnow()
+    report = {**info.model_dump(), "problems": problems, "checked_at": now.isoformat()}
+    with store.transaction() as session:
+        row = _load(session, participant_id)
+        row.device = report
+        session.add(EventRow(participant_id=row.id, trial_id=None, tick=None, kind="device_check",
+                             payload=report, created_at=now))
+    return problems
 
 
 def end_trial_in(session: Session, participant_id: int, trial_id: int, kind: str, index: int, *, status: str,
@@ -144,10 +199,10 @@ def completion(loaded: LoadedStudy, row: ParticipantRow) -> dict[str, Any]:
     recruiting = loaded.study.recruiting
     if row.status == "completed":
         return {"kind": "completion", "code": recruiting.completion_code,
-                "redirect_url": recruiting.redirect("completion")}
+                "redirect_url": recruiting.redirect("completion"), "reason": None}
     if row.status == "screened_out":
         return {"kind": "screen_out", "code": recruiting.screen_out_code,
-                "redirect_url": recruiting.redirect("screen_out")}
+                "redirect_url": recruiting.redirect("screen_out"), "reason": progress_of(row).screen_out_reason}
     raise ApiError(409, "not_finished", f"the session is in state {row.state!r}, not finished")
 
 

@@ -3,21 +3,43 @@
 Never the condition's robot or kitchen names beyond the assigned order given at join: the pages show
 "round 2 of 5", not which robot is playing. ``fov_angle`` (the study's field of view, the same in every trial)
 lets the instructions draw the cone the participant will have; a trial's ``view`` (top-down or first-person)
-lets the round's intro card explain its controls (the participant sees the view anyway).
+lets the round's intro card explain its controls (the participant sees the view anyway). Consent and
+instructions have their duration placeholders filled in from the study (:mod:`server.study.duration`).
 """
 
 from __future__ import annotations
 
 from typing import Any
 
+from sqlalchemy.orm import Session
+
 from server.catalog import LoadedStudy
 from server.flow.progress import Phase
-from server.flow.service import completion, progress_of
+from server.flow.rounds import RoundFacts, round_facts
+from server.flow.service import completion, progress_of, quiz_attempts
+from server.store import participants
 from server.store.tables import AssignmentRow, ParticipantRow
+from server.store.types import utcnow
+from server.study.device import DeviceRequirements
+from server.study.duration import fill_placeholders, study_length
+from server.study.questionnaire import Item
 from server.study.views import DEFAULT_VIEW
 
 
-def session_view(loaded: LoadedStudy, row: ParticipantRow, order: AssignmentRow | None) -> dict[str, Any]:
+def load_session_view(session: Session, loaded: LoadedStudy, participant_id: int) -> dict[str, Any]:
+    """The session view of the participant, read in ``session``'s transaction."""
+    row = session.get(ParticipantRow, participant_id)
+    if row is None:
+        raise LookupError(participant_id)
+    order = participants.assignment_of(session, participant_id)
+    progress = progress_of(row)
+    facts = round_facts(session, participant_id, progress, utcnow(), loaded.study.reconnect)
+    attempts = quiz_attempts(session, participant_id) if progress.phase is Phase.QUIZ else 0
+    return session_view(loaded, row, order, facts, attempts)
+
+
+def session_view(loaded: LoadedStudy, row: ParticipantRow, order: AssignmentRow | None,
+                 facts: RoundFacts | None = None, quiz_attempts_used: int = 0) -> dict[str, Any]:
     progress = progress_of(row)
     phase = progress.phase
     step = progress.current
@@ -36,25 +58,53 @@ def session_view(loaded: LoadedStudy, row: ParticipantRow, order: AssignmentRow 
         "condition_order": list(order.condition_order) if order else [],
         "test_run": row.test_run,
         "fov_angle": study.world.fov_angle,
+        "device": _device(row, study.device),
+        "notice": "round_ended_away" if facts is not None and facts.previous_ended_away else None,
     }
+    texts = study_length(study).placeholders()
     if phase is Phase.CONSENT:
-        view["consent"] = study.consent
+        view["consent"] = fill_placeholders(study.consent, texts)
     elif phase is Phase.INSTRUCTIONS:
-        view["instructions"] = study.instructions
+        view["instructions"] = fill_placeholders(study.instructions, texts)
+    elif phase is Phase.QUIZ and study.quiz is not None:
+        view["quiz"] = {"questions": [{"id": q.id, "text": q.text, "options": list(q.options)}
+                                      for q in study.quiz.questions],
+                        "attempts_used": quiz_attempts_used, "max_attempts": study.quiz.max_attempts}
     elif phase in (Phase.PRACTICE, Phase.TRIAL):
         view["trial"] = {"kind": step.trial_kind, "index": step.index, "number": step.number,
                          "total": step.total, "kind_number": (step.index or 0) + 1,
                          "kind_total": sum(1 for s in progress.plan if s.trial_kind == step.trial_kind),
+                         "scored": step.trial_kind == "main",
+                         "status": facts.current if facts is not None else None,
                          "view": step.view or DEFAULT_VIEW, "websocket": "/ws/play"}
     elif phase is Phase.QUESTIONNAIRE:
         questionnaire = next(q for q in study.questionnaires if q.id == step.questionnaire)
         view["questionnaire"] = {
             "id": questionnaire.id, "title": questionnaire.title, "after_trial": step.after_trial,
-            "items": [{"id": i.id, "text": i.text, "required": i.required,
-                       "scale": {"min": i.scale.min, "max": i.scale.max,
-                                 "labels": {str(k): v for k, v in i.scale.labels.items()}}}
-                      for i in questionnaire.items],
+            "items": [item_view(i) for i in questionnaire.items],
         }
     if phase in (Phase.DONE, Phase.SCREENED_OUT):
         view["completion"] = completion(loaded, row)
     return view
+
+
+def item_view(item: Item) -> dict[str, Any]:
+    """A questionnaire item as the page needs it (its type and how it is answered)."""
+    out: dict[str, Any] = {"id": item.id, "text": item.text, "type": item.type, "required": item.required}
+    if item.scale is not None:
+        out["scale"] = {"min": item.scale.min, "max": item.scale.max,
+                        "labels": {str(k): v for k, v in item.scale.labels.items()}}
+    if item.type == "choice":
+        out["options"] = list(item.options)
+    if item.type == "text":
+        out["min_length"], out["max_length"] = item.min_length, item.max_length
+    return out
+
+
+def _device(row: ParticipantRow, required: DeviceRequirements) -> dict[str, Any] | None:
+    """The last device check (``None`` before the browser reported one) and the study's minimum screen."""
+    if not row.device:
+        return None
+    problems = list(row.device.get("problems", []))
+    return {"ok": not problems, "problems": problems, "min_width": required.min_width,
+            "min_height": required.min_height}

@@ -14,8 +14,12 @@
   the order pressed (at most ``QUEUE_LIMIT`` waiting); the subtask then continues from the new pose.
   ``interrupt(stop)`` cancels the subtask and the queued interrupts at once.
 - A subtask ends when it is done (``planner.subtasks.is_done`` on what the avatar held before and after the
-  step and the modelled KB), whoever's action finished it. The participant may choose any subtask; the
-  ones the model of the participant considers available (``available``) are a hint for the client.
+  step and the modelled KB), whoever's action finished it. The participant may choose any subtask that fits
+  what the avatar holds (``server.game.needs``); the ones the model of the participant considers available
+  (``available``) are a hint for the client.
+- A subtask that cannot work is explained, never silent (``server.game.blocked``): one that does not fit what
+  the avatar holds is refused when chosen; one whose interaction does nothing gets a notice naming why; and
+  one that makes no progress for ``blocked_ticks`` steps ends itself with the last reason.
 """
 
 from __future__ import annotations
@@ -26,14 +30,23 @@ from typing import Any
 
 import numpy as np
 
+from planner.events import Event, EventKind
 from planner.fov import view
-from planner.geometry import Action, Pos
+from planner.geometry import Action, Pos, manhattan
 from planner.human import HumanModel
 from planner.kb import KnowledgeBase
 from planner.layout import Layout
 from planner.rules import Rules
 from planner.state import WorldState
 from planner.subtasks import Believed, Subtask, available, is_done, targets
+from server.game.blocked import (Blocked, Intent, Reason, Stall, hands_reason, interaction_reason, no_target_reason,
+                                 nothing_left, progressed)
+
+class Unchecked:
+    """The type of :data:`UNCHECKED`: ``select`` was not told what the avatar holds."""
+
+
+UNCHECKED = Unchecked()
 
 QUEUE_LIMIT = 3
 STILL_TICKS = 2
@@ -58,18 +71,35 @@ INTERRUPT_ACTION: dict[Interrupt, Action] = {
 
 class ParticipantController:
     def __init__(self, layout: Layout, rules: Rules, angle: float, subtask: Subtask | None = None,
-                 last: Subtask | None = None) -> None:
+                 last: Subtask | None = None, blocked_ticks: int | None = None) -> None:
         self.layout, self.rules, self.angle = layout, rules, angle
         self.model = HumanModel(layout, rules)
         self.subtask = subtask
         self.last = last
+        self.blocked_ticks = blocked_ticks
+        """Steps without progress after which a subtask ends itself (``None``: never)."""
         self.queue: deque[Interrupt] = deque()
         self.robot_last: Pos | None = None
         self.robot_still = 0
+        self.intent: Intent = "idle"
+        self.stall = Stall()
+        self.worked = False
+        """Whether the avatar did anything (an interaction with an effect) during the current subtask."""
+        self.ended: Subtask | None = None
+        """The subtask :meth:`observe` ended at the last step, for :meth:`review`."""
 
-    def select(self, subtask: Subtask) -> None:
+    def select(self, subtask: Subtask, held: str | None | Unchecked = UNCHECKED) -> Blocked | None:
+        """Make ``subtask`` the current one (dropping queued interrupts), unless it cannot work with ``held``
+        in hand: then nothing changes and the refusal says why. Without ``held`` (scripted players choosing
+        from :meth:`available`, which always fits the hands) nothing is checked."""
+        reason = None if isinstance(held, Unchecked) else hands_reason(subtask, held)
+        if reason is not None:
+            return Blocked(subtask, reason, ended=True)
         self.subtask = self.last = subtask
         self.queue.clear()
+        self.stall = Stall()
+        self.worked = False
+        return None
 
     def interrupt(self, which: Interrupt) -> bool:
         """Queue (or, for ``stop``, apply) an interrupt; ``False`` when the queue is full (nothing changes)."""
@@ -92,8 +122,10 @@ class ParticipantController:
         self.robot_still = self.robot_still + 1 if robot == self.robot_last else 0
         self.robot_last = robot
         if self.queue:
+            self.intent = "idle"
             return INTERRUPT_ACTION[self.queue.popleft()], "interrupt"
         if self.subtask is None:
+            self.intent = "idle"
             return Action.STAY, "idle"
         human = world.human
         seen = view(self.layout, human.pos, human.facing, self.angle).cells
@@ -101,8 +133,14 @@ class ParticipantController:
         known = robot in seen or believed_there
         blocked = robot if known else OFF_GRID
         cells = targets(self.layout, self.subtask, kb, self.rules)
-        action, _ = self.model.move_toward((human.pos, human.facing), cells, blocked, rng,
-                                           partner_parked=known and self.robot_still >= STILL_TICKS)
+        action, wants_move = self.model.move_toward((human.pos, human.facing), cells, blocked, rng,
+                                                    partner_parked=known and self.robot_still >= STILL_TICKS)
+        if action is Action.INTERACT:
+            self.intent = "interact"
+        elif action is not Action.STAY:
+            self.intent = "move"
+        else:
+            self.intent = "wait" if wants_move else "no_target"
         return action, "subtask"
 
     def believed(self, world: WorldState, kb: KnowledgeBase) -> Believed:
@@ -113,9 +151,47 @@ class ParticipantController:
         if self.subtask is None:
             return False
         if is_done(self.subtask, before.human.held, after.human.held, self.believed(after, kb), self.rules):
-            self.subtask = None
+            self.ended, self.subtask = self.subtask, None
             return True
         return False
+
+    def review(self, before: WorldState, after: WorldState, events: tuple[Event, ...],
+               kb: KnowledgeBase) -> Blocked | None:
+        """After a step of the current subtask (call after :meth:`observe`): a notice when it did not get
+        anywhere for a reason the participant should hear, or its end when it made no progress for
+        ``blocked_ticks`` steps (the subtask is then dropped). Chopping or washing that ends with nothing done
+        (no onion or plate waiting, as far as the participant knows) ends with its reason too."""
+        self.worked = self.worked or any(e.agent == "human" and e.kind is not EventKind.BLOCKED for e in events)
+        ended, self.ended = self.ended, None
+        if ended is not None:
+            idle_end = ended in (Subtask.CHOP_ONION, Subtask.WASH_PLATE) and not self.worked
+            self.worked, self.stall = False, Stall()
+            return Blocked(ended, nothing_left(ended, kb, self.rules), ended=True) if idle_end else None
+        subtask = self.subtask
+        if subtask is None or self.intent == "idle":
+            self.stall = Stall()
+            return None
+        moved_on = progressed(self.layout, before, after, events)
+        reason = self._why(after, moved_on)
+        self.stall, tell = self.stall.step(moved_on, reason, self.intent)
+        if self.blocked_ticks is not None and self.stall.ticks >= self.blocked_ticks:
+            final = self.stall.reason or Reason("stuck")
+            self.subtask = None
+            self.stall = Stall()
+            return Blocked(subtask, final, ended=True)
+        return Blocked(subtask, reason, ended=False) if tell and reason is not None else None
+
+    def _why(self, after: WorldState, moved_on: bool) -> Reason | None:
+        """Why this step of the subtask did nothing, from what the participant can see now."""
+        if self.intent == "interact":
+            return interaction_reason(self.layout, after, self.rules)
+        if self.intent == "no_target":
+            return no_target_reason(self.subtask)
+        if moved_on:
+            return None
+        human, robot = after.human, after.robot.pos
+        seen = view(self.layout, human.pos, human.facing, self.angle).cells
+        return Reason("robot_in_way") if robot in seen and manhattan(human.pos, robot) == 1 else Reason("no_way")
 
     def available(self, world: WorldState, kb: KnowledgeBase) -> tuple[Subtask, ...]:
         """The subtasks the model of the participant considers available (docs/domain.md §4), judged on the KB."""
@@ -125,8 +201,10 @@ class ParticipantController:
         return {"subtask": _value(self.subtask), "last": _value(self.last)}
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any], layout: Layout, rules: Rules, angle: float) -> ParticipantController:
-        return cls(layout, rules, angle, subtask=_subtask(data.get("subtask")), last=_subtask(data.get("last")))
+    def from_dict(cls, data: dict[str, Any], layout: Layout, rules: Rules, angle: float,
+                  blocked_ticks: int | None = None) -> ParticipantController:
+        return cls(layout, rules, angle, subtask=_subtask(data.get("subtask")), last=_subtask(data.get("last")),
+                   blocked_ticks=blocked_ticks)
 
 
 def _value(subtask: Subtask | None) -> str | None:

@@ -3,7 +3,8 @@
 Each tick: the participant's action comes from the controller (interrupt, subtask path, or stay), the
 robot's from its planner; the world steps; the participant's modelled KB is updated with the study's FOV
 angle and KB delay and the participant's own events (docs/domain.md §3); the KB-gap components (paper §VII) and
-whether the robot is in the participant's FOV are computed for the tick record.
+whether the robot is in the participant's FOV are computed for the tick record; and whether the participant's
+subtask got anywhere (a notice, or its end after ``blocked_ticks`` steps without progress: ``server.game.blocked``).
 
 Randomness: the avatar's tie-breaks draw from ``default_rng([seed, tick, 0])`` and the robot's from
 ``default_rng([seed, tick, 1])``, so a trial resumed at tick t draws what it would have drawn.
@@ -26,6 +27,7 @@ from planner.state import WorldState, initial_state, is_done
 from planner.step import step
 from planner.subtasks import Subtask
 from planner.summary import gap_components, summarize
+from server.game.blocked import Blocked
 from server.game.controller import ParticipantController
 
 
@@ -46,16 +48,18 @@ class TickOutcome:
     gap: dict[str, int]
     robot_in_fov: bool
     subtask_finished: bool
+    blocked: Blocked | None = None
+    """A notice that the subtask did not get anywhere, or its end (``blocked.ended``)."""
 
 
 class TrialEngine:
     def __init__(self, layout: Layout, rules: Rules, *, angle: float, kb_delay: int, seed: int,
                  world: WorldState | None = None, kb: KnowledgeBase | None = None,
-                 controller: ParticipantController | None = None) -> None:
+                 controller: ParticipantController | None = None, blocked_ticks: int | None = None) -> None:
         self.layout, self.rules, self.angle, self.kb_delay, self.seed = layout, rules, angle, kb_delay, seed
         self.world = world if world is not None else initial_state(layout, rules)
         self.kb = kb if kb is not None else initial_kb(self.world)
-        self.controller = controller or ParticipantController(layout, rules, angle)
+        self.controller = controller or ParticipantController(layout, rules, angle, blocked_ticks=blocked_ticks)
         self.last_events: tuple[Event, ...] = ()
 
     @property
@@ -86,11 +90,12 @@ class TrialEngine:
         kb = update_kb(self.kb, self.layout, world, angle=self.angle, kb_delay=self.kb_delay,
                        own_events=[e for e in events if e.agent == "human"])
         finished = self.controller.observe(before, world, kb)
+        blocked = self.controller.review(before, world, events, kb)
         self.world, self.kb, self.last_events = world, kb, events
         kb_sum, world_sum = summarize(kb, self.rules), summarize(world, self.rules)
         return TickOutcome(
             tick=world.tick, human_action=human_action, robot_action=robot_action, source=source,
             subtask=subtask, events=events, world=world, kb=kb, kb_summary=kb_sum.to_dict(),
             world_summary=world_sum.to_dict(), gap=gap_components(kb_sum, world_sum),
-            robot_in_fov=world.robot.pos in self.fov().cells, subtask_finished=finished,
+            robot_in_fov=world.robot.pos in self.fov().cells, subtask_finished=finished, blocked=blocked,
         )

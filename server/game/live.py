@@ -31,6 +31,7 @@ from typing import Any
 from server.catalog import LoadedStudy
 from server.flow import service
 from server.game import snapshot
+from server.game.blocked import Blocked
 from server.game.connection import Connection
 from server.game.engine import TickOutcome, TrialEngine
 from server.game.meta import TrialMeta
@@ -123,9 +124,11 @@ class LiveGame:
             controller = self.engine.controller
             if isinstance(message, SelectSubtask):
                 hint = controller.available(self.engine.world, self.engine.kb)
-                controller.select(message.subtask)
+                refused = controller.select(message.subtask, self.engine.world.human.held)
                 self.event("select_subtask", {"seq": message.seq, "subtask": message.subtask.value,
                                               "available": message.subtask in hint})
+                if refused is not None:
+                    self._blocked(refused)
             elif isinstance(message, InterruptMessage):
                 before = controller.subtask
                 if not controller.interrupt(message.action):
@@ -193,6 +196,8 @@ class LiveGame:
             choice = await self._take_decision()
             outcome = self.engine.advance(choice.action)
             self._record(outcome, choice, max(started - scheduled, 0.0) * 1000)
+            if outcome.blocked is not None:
+                self._blocked(outcome.blocked)
             if choice.error == "worker_lost":
                 await self._reopen_planner()
             if not self.engine.done:
@@ -237,6 +242,14 @@ class LiveGame:
         self.lateness.append(lateness_ms)
         self.deps.writer.add_tick(tick_row(self.meta.trial_id, outcome, choice, lateness_ms,
                                            self.engine.controller.to_dict()))
+
+    def _blocked(self, blocked: Blocked) -> None:
+        """Tell the participant why their subtask is not getting anywhere; log it when the subtask ended."""
+        if blocked.ended:
+            self.event("subtask_blocked", {"subtask": blocked.subtask.value, "reason": blocked.reason.code,
+                                           "item": blocked.reason.item})
+        if self.connection is not None:
+            self.connection.send(snapshot.blocked_message(blocked))
 
     def event(self, kind: str, payload: dict[str, Any]) -> None:
         self.deps.writer.add_event({"participant_id": self.meta.participant_id, "trial_id": self.meta.trial_id,

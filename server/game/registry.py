@@ -126,15 +126,17 @@ class GameRegistry:
         step = progress.current
         layout, rules = loaded.layout(row.kitchen), loaded.rules
         angle, delay = study.world.fov_angle, study.world.kb_delay
+        blocked = study.timing.blocked_ticks()
         last = prepared.last_tick
         if last is not None:
             engine = TrialEngine(layout, rules, angle=angle, kb_delay=delay, seed=row.seed,
                                  world=WorldState.from_dict(last.world_state), kb=KnowledgeBase.from_dict(last.kb_state),
-                                 controller=ParticipantController.from_dict(last.controller, layout, rules, angle))
+                                 controller=ParticipantController.from_dict(last.controller, layout, rules, angle,
+                                                                            blocked))
         else:
             world = WorldState.from_dict(row.initial_state)
             engine = TrialEngine(layout, rules, angle=angle, kb_delay=delay, seed=row.seed, world=world,
-                                 kb=initial_kb(world))
+                                 kb=initial_kb(world), blocked_ticks=blocked)
         meta = TrialMeta(trial_id=row.id, attempt=row.attempt, participant_id=participant.id,
                          participant=participant.public_id, study_id=loaded.id, kind=row.kind, index=row.index,
                          number=step.number or 0, total=step.total or 0,

@@ -23,6 +23,7 @@ from planner.state import WorldState, initial_state
 from server.catalog import LoadedStudy
 from server.flow import service
 from server.flow.plan import Step
+from server.flow.rounds import on_return
 from server.flow.progress import Progress
 from server.store import trials
 from server.store.engine import Store
@@ -50,11 +51,10 @@ def prepare_trial(store: Store, loaded: LoadedStudy, participant_id: int, step: 
         row = trials.latest_attempt(session, participant_id, step.trial_kind, step.index)
         if row is None or row.status != trials.RUNNING:
             return Prepared("new", _create(session, loaded, participant_id, step))
-        idle = utcnow() - row.last_active_at
-        policy = study.reconnect.after_grace
-        if idle <= timedelta(seconds=study.reconnect.grace_seconds) or policy == "resume":
+        outcome = on_return(row.last_active_at, utcnow(), study.reconnect)
+        if outcome == "resume":
             return Prepared("resume", row, trials.last_tick(session, row.id))
-        if policy == "restart":
+        if outcome == "restart":
             trials.end(session, row.id, status=trials.ABANDONED, reason="restarted")
             return Prepared("new", _create(session, loaded, participant_id, step))
         progress = service.end_trial_in(session, participant_id, row.id, step.trial_kind, step.index,

@@ -9,11 +9,14 @@ from typing import Any, Literal, cast
 from planner.geometry import ACTIONS
 from planner.subtasks import SUBTASKS
 from planner.summary import gap_components, summarize
+from server.game.blocked import Blocked
 from server.game.controller import Interrupt
 from server.game.engine import TrialEngine
 from server.game.meta import TrialMeta
-from server.game.view import agent_view, visible_world
-from server.protocol.server import Hello, Hud, State, TrialInfo
+from server.game.needs import NEEDS
+from server.game.view import agent_view, drawn_bounds, visible_world
+from server.protocol.server import Blocked as BlockedMessage
+from server.protocol.server import Bounds, Hello, Hud, State, TrialInfo
 from server.study.views import ViewName
 
 TrialKind = Literal["practice", "main"]
@@ -22,13 +25,21 @@ Mode = Literal["fixed_rate", "wait_for_participant"]
 
 def hello(meta: TrialMeta, engine: TrialEngine, *, mode: str, rate: float, resumed: bool, limit: int) -> Hello:
     layout, rules = engine.layout, engine.rules
+    left, top, width, height = drawn_bounds(layout)
     return Hello(
         trial=TrialInfo(id=meta.trial_id, kind=cast(TrialKind, meta.kind), index=meta.index, number=meta.number,
-                        total=meta.total, kind_number=meta.index + 1, kind_total=meta.kind_total),
+                        total=meta.total, kind_number=meta.index + 1, kind_total=meta.kind_total,
+                        scored=meta.kind == "main"),
         width=layout.width, height=layout.height, subtasks=[s.value for s in SUBTASKS],
         interrupts=[i.value for i in Interrupt], mode=cast(Mode, mode), tick_rate_hz=rate, fov_angle=engine.angle,
         horizon=rules.horizon, orders=rules.orders, tick=engine.tick, resumed=resumed, max_message_bytes=limit,
+        bounds=Bounds(left=left, top=top, width=width, height=height), needs={s.value: NEEDS[s] for s in SUBTASKS},
         view=cast(ViewName, meta.view))
+
+
+def blocked_message(blocked: Blocked) -> BlockedMessage:
+    return BlockedMessage(subtask=blocked.subtask.value, reason=blocked.reason.code, item=blocked.reason.item,
+                          ended=blocked.ended)
 
 
 def state(engine: TrialEngine, *, mode: str, rate: float, ack: int) -> State:

@@ -41,6 +41,17 @@ def station_view(layout: Layout, world: WorldState, rules: Rules, kind: Terrain,
     return StationView(state=done if value >= total else working, progress=min(value, total), total=total)
 
 
+def drawn_bounds(layout: Layout) -> tuple[int, int, int, int]:
+    """``(x, y, width, height)`` of the smallest rectangle holding every floor cell and every station, plus one
+    ring of cells around it (kept inside the grid): the part of the kitchen worth drawing. The rest of a
+    layout's grid is counters nobody can reach. Reveals only the kitchen's extent, never what is on a cell."""
+    cells = [p for p in layout.cells() if layout.terrain(p) is not Terrain.COUNTER]
+    xs, ys = [p[0] for p in cells], [p[1] for p in cells]
+    x0, y0 = max(min(xs) - 1, 0), max(min(ys) - 1, 0)
+    x1, y1 = min(max(xs) + 1, layout.width - 1), min(max(ys) + 1, layout.height - 1)
+    return x0, y0, x1 - x0 + 1, y1 - y0 + 1
+
+
 def visible_world(layout: Layout, world: WorldState, rules: Rules,
                   angle: float) -> tuple[list[CellView], AgentView | None]:
     """The visible cells (reading order) and the robot if it is in view."""

@@ -15,6 +15,12 @@ from pydantic import BaseModel, ConfigDict, Field, TypeAdapter
 
 from server.study.views import ViewName
 
+BlockedReason = Literal[
+    "hands_full", "hands_empty", "needs_item", "nothing_there", "counter_empty", "grill_busy", "steak_cooking",
+    "board_busy", "nothing_to_chop", "no_garnish", "not_chopped", "already_chopped", "sink_busy", "nothing_to_wash",
+    "already_washed", "no_clean_plate", "robot_in_way", "no_way", "unknown_place", "stuck"]
+"""Why a subtask is not getting anywhere (``blocked`` messages; docs/protocol.md lists each with its words)."""
+
 TerrainName = Literal["floor", "counter", "onion", "meat", "plate", "grill", "board", "sink", "serve"]
 StationState = Literal["empty", "cooking", "ready", "chopping", "washing", "clean"]
 
@@ -39,6 +45,18 @@ class TrialInfo(BaseModel):
     """1-based position among the trials of its kind ("Practice 1 of 1", "Round 2 of 4")."""
     kind_total: int
     """Trials of its kind."""
+    scored: bool
+    """Whether the round's score counts (practice rounds are not scored: no score is shown)."""
+
+
+class Bounds(BaseModel):
+    """The part of the grid worth drawing: every floor cell and station plus one ring of cells around them
+    (the kitchen's extent, the same for every trial in it; nothing about what is on a cell)."""
+
+    left: int
+    top: int
+    width: int
+    height: int
 
 
 class Hello(ServerMessage):
@@ -59,6 +77,11 @@ class Hello(ServerMessage):
     tick: int
     resumed: bool
     max_message_bytes: int
+    bounds: Bounds
+    """Draw only these cells, scaled to the space (the rest of the grid is counters nobody can reach)."""
+    needs: dict[str, str]
+    """Subtask → what must be in hand for it: ``nothing``, ``something`` or an object name (the task buttons
+    are disabled from this and what the cook holds)."""
     view: ViewName
     """How to draw the kitchen: from above, or through the cook's eyes (camera field of view ``fov_angle``).
     The only fact about the trial's condition a participant may be told: they see it anyway."""
@@ -120,6 +143,19 @@ class Ack(ServerMessage):
     queued: int
 
 
+class Blocked(ServerMessage):
+    """The current subtask is not getting anywhere, and why (judged from what the participant holds and the cell
+    the cook faces, which is always in view). ``ended``: the subtask ended itself (or was refused when chosen);
+    otherwise it goes on and this is a notice ("The steak is still cooking")."""
+
+    type: Literal["blocked"] = "blocked"
+    subtask: str
+    reason: BlockedReason
+    item: str | None = None
+    """The object the reason names: what is needed (``needs_item``) or what is in hand (``hands_full``)."""
+    ended: bool
+
+
 class Pong(ServerMessage):
     type: Literal["pong"] = "pong"
     ack: int
@@ -156,5 +192,5 @@ class TrialEnd(ServerMessage):
     next: str
 
 
-AnyServerMessage = Annotated[Hello | State | Ack | Pong | Error | TrialEnd, Field(discriminator="type")]
+AnyServerMessage = Annotated[Hello | State | Ack | Blocked | Pong | Error | TrialEnd, Field(discriminator="type")]
 server_adapter: TypeAdapter[AnyServerMessage] = TypeAdapter(AnyServerMessage)

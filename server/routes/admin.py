@@ -19,9 +19,11 @@ from server.admin.live import live_view
 from server.admin.replay import replay
 from server.catalog import LoadedStudy
 from server.deps import ServicesDep, path_study, require_admin
+from server.services import Services
 from server.errors import ApiError
 from server.store import participants, trials
-from server.store.overview import order_breakdown, participant_public, public_ids, trial_public
+from server.store.overview import order_breakdown, participant_names, participant_public, trial_public
+from server.study.warnings import study_warnings
 from server.store.tables import TrialRow
 from server.store.types import utcnow
 
@@ -50,6 +52,7 @@ def studies(services: ServicesDep) -> list[dict[str, Any]]:
             out.append({"id": study.id, "title": study.title, "config_hash": study.config_hash(),
                         "conditions": [c.id for c in study.conditions], "orders": fill,
                         "timing": study.timing.model_dump(), "notes": study.notes,
+                        "warnings": [w.to_dict() for w in study_warnings(study)],
                         "live_trials": sum(1 for g in services.registry.games.values() if g.meta.study_id == study.id)})
     return out
 
@@ -88,11 +91,19 @@ def answers(participant_id: str, services: ServicesDep) -> dict[str, Any]:
         return participant_answers(session, row, services.catalog.get(row.study_id))
 
 
+def _recruit_ids(services: Services, participant_ids: set[int]) -> dict[int, str | None]:
+    with services.store.transaction() as session:
+        return {pid: recruit for pid, (_, recruit) in participant_names(session, participant_ids).items()}
+
+
 @router.get("/live")
 def live(services: ServicesDep) -> list[dict[str, Any]]:
-    return [{**g.meta.to_dict(), "tick": g.engine.tick, "connected": g.connection is not None,
-             "deadline_misses": g.misses, "lateness_ms": g.spectator()["lateness_ms"]}
-            for g in services.registry.live()]
+    games = services.registry.live()
+    recruit = _recruit_ids(services, {g.meta.participant_id for g in games})
+    return [{**g.meta.to_dict(), "recruit_id": recruit.get(g.meta.participant_id), "tick": g.engine.tick,
+             "connected": g.connection is not None, "deadline_misses": g.misses,
+             "lateness_ms": g.spectator()["lateness_ms"]}
+            for g in games]
 
 
 @router.get("/live/{trial_id}")
@@ -100,7 +111,9 @@ def live_trial(trial_id: int, services: ServicesDep) -> dict[str, Any]:
     game = services.registry.games.get(trial_id)
     if game is None:
         raise ApiError(404, "not_live", "no live trial with this id in this server process")
-    return live_view(game)
+    view = live_view(game)
+    view["trial"]["recruit_id"] = _recruit_ids(services, {game.meta.participant_id}).get(game.meta.participant_id)
+    return view
 
 
 @router.get("/trials")
@@ -114,8 +127,8 @@ def list_trials(services: ServicesDep, study_id: Annotated[str | None, Query(max
                 return []
             pid = row.id
         rows = trials.list_trials(session, participant_id=pid, study_id=study_id)
-        names = public_ids(session, {r.participant_id for r in rows})
-        return [trial_public(r, names.get(r.participant_id)) for r in rows]
+        names = participant_names(session, {r.participant_id for r in rows})
+        return [trial_public(r, *names.get(r.participant_id, (None, None))) for r in rows]
 
 
 @router.get("/trials/{trial_id}")
@@ -126,12 +139,12 @@ def trial_replay(trial_id: int, services: ServicesDep, start: Annotated[int, Que
         row = session.get(TrialRow, trial_id)
         if row is None:
             raise ApiError(404, "not_found", "no such trial")
-        names = public_ids(session, {row.participant_id})
+        names = participant_names(session, {row.participant_id})
         ticks = trials.ticks(session, trial_id, start, limit)
         loaded = services.catalog.get(row.study_id)
         layout = loaded.layouts.get(row.kitchen) if loaded else None
         return {
-            "trial": trial_public(row, names.get(row.participant_id)),
+            "trial": trial_public(row, *names.get(row.participant_id, (None, None))),
             "layout": {"name": row.kitchen, "rows": layout.text().splitlines()} if layout else None,
             "initial_state": row.initial_state,
             "ticks": [{c.name: getattr(t, c.name) for c in t.__table__.columns if c.name != "trial_id"}
@@ -147,10 +160,10 @@ def trial_frames(trial_id: int, services: ServicesDep, start: Annotated[int, Que
         row = session.get(TrialRow, trial_id)
         if row is None:
             raise ApiError(404, "not_found", "no such trial")
-        names = public_ids(session, {row.participant_id})
+        names = participant_names(session, {row.participant_id})
         stored = trials.ticks(session, trial_id, max(start, 1), limit)
         frames = replay(services.catalog.get(row.study_id), row, stored, start=start, limit=limit)
-        return {"trial": trial_public(row, names.get(row.participant_id)), **frames}
+        return {"trial": trial_public(row, *names.get(row.participant_id, (None, None))), **frames}
 
 
 @router.get("/trials/{trial_id}/events")

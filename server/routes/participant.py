@@ -1,8 +1,8 @@
 """The participant's REST API (token-scoped after join); every state change answers the new session view.
 
 ``POST /api/studies/{study_id}/join`` → token and condition order; ``GET /api/session``;
-``POST /api/session/consent``; ``POST /api/session/instructions_done``; ``POST /api/session/questionnaire``;
-``GET /api/session/completion``. Illegal transitions answer 409, invalid answers 422; joins beyond the
+``POST /api/session/device``; ``POST /api/session/consent``; ``POST /api/session/instructions_done``;
+``POST /api/session/quiz``; ``POST /api/session/questionnaire``; ``GET /api/session/completion``. Illegal transitions answer 409, invalid answers 422; joins beyond the
 per-address limit answer 429 (:mod:`server.security`).
 """
 
@@ -16,12 +16,12 @@ from server.catalog import LoadedStudy
 from server.deps import ParticipantDep, ServicesDep, participant_study, path_study
 from server.flow import service
 from server.flow.progress import Move
-from server.flow.schemas import ConsentRequest, JoinRequest, JoinResponse, QuestionnaireRequest, StudyPublic
-from server.flow.views import session_view
+from server.flow.schemas import (ConsentRequest, JoinRequest, JoinResponse, QuestionnaireRequest, QuizRequest,
+                                 StudyPublic)
+from server.flow.views import load_session_view
 from server.security import limit_joins
 from server.services import Services
-from server.store import participants
-from server.store.tables import ParticipantRow
+from server.study.device import DeviceInfo
 
 router = APIRouter(prefix="/api", tags=["participant"])
 StudyDep = Annotated[LoadedStudy, Depends(participant_study)]
@@ -45,15 +45,19 @@ def join(loaded: Annotated[LoadedStudy, Depends(path_study)], body: JoinRequest,
 
 def _view(services: Services, loaded: LoadedStudy, participant_id: int) -> dict[str, Any]:
     with services.store.transaction() as session:
-        row = session.get(ParticipantRow, participant_id)
-        order = participants.assignment_of(session, participant_id)
-    if row is None:
-        raise LookupError(participant_id)
-    return session_view(loaded, row, order)
+        return load_session_view(session, loaded, participant_id)
 
 
 @router.get("/session")
 def get_session(participant: ParticipantDep, loaded: StudyDep, services: ServicesDep) -> dict[str, Any]:
+    return _view(services, loaded, participant.id)
+
+
+@router.post("/session/device")
+def device(body: DeviceInfo, participant: ParticipantDep, loaded: StudyDep, services: ServicesDep) -> dict[str, Any]:
+    """What the browser reports about its device on landing; the session view's ``device`` says whether it
+    may take part."""
+    service.record_device(services.store, loaded, participant.id, body)
     return _view(services, loaded, participant.id)
 
 
@@ -68,6 +72,14 @@ def consent(body: ConsentRequest, participant: ParticipantDep, loaded: StudyDep,
 def instructions_done(participant: ParticipantDep, loaded: StudyDep, services: ServicesDep) -> dict[str, Any]:
     service.move(services.store, participant.id, Move.FINISH_INSTRUCTIONS)
     return _view(services, loaded, participant.id)
+
+
+@router.post("/session/quiz")
+def quiz(body: QuizRequest, participant: ParticipantDep, loaded: StudyDep, services: ServicesDep) -> dict[str, Any]:
+    """One attempt at the comprehension quiz: the session view with ``quiz_result`` (passed, attempts left,
+    the questions answered wrongly with their explanations)."""
+    result = service.submit_quiz(services.store, loaded, participant.id, body.answers)
+    return {**_view(services, loaded, participant.id), "quiz_result": result.to_dict()}
 
 
 @router.post("/session/questionnaire")

@@ -45,12 +45,14 @@ def participant_public(row: ParticipantRow, order: AssignmentRow | None) -> dict
         "test_run": row.test_run, "excluded": row.excluded, "exclusion_reason": row.exclusion_reason,
         "created_at": row.created_at.isoformat(),
         "finished_at": row.finished_at.isoformat() if row.finished_at else None,
+        "device": row.device,
     }
 
 
-def trial_public(row: TrialRow, participant: str | None = None) -> dict[str, Any]:
+def trial_public(row: TrialRow, participant: str | None = None, recruit_id: str | None = None) -> dict[str, Any]:
     return {
-        "trial_id": row.id, "study_id": row.study_id, "participant_id": participant, "kind": row.kind,
+        "trial_id": row.id, "study_id": row.study_id, "participant_id": participant, "recruit_id": recruit_id,
+        "kind": row.kind,
         "index": row.index, "attempt": row.attempt, "condition": row.condition_id, "kitchen": row.kitchen,
         "robot": row.robot, "view": row.view, "seed": row.seed, "config_hash": row.config_hash, "status": row.status,
         "end_reason": row.end_reason, "ticks": row.ticks, "delivered": row.delivered, "score": row.score,
@@ -58,9 +60,11 @@ def trial_public(row: TrialRow, participant: str | None = None) -> dict[str, Any
     }
 
 
-def public_ids(session: Session, participant_ids: set[int]) -> dict[int, str]:
+def participant_names(session: Session, participant_ids: set[int]) -> dict[int, tuple[str, str | None]]:
+    """Store id → (public id, recruiting id): the admin lists show the recruiting id (what the experimenter
+    sees on the recruiting platform) with the public id beside it."""
     if not participant_ids:
         return {}
-    rows = session.execute(select(ParticipantRow.id, ParticipantRow.public_id)
+    rows = session.execute(select(ParticipantRow.id, ParticipantRow.public_id, ParticipantRow.recruit_id)
                            .where(ParticipantRow.id.in_(participant_ids)))
-    return {pid: public for pid, public in rows}
+    return {pid: (public, recruit) for pid, public, recruit in rows}

@@ -11,7 +11,9 @@
   robot in the participant's FOV, tick lateness, robot decision time, and the full world and KB state
   (replay and resume read them).
 - ``events``: selections, interrupts, connection, focus and idle events, errors, missed deadlines.
-- ``questionnaire_answers``: one row per answered item.
+- ``questionnaire_answers``: one row per answered item: ``value`` (a rating, or a choice's 0-based index) and
+  ``text`` (a free-text answer, or the chosen option's text).
+- ``quiz_attempts``: one row per submission of the comprehension quiz: the answers, the questions got wrong.
 """
 
 from __future__ import annotations
@@ -70,6 +72,9 @@ class ParticipantRow(Base):
     created_at: Mapped[datetime] = mapped_column(UTCDateTime, default=utcnow)
     updated_at: Mapped[datetime] = mapped_column(UTCDateTime, default=utcnow)
     finished_at: Mapped[datetime | None] = mapped_column(UTCDateTime)
+    device: Mapped[dict[str, Any] | None] = mapped_column(JsonType, nullable=True)
+    """The device the participant's browser last reported (``server.study.device.DeviceInfo`` fields, plus
+    ``problems`` and ``checked_at``); NULL until it reports one."""
 
 
 class AssignmentRow(Base):
@@ -166,4 +171,22 @@ class AnswerRow(Base):
     trial_id: Mapped[int | None] = mapped_column(ForeignKey("trials.id"))
     item_id: Mapped[str] = mapped_column(String(64))
     value: Mapped[int | None] = mapped_column(Integer)
+    text: Mapped[str | None] = mapped_column(Text, nullable=True)
+    """A free-text answer, or the chosen option's text for a choice item; NULL for ratings."""
+    created_at: Mapped[datetime] = mapped_column(UTCDateTime, default=utcnow)
+
+
+class QuizAttemptRow(Base):
+    __tablename__ = "quiz_attempts"
+    __table_args__ = (UniqueConstraint("participant_id", "attempt", name="uq_quiz_attempts_participant_attempt"),)
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True, autoincrement=True)
+    participant_id: Mapped[int] = mapped_column(ForeignKey("participants.id"), index=True)
+    attempt: Mapped[int] = mapped_column(Integer)
+    """1, 2, … per participant."""
+    answers: Mapped[dict[str, int]] = mapped_column(JsonType)
+    """Question id → the chosen option's 0-based index."""
+    wrong: Mapped[list[str]] = mapped_column(JsonType)
+    """Ids of the questions answered wrongly (empty when passed)."""
+    passed: Mapped[bool] = mapped_column(Boolean)
     created_at: Mapped[datetime] = mapped_column(UTCDateTime, default=utcnow)

@@ -18,8 +18,10 @@ from pydantic import Field, ValidationInfo, field_validator
 from server.study.base import Loc, NotEmpty, RobotName, Slug, StudyModel, duplicate_problems, raise_problems
 from server.study.conditions import Condition, Factor, cross_conditions
 from server.study.counterbalance import MAX_FULL_CONDITIONS, condition_orders
+from server.study.device import DeviceRequirements
 from server.study.kitchens import Kitchen, KitchenEntry
 from server.study.questionnaire import Questionnaire
+from server.study.quiz import Quiz
 from server.study.sections import Assignment, Counterbalancing, Practice, Reconnect, Recruiting, Timing, World
 from server.study.texts import DEFAULT_CONSENT, DEFAULT_INSTRUCTIONS
 from server.study.views import DEFAULT_VIEW, ViewName
@@ -64,6 +66,10 @@ class Study(StudyModel):
     """Consent page (Markdown). Declining ends the session with the screen-out code."""
     instructions: str = DEFAULT_INSTRUCTIONS
     """Instructions page shown before practice (Markdown)."""
+    quiz: Quiz | None = None
+    """Comprehension quiz after the instructions, to be answered correctly before the practice (optional)."""
+    device: DeviceRequirements = DeviceRequirements()
+    """The smallest screen (and whether touch-only devices may take part), checked on landing."""
     recruiting: Recruiting = Recruiting()
     """Recruiting-platform parameters, completion and screen-out codes and redirects."""
     reconnect: Reconnect = Reconnect()

@@ -45,6 +45,12 @@ class Timing(StudyModel):
     (the reference study), and never faster than ``tick_rate_hz``."""
     tick_rate_hz: float = Field(default=5.0, gt=0, le=30)
     """World steps per second (5 Hz = one tick every 200 ms)."""
+    blocked_subtask_seconds: float = Field(default=3.0, gt=0, le=600)
+    """A subtask that makes no progress this long ends itself and says why (docs/client.md)."""
+
+    def blocked_ticks(self) -> int:
+        """``blocked_subtask_seconds`` in ticks at the tick rate (at least one)."""
+        return max(1, round(self.blocked_subtask_seconds * self.tick_rate_hz))
 
 
 class Counterbalancing(StudyModel):

@@ -1,4 +1,9 @@
-"""Default participant-facing texts (Markdown). Studies should replace the consent text with their own."""
+"""Default participant-facing texts (Markdown). Studies should replace the consent text with their own.
+
+``{minutes}``, ``{rounds}``, ``{round_time}``, ``{practice_note}`` and the other placeholders of
+:mod:`server.study.duration` are filled in from the study when the page is shown, so the times promised
+always match the study's rounds, horizon and tick rate.
+"""
 
 from __future__ import annotations
 
@@ -6,8 +11,8 @@ DEFAULT_CONSENT = """\
 # Consent to take part
 
 You are invited to take part in a research study about how people work together with a robot partner.
-You will play a short cooking game in your browser with a simulated robot, and answer a few questions
-after each round. It takes about 15 minutes.
+You will play {rounds} short rounds of a cooking game in your browser with a simulated robot (each lasts
+at most {round_time}) and answer a few questions after each round. It takes up to about {minutes} minutes.
 
 - Taking part is voluntary. You may stop at any time by closing this page.
 - We record your actions in the game and your answers. We do not record your name; your data are
@@ -23,15 +28,18 @@ DEFAULT_INSTRUCTIONS = """\
 # How to play
 
 You and a robot run a small steakhouse kitchen. Each dish needs a grilled steak, a chopped onion
-garnish and a clean plate, brought together and delivered at the serving counter.
+garnish and a clean plate, brought together and delivered at the serving counter. The recipe below
+shows the order; during a round it stays in sight above the kitchen.
 
 - **You only see what is in front of you.** Black cells are outside your field of view: anything
   there, including the robot, is hidden until you turn toward it.
 - **Choose a task** with the buttons (for example *pick up meat* or *wash plate*): your cook walks
-  there by the shortest path and does it.
-- **Interrupt** at any time with the keys shown under the kitchen: move one step, stay, interact
+  there by the shortest path and does it. A task that cannot work with what you hold is greyed out,
+  with the reason.
+- **Interrupt** at any time with the keys shown under the kitchen: move one cell, stay, interact
   with what you face, or stop the current task. Choosing a new task replaces the current one.
-- The robot works on its own. Deliver all orders as quickly as you can.
+- The robot works on its own. Deliver all orders as quickly as you can: a round lasts at most
+  {round_time}.
 
-The first round is practice and is not scored.
+{practice_note}
 """

@@ -45,8 +45,10 @@ export class Api {
                         { recruiting, test_run: Boolean(testRun) });
   }
   session() { return this.request("GET", "/api/session"); }
+  device(info) { return this.request("POST", "/api/session/device", info); }
   consent(accept) { return this.request("POST", "/api/session/consent", { accept }); }
   instructionsDone() { return this.request("POST", "/api/session/instructions_done"); }
+  quiz(answers) { return this.request("POST", "/api/session/quiz", { answers }); }
   questionnaire(questionnaireId, answers) {
     return this.request("POST", "/api/session/questionnaire", { questionnaire_id: questionnaireId, answers });
   }

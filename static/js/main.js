@@ -1,14 +1,16 @@
 /**
- * The participant client: reads the link (landing), then shows the page for the participant's state as
- * the server reports it (GET /api/session): consent → instructions → practice / trial rounds and
- * questionnaires → the end page. The server's state machine is the single source of truth; after every
- * action the page is chosen again from the state the server answers.
+ * The participant client: reads the link (landing) and checks the device, then shows the page for the
+ * participant's state as the server reports it (GET /api/session): consent → instructions → quiz → practice /
+ * trial rounds and questionnaires → the end page. The server's state machine is the single source of truth;
+ * after every action the page is chosen again from the state the server answers.
  */
 
 import { h, setProgress } from "./dom.js";
 import { enter, readLink } from "./landing.js";
+import { deviceInfo, devicePage, deviceRefused } from "./device.js";
 import { consentPage } from "./pages/consent.js";
 import { instructionsPage } from "./pages/instructions.js";
+import { quizPage } from "./pages/quiz.js";
 import { trialPage } from "./pages/trial.js";
 import { questionnairePage } from "./pages/questionnaire.js";
 import { finishPage } from "./pages/finish.js";
@@ -18,6 +20,7 @@ const root = document.getElementById("app");
 const PAGES = {
   consent: consentPage,
   instructions: instructionsPage,
+  quiz: quizPage,
   practice: trialPage,
   trial: trialPage,
   questionnaire: questionnairePage,
@@ -43,13 +46,21 @@ async function route(session) {
   ctx.session = current;
   document.body.dataset.state = current.state;
   setProgress(current.state === "done" || current.state === "screened_out" ? "" :
-    `Step ${current.step + 1} of ${current.steps}`);
+    `Part ${current.step + 1} of ${current.steps}`);
+  if (deviceRefused(current)) {
+    devicePage(root, ctx);
+    return;
+  }
   const page = PAGES[current.state];
   if (!page) {
     messagePage(root, "Unexpected state", `The study is in a state this page does not know (${current.state}).`);
     return;
   }
   cleanup = page(root, ctx) || null;
+  if (current.notice === "round_ended_away" && !document.body.classList.contains("playing")) {
+    root.prepend(h("p", { class: "page-notice", id: "page-notice", role: "status" },
+      "Your last round ended while you were away: the connection was lost for longer than the study allows."));
+  }
 }
 
 function retryButton() {
@@ -78,7 +89,7 @@ async function boot() {
   try {
     const entered = await enter(link);
     ctx = { api: entered.api, link, route, session: entered.session };
-    await route(entered.session);
+    await route(await entered.api.device(deviceInfo()));
   } catch (exc) {
     failure(exc);
   }

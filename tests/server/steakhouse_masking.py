@@ -10,7 +10,7 @@ from typing import Any
 from planner.fov import view
 from planner.geometry import Direction
 from planner.state import WorldState
-from server.game.view import station_view
+from server.game.view import drawn_bounds, station_view
 from server.store import trials
 from server.store.tables import TrialRow
 from study_config import load_layout
@@ -40,6 +40,8 @@ def check_masked(server: Any, trial_id: int, messages: list[dict[str, Any]], stu
         layout = load_layout(row.kitchen)
     hello = messages[0]
     assert hello["type"] == "hello" and "cells" not in hello and not coordinates(hello)
+    bounds = hello["bounds"]  # the kitchen's extent from its terrain only (the same for every trial in it)
+    assert (bounds["left"], bounds["top"], bounds["width"], bounds["height"]) == drawn_bounds(layout)
     rules = server.services.catalog.get(study_id).rules
     shown = hidden = 0
     for message in messages:

@@ -161,6 +161,12 @@ async def flaky_participant(url: str, pid: str, rng: random.Random) -> dict[str,
     while end is None:
         sock = await player.socket()
         hello = await sock.recv()
+        if hello["type"] == "error" and hello["code"] == "no_trial":
+            # The trial ended just as the last connection was being dropped (its trial_end was still on the
+            # way, more often on a loaded machine): the store says how it ended.
+            end = {"type": "trial_end", "ended_while_dropping": True}
+            await sock.close()
+            break
         seen: list[int] = []
         drop_at = time.monotonic() + rng.uniform(0.1, 0.6)
         while end is None and time.monotonic() < drop_at:
@@ -206,6 +212,9 @@ def test_random_connection_drops_lose_and_double_no_tick(live_server, study_file
             trial_id = connections[0]["hello"]["trial"]["id"]
             assert len(connections) >= 2, "the trial must have been interrupted to test anything"
             assert {c["hello"]["trial"]["id"] for c in connections} == {trial_id}
+            if end.get("ended_while_dropping"):
+                row = session.get(TrialRow, trial_id)
+                end = {"status": row.status, "ticks": row.ticks}
             assert end["status"] == "finished"
             ticks = [t.tick for t in trials.ticks(session, trial_id)]
             assert ticks == list(range(1, end["ticks"] + 1)), "every tick stored exactly once"

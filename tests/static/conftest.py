@@ -140,8 +140,9 @@ class PageProblems(list[str]):
 
 @pytest.fixture
 def new_page(browser: Any) -> Iterator[Callable[..., tuple[Any, PageProblems]]]:
-    """``new_page(viewport=(1280, 720), scale=1)``: a page in a fresh browser context (a new participant)
-    with the recruiting site stubbed; fails the test if the page logged a console error."""
+    """``new_page(viewport=(1280, 720), scale=1, **context)``: a page in a fresh browser context (a new
+    participant; ``context``: more Playwright context options, e.g. ``is_mobile``, ``has_touch``) with the
+    recruiting site stubbed; fails the test if the page logged a console error."""
     yield from _pages(browser)
 
 
@@ -154,9 +155,9 @@ def new_gl_page(gl_browser: Any) -> Iterator[Callable[..., tuple[Any, PageProble
 def _pages(browser: Any) -> Iterator[Callable[..., tuple[Any, PageProblems]]]:
     contexts: list[tuple[Any, PageProblems]] = []
 
-    def make(viewport: tuple[int, int] = (1280, 720), scale: float = 1) -> tuple[Any, PageProblems]:
+    def make(viewport: tuple[int, int] = (1280, 720), scale: float = 1, **options: Any) -> tuple[Any, PageProblems]:
         context = browser.new_context(viewport={"width": viewport[0], "height": viewport[1]},
-                                      device_scale_factor=scale)
+                                      device_scale_factor=scale, **options)
         context.route(f"{RECRUIT_SITE}**", lambda route: route.fulfill(
             status=200, content_type="text/html", body="<!doctype html><title>Recruiting site</title><p>Welcome back"))
         page = context.new_page()
@@ -172,3 +173,11 @@ def _pages(browser: Any) -> Iterator[Callable[..., tuple[Any, PageProblems]]]:
     for context, _ in contexts:
         context.close()
     assert failures == [], failures
+
+
+@pytest.fixture
+def module_page(study_server: StudyServer, new_page: Callable[..., tuple[Any, PageProblems]]) -> Any:
+    """A page on the study server (a static file, no study page) for importing the client's modules one by one."""
+    page, _ = new_page()
+    page.goto(f"{study_server.url}/data/example_view.json")
+    return page

@@ -19,10 +19,10 @@ from typing import Any
 
 import httpx
 import pytest
+from steakhouse_browser import screenshot  # noqa: F401  (re-exported for the admin test modules)
 from steakhouse_testing import Player, Socket, ThreadServer, next_subtask, play_to_end, write_study
 
 REPO = Path(__file__).resolve().parents[2]
-SCREENSHOTS = REPO / "test-output" / "screenshots"
 ADMIN_TOKEN = "dashboard-admin-secret"
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",
                  "--disable-sync", "--no-first-run"]
@@ -214,13 +214,6 @@ def login(page: Any, server: AdminServer, token: str = ADMIN_TOKEN, hash_: str =
     page.fill("#admin-token", token)
     page.click("#login-submit")
     page.wait_for_selector("#nav-studies")
-
-
-def screenshot(page: Any, name: str, *, full_page: bool = False) -> Path:
-    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
-    path = SCREENSHOTS / f"{name}.png"
-    page.screenshot(path=str(path), full_page=full_page)
-    return path
 
 
 def canvas_pixel(page: Any, selector: str, cell: tuple[int, int], fx: float = 0.5, fy: float = 0.5) -> tuple[int, ...]:

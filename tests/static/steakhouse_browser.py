@@ -7,16 +7,20 @@ Importable from the test files because ``tests/static/conftest.py`` puts this fo
 from __future__ import annotations
 
 import io
+import os
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from planner.fov import visible_cells
 from planner.geometry import Direction
 from planner.layout import Layout, parse_layout
 from study_config import STUDY_DIR
 
 TIMEOUT_MS = 15_000
-SCREENSHOTS = Path(__file__).resolve().parents[2] / "test-output" / "screenshots"
+SCREENSHOTS = Path(os.environ.get("STEAKHOUSE_SCREENSHOTS") or
+                   Path(__file__).resolve().parents[2] / "test-output" / "screenshots")
+"""Where screenshots go: ``test-output/screenshots/`` (git-ignored), or ``$STEAKHOUSE_SCREENSHOTS``."""
 RECRUIT_SITE = "https://recruit.example/"
 
 
@@ -48,6 +52,8 @@ class Drawn:
     held: str
     robot: str
     grid: tuple[int, int]
+    bounds: tuple[int, int, int, int]
+    """The part of the grid drawn: left, top, width, height (``hello.bounds``)."""
     cell_css: float
     dpr: float
 
@@ -56,9 +62,12 @@ def drawn(page: Any) -> Drawn:
     data = page.eval_on_selector("#kitchen", "el => ({...el.dataset})")
     x, y, facing = data["you"].split(",")
     width, height = data["grid"].split("x")
+    bounds = data.get("bounds") or f"0,0,{width},{height}"  # the first-person view draws no grid
+    left, top, shown_w, shown_h = (int(v) for v in bounds.split(","))
     return Drawn(trial=int(data["trial"]), tick=int(data["tick"]), pos=(int(x), int(y)), facing=Direction(facing),
                  held=data["held"], robot=data["robot"], grid=(int(width), int(height)),
-                 cell_css=float(data.get("cell", "nan")), dpr=float(data.get("dpr", "nan")))
+                 bounds=(left, top, shown_w, shown_h), cell_css=float(data.get("cell", "nan")),
+                 dpr=float(data.get("dpr", "nan")))
 
 
 def wait_drawn(page: Any, condition: str = "true", timeout: float = TIMEOUT_MS) -> Drawn:
@@ -127,9 +136,38 @@ def canvas_image(page: Any) -> tuple[Any, tuple[int, int]]:
 
 
 def cell_pixels(image: Any, origin: tuple[int, int], cell: tuple[int, int], size: int, margin: int = 3,
-                step: int = 3) -> list[tuple[int, int, int]]:
+                step: int = 3, first: tuple[int, int] = (0, 0)) -> list[tuple[int, int, int]]:
     """A grid of pixels inside ``cell`` of a grid drawn at ``origin`` with ``size`` device pixels per cell,
-    ``margin`` away from the cell's edges."""
-    x0, y0 = origin[0] + cell[0] * size, origin[1] + cell[1] * size
+    ``margin`` away from the cell's edges; ``first`` is the grid cell drawn at ``origin`` (the bounds' corner)."""
+    x0, y0 = origin[0] + (cell[0] - first[0]) * size, origin[1] + (cell[1] - first[1]) * size
     return [image.getpixel((x, y)) for y in range(y0 + margin, y0 + size - margin, step)
             for x in range(x0 + margin, x0 + size - margin, step)]
+
+
+def is_black(pixel: tuple[int, int, int]) -> bool:
+    """Pure black, as out-of-view cells must be (a little slack for compositing)."""
+    return max(pixel) <= 8
+
+
+def check_mask(page: Any, layout: Layout, angle: float = 120.0) -> tuple[set, set]:
+    """Check every cell of the drawn canvas against the FOV of the pose the canvas says it drew."""
+    before = drawn(page)
+    image, origin = canvas_image(page)
+    after = drawn(page)
+    assert (before.pos, before.facing) == (after.pos, after.facing), "the avatar moved during the screenshot"
+    size = round(before.cell_css * before.dpr)
+    seen = visible_cells(layout, before.pos, before.facing, angle)
+    left, top, width, height = before.bounds
+    black, shown = set(), set()
+    for cell in layout.cells():
+        if not (left <= cell[0] < left + width and top <= cell[1] < top + height):
+            continue  # outside the drawn part of the grid (unreachable counters)
+        pixels = cell_pixels(image, origin, cell, size, first=(left, top))
+        if cell in seen:
+            lit = sum(1 for p in pixels if not is_black(p))
+            assert lit / len(pixels) > 0.9, f"in-view cell {cell} is (partly) black"
+            shown.add(cell)
+        else:
+            assert all(is_black(p) for p in pixels), f"out-of-view cell {cell} is not black"
+            black.add(cell)
+    return black, shown

@@ -29,7 +29,11 @@ def test_a_running_trial_is_watched_live(admin_server, admin_page):  # noqa: F81
     player = admin_server.live_trial("pid-live")
     page = admin_page()
     login(page, admin_server, hash_="#/live")
-    page.click(f"#live-table tr[data-trial='{player.trial_id}'] a.watch")
+    row = f"#live-table tr[data-trial='{player.trial_id}']"
+    page.wait_for_selector(row)
+    assert "pid-live" in page.inner_text(row), "the list names the participant by the recruiting id"
+    assert player.participant_id not in page.inner_text(row)
+    page.click(f"{row} a.watch")
     page.wait_for_selector("#admin-kitchen[data-tick]")
     first = int(canvas_data(page)["tick"])
     page.wait_for_function(f"() => Number(document.querySelector('#admin-kitchen').dataset.tick) >= {first + 4}")
@@ -41,11 +45,14 @@ def test_a_running_trial_is_watched_live(admin_server, admin_page):  # noqa: F81
     assert data["grid"] == f"{width}x{height}" and int(data["visible"]) == width * height, "the whole kitchen"
     assert 0 < int(data["fov"]) < width * height
     assert page.locator("#gap-panel tbody tr").count() == 4
-    assert page.inner_text("#live-meta").startswith(player.participant_id)
+    assert page.inner_text("#live-meta").startswith("pid-live")
+    assert page.get_attribute("#live-meta .who", "title") == f"public id {player.participant_id}"
     if live["decision"] and live["decision"]["belief"]:
         page.wait_for_selector("#belief-list li")
         assert page.locator("#belief-list li").count() >= 1
     assert page.is_visible("#belief-kitchen")
+    belief_cell = page.eval_on_selector("#belief-kitchen", "el => Number(el.dataset.cell)")
+    assert belief_cell >= 28, f"the participant model's kitchen is drawn at {belief_cell} px a cell: too small to read"
     screenshot(page, "admin_live", full_page=True)
 
     player.stop()

@@ -9,13 +9,6 @@ import pytest
 pytestmark = pytest.mark.browser
 
 
-@pytest.fixture
-def module_page(study_server, new_page):
-    page, _ = new_page()
-    page.goto(f"{study_server.url}/data/example_view.json")
-    return page
-
-
 def test_key_map(module_page):
     got = module_page.evaluate("""async () => {
       const { interruptForKey } = await import('/js/game/keys.js');

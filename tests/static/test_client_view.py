@@ -6,55 +6,30 @@ from __future__ import annotations
 import time
 
 import pytest
-from steakhouse_browser import (canvas_image, cell_pixels, drawn, kitchen, press_until_focused, start_first_round,
-                                wait_drawn)
+from steakhouse_browser import check_mask, drawn, kitchen, press_until_focused, start_first_round, wait_drawn
 
 from steakhouse_browser import screenshot
-from planner.fov import visible_cells
+from server.game.view import drawn_bounds
 
 pytestmark = pytest.mark.browser
 
 PRACTICE = kitchen("practice")
 
 
-def is_black(pixel: tuple[int, int, int]) -> bool:
-    return max(pixel) <= 8
-
-
-def check_mask(page, angle: float = 120.0) -> tuple[set, set]:
-    """Check every cell of the drawn canvas against the FOV of the pose the canvas says it drew."""
-    before = drawn(page)
-    image, origin = canvas_image(page)
-    after = drawn(page)
-    assert (before.pos, before.facing) == (after.pos, after.facing), "the avatar moved during the screenshot"
-    size = round(before.cell_css * before.dpr)
-    seen = visible_cells(PRACTICE, before.pos, before.facing, angle)
-    black, shown = set(), set()
-    for cell in PRACTICE.cells():
-        pixels = cell_pixels(image, origin, cell, size)
-        if cell in seen:
-            lit = sum(1 for p in pixels if not is_black(p))
-            assert lit / len(pixels) > 0.9, f"in-view cell {cell} is (partly) black"
-            shown.add(cell)
-        else:
-            assert all(is_black(p) for p in pixels), f"out-of-view cell {cell} is not black"
-            black.add(cell)
-    return black, shown
-
-
 def test_out_of_view_cells_are_black_and_nothing_is_remembered(study_server, new_page):
     page, _ = new_page(scale=2)
     first = start_first_round(page, study_server.link(PROLIFIC_PID="view-1"), keyboard=True)
     assert first.grid == (PRACTICE.width, PRACTICE.height) and first.dpr == 2
+    assert first.bounds == drawn_bounds(PRACTICE), "only floor, stations and one ring around them are drawn"
     canvas = page.eval_on_selector("#kitchen", "el => [el.width, el.height, el.getBoundingClientRect().width]")
-    assert canvas[0] == round(first.cell_css * 2) * PRACTICE.width and canvas[0] == 2 * canvas[2]
-    black, shown = check_mask(page)
+    assert canvas[0] == round(first.cell_css * 2) * first.bounds[2] and canvas[0] == 2 * canvas[2]
+    black, shown = check_mask(page, PRACTICE)
     assert black and shown and first.pos in shown
 
     page.keyboard.press("ArrowLeft")
     turned = wait_drawn(page, "d.you.endsWith('west')")
     assert turned.pos == (first.pos[0] - 1, first.pos[1])
-    black_after, shown_after = check_mask(page)
+    black_after, shown_after = check_mask(page, PRACTICE)
     forgotten = shown - shown_after
     assert forgotten and forgotten <= black_after, "cells seen before the turn must be black now"
     assert turned.robot, "the robot (standing west of the avatar) is drawn once it is in view"

@@ -10,7 +10,7 @@ import { subtaskLabel } from "../../js/labels.js";
 import { beliefPanel, decisionPanel, facts, gapPanel } from "./panels.js";
 import { Stage, beliefLabel, beliefState, worldLabel, worldState } from "./scene.js";
 import { ParticipantCamera } from "./camera.js";
-import { badge, errorText, ms, pageFrame, poll, table } from "./ui.js";
+import { badge, errorText, ms, pageFrame, poll, table, who } from "./ui.js";
 
 const LIST_MS = 2000;
 const VIEW_MS = 300;
@@ -24,7 +24,7 @@ export function liveListPage(root, { api }) {
       frame.status.textContent = "";
       frame.body.replaceChildren(table([
         ["Trial", (g) => h("a", { href: `#/live/${g.trial_id}`, class: "watch" }, `#${g.trial_id}`)],
-        ["Participant", (g) => h("code", {}, g.participant)],
+        ["Participant", (g) => who(g.recruit_id, g.participant)],
         ["Study", (g) => g.study_id],
         ["Round", (g) => `${g.kind} ${g.index + 1} of ${g.kind_total}`],
         ["Condition", (g) => g.condition],
@@ -44,7 +44,7 @@ export function liveListPage(root, { api }) {
 function header(view) {
   const t = view.trial;
   return h("p", { class: "trial-meta", id: "live-meta" },
-    h("code", {}, t.participant), ` · ${t.study_id} · ${t.kind} ${t.index + 1} of ${t.kind_total} · ${t.condition}` +
+    who(t.recruit_id, t.participant), ` · ${t.study_id} · ${t.kind} ${t.index + 1} of ${t.kind_total} · ${t.condition}` +
     ` · ${t.view.replace("_", "-")} view · seed ${t.seed}`, t.test_run ? [" ", badge("test run", "test")] : null,
     " ", view.connected ? badge("connected", "ok") : badge("participant away: paused", "warn"));
 }
@@ -54,7 +54,7 @@ export function liveTrialPage(root, { api, args }) {
   const frame = pageFrame(`Live · trial ${trialId}`, { id: "live-view",
     controls: [h("a", { href: "#/live" }, "All live trials")] });
   const world = new Stage("admin-kitchen");
-  const belief = new Stage("belief-kitchen", { maxCell: 36, className: "small", label: beliefLabel });
+  const belief = new Stage("belief-kitchen", { maxCell: 60, className: "model", label: beliefLabel });
   const meta = h("div", {});
   const side = h("div", { class: "viewer-side" });
   const caption = h("p", { class: "muted caption" });

@@ -7,7 +7,7 @@
 import { h, show } from "../../js/dom.js";
 import { badge, errorText, pageFrame, poll, table, when } from "./ui.js";
 
-const STATES = { consent: "consent", instructions: "instructions", practice: "practice", trial: "trial",
+const STATES = { consent: "consent", instructions: "instructions", quiz: "quiz", practice: "practice", trial: "trial",
                  questionnaire: "questionnaire", done: "done", screened_out: "screened out" };
 
 function progress(p) {
@@ -30,9 +30,27 @@ function answersBlock(data) {
         ` · ${when(q.answered_at)}`)),
     table([
       ["Item", (i) => i.text || i.id],
-      ["Answer", (i) => (i.value === null ? h("span", { class: "muted" }, "no answer") : String(i.value)), "num"],
-      ["Scale", (i) => (i.scale ? `${i.scale.min}–${i.scale.max}` : "–"), "num"],
+      ["Answer", answerCell],
+      ["Scale", (i) => (i.scale ? `${i.scale.min}–${i.scale.max}` : i.type || "–"), "num"],
     ], q.items)));
+}
+
+/** A rating's value, a choice's option, or a free text (shown as text, never as markup). */
+function answerCell(item) {
+  if (item.value === null && item.answer_text === null) return h("span", { class: "muted" }, "no answer");
+  if (item.answer_text !== null && item.answer_text !== undefined) {
+    return h("span", { class: "answer-text" }, item.value !== null ? `${item.value}: ${item.answer_text}` : item.answer_text);
+  }
+  return String(item.value);
+}
+
+/** The last device check: ok, or what stopped the device. */
+function deviceCell(p) {
+  if (!p.device) return h("span", { class: "muted" }, "–");
+  const d = p.device;
+  const size = `${d.screen_width}×${d.screen_height}`;
+  return d.problems.length ? badge(`${d.problems.join(", ").replaceAll("_", " ")} (${size})`, "excluded")
+    : h("span", { title: `window ${d.viewport_width}×${d.viewport_height}` }, size);
 }
 
 export function participantsPage(root, { api, params, go }) {
@@ -118,6 +136,7 @@ export function participantsPage(root, { api, params, go }) {
       ["Progress", progress],
       ["Status", (p) => p.status.replace("_", " ")],
       ["Recruiting id", (p) => Object.values(p.recruiting)[0] || h("span", { class: "muted" }, "–")],
+      ["Device", deviceCell],
       ["Joined", (p) => when(p.created_at)],
       ["Flags", flags],
       ["", actions],

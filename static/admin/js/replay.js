@@ -11,7 +11,7 @@ import { subtaskLabel } from "../../js/labels.js";
 import { beliefPanel, decisionPanel, facts, gapPanel } from "./panels.js";
 import { Stage, beliefLabel, beliefState, worldLabel, worldState } from "./scene.js";
 import { ParticipantCamera } from "./camera.js";
-import { badge, errorText, ms, pageFrame } from "./ui.js";
+import { badge, errorText, ms, pageFrame, who } from "./ui.js";
 
 const PAGE = 2000;
 const SPEEDS = [0.25, 0.5, 1, 2, 4, 8];
@@ -30,7 +30,7 @@ async function loadFrames(api, trialId, onProgress) {
 function metaLine(replay) {
   const t = replay.trial;
   return h("p", { class: "trial-meta", id: "replay-meta" },
-    h("code", {}, t.participant_id), ` · ${t.study_id} · ${t.kind} ${t.index + 1} · ${t.condition} · ` +
+    who(t.recruit_id, t.participant_id), ` · ${t.study_id} · ${t.kind} ${t.index + 1} · ${t.condition} · ` +
     `${t.view.replace("_", "-")} view · seed ${t.seed} · ` +
     `${t.status}${t.end_reason ? ` (${t.end_reason})` : ""} · ${t.delivered} delivered · score ${t.score}`,
     replay.config_changed ? [" ", badge("study file changed since this trial", "warn")] : null);
@@ -61,7 +61,7 @@ export function replayPage(root, { api, args }) {
   let left = false;
   let removeKeys = () => {};
   const world = new Stage("admin-kitchen");
-  const belief = new Stage("belief-kitchen", { maxCell: 36, className: "small", label: beliefLabel });
+  const belief = new Stage("belief-kitchen", { maxCell: 60, className: "model", label: beliefLabel });
   const camera = new ParticipantCamera();
 
   loadFrames(api, trialId, (n) => { frame.body.firstChild.textContent = `Loading the ticks… ${n}`; })

@@ -133,6 +133,17 @@ function downloads(study, api) {
     status);
 }
 
+/** The study file's warnings (e.g. no completion code), shown prominently at the top of its card. */
+function warningsPanel(study) {
+  const warnings = study.warnings || [];
+  if (!warnings.length) return null;
+  const noCode = warnings.some((w) => w.code === "no_completion_code" || w.code === "placeholder_code");
+  return h("section", { class: "study-warnings", id: `warnings-${study.id}`, role: "note",
+                        "aria-label": `Warnings about ${study.id}` },
+    h("h3", {}, noCode ? "No usable completion code" : "Check this study"),
+    h("ul", {}, warnings.map((w) => h("li", { dataset: { code: w.code } }, h("code", {}, w.path), `: ${w.reason}`))));
+}
+
 function studyCard(study, links, api) {
   const orders = h("div", {});
   const redraw = () => orders.replaceChildren(ordersTable(study, planned(study.id)));
@@ -145,6 +156,7 @@ function studyCard(study, links, api) {
       study.live_trials ? h("a", { href: "#/live", class: "badge live" }, `${study.live_trials} live`) : badge("none live"),
       h("a", { href: `#/participants?study=${encodeURIComponent(study.id)}` }, "Participants"),
       h("a", { href: `#/trials?study=${encodeURIComponent(study.id)}` }, "Trials")),
+    warningsPanel(study),
     h("p", { class: "muted" }, `Conditions: ${study.conditions.join(", ")} · ${timing} · config ${study.config_hash.slice(0, 12)}`),
     study.notes ? h("p", { class: "notes" }, study.notes) : null,
     h("div", { class: "orders-head" }, h("h3", {}, "Condition orders"), plannedInput(study, redraw)),

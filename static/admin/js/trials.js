@@ -4,7 +4,7 @@
  */
 
 import { h, show } from "../../js/dom.js";
-import { badge, errorText, pageFrame, table, when } from "./ui.js";
+import { badge, errorText, pageFrame, table, when, who } from "./ui.js";
 
 export function trialsPage(root, { api, params }) {
   const filters = { study_id: params.get("study") || undefined, participant_id: params.get("participant") || undefined };
@@ -18,7 +18,8 @@ export function trialsPage(root, { api, params }) {
       const trials = await api.trials(filters);
       frame.body.replaceChildren(table([
         ["Trial", (t) => h("a", { href: `#/replay/${t.trial_id}` }, `#${t.trial_id}`)],
-        ["Participant", (t) => h("a", { href: `#/trials?participant=${encodeURIComponent(t.participant_id)}` }, h("code", {}, t.participant_id))],
+        ["Participant", (t) => h("a", { href: `#/trials?participant=${encodeURIComponent(t.participant_id)}` },
+          who(t.recruit_id, t.participant_id))],
         ["Study", (t) => t.study_id],
         ["Kind", (t) => `${t.kind} ${t.index + 1}${t.attempt > 1 ? ` (attempt ${t.attempt})` : ""}`],
         ["Condition", (t) => t.condition],

@@ -23,6 +23,15 @@ export function ms(value) {
   return value === null || value === undefined ? "–" : `${Number(value).toFixed(1)} ms`;
 }
 
+/**
+ * Who a participant is, for the experimenter: the recruiting id (what the recruiting platform shows, e.g.
+ * PROLIFIC_PID) with the random public id in its tooltip; the public id when there is no recruiting id.
+ */
+export function who(recruitId, publicId) {
+  if (!recruitId) return h("code", { class: "who" }, publicId || "–");
+  return h("span", { class: "who", title: `public id ${publicId || "–"}` }, recruitId);
+}
+
 export function badge(text, kind = "") {
   return h("span", { class: `badge ${kind}`.trim() }, text);
 }

@@ -28,7 +28,7 @@ export function backoffDelay(attempt, random = Math.random) {
 }
 
 export class GameConnection {
-  /** `handlers`: onHello, onState, onAck, onError, onEnd, onLink(state, info), onLatency(ms). */
+  /** `handlers`: onHello, onState, onAck, onBlocked, onError, onEnd, onLink(state, info), onLatency(ms). */
   constructor(token, handlers) {
     this.token = token;
     this.handlers = handlers;
@@ -118,6 +118,9 @@ export class GameConnection {
         break;
       case "ack":
         if (on.onAck) on.onAck(message);
+        break;
+      case "blocked":
+        if (on.onBlocked) on.onBlocked(message);
         break;
       case "pong":
         if (on.onLatency) on.onLatency(Math.max(0, performance.now() - message.client_time));

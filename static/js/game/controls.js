@@ -1,32 +1,50 @@
 /**
  * The participant's controls: one button per subtask of the protocol's `hello.subtasks` (always all of
- * them, whatever the world looks like, so the buttons reveal nothing that is out of view) and one per
- * interrupt action, labelled with its keys. The task being done is highlighted (aria-pressed).
+ * them, so the buttons reveal nothing that is out of view) and one per interrupt action, labelled with its
+ * keys. The task being done is highlighted (aria-pressed).
  *
- * While offline the buttons are marked aria-disabled rather than disabled, so keyboard focus stays
- * where the participant left it.
+ * A task that cannot work with what the cook holds (`hello.needs`; what the cook holds is always known to
+ * the participant, so this reveals nothing) is disabled with its reason: `aria-disabled` and
+ * `aria-describedby` for screen readers, the reason as a tooltip on hover and in the "why" line under the
+ * tasks on hover and keyboard focus. Choosing it anyway only shows the reason. While offline every button
+ * is marked aria-disabled rather than disabled, so keyboard focus stays where the participant left it.
  */
 
 import { h } from "../dom.js";
 import { INTERRUPTS, SUBTASK_GROUPS, SUBTASKS, subtaskLabel } from "../labels.js";
+import { handsReason } from "./reasons.js";
 
 export class Controls {
-  /** `labels`: interrupt id → label replacing the usual one (the first-person view's "Forward", …). */
-  constructor({ subtasks, interrupts, onSelect, onInterrupt, labels = {} }) {
+  /** `onRefused(subtask, reason)`: a disabled task was chosen; `labels`: interrupt id → label replacing the usual
+   * one (the first-person view's "Forward", …). */
+  constructor({ subtasks, interrupts, needs = {}, onSelect, onInterrupt, onRefused = () => {}, labels = {} }) {
     this.enabled = false;
     this.buttons = new Map();
+    this.reasons = new Map();
+    this.needs = needs;
     this.current = null;
+    this.held = undefined;
     const known = new Set(subtasks);
     const grouped = SUBTASK_GROUPS.map((g) => ({ ...g, subtasks: g.subtasks.filter((s) => known.has(s)) }));
     const listed = new Set(grouped.flatMap((g) => g.subtasks));
     const others = subtasks.filter((s) => !listed.has(s));
     if (others.length) grouped.push({ title: "Other", subtasks: others });
 
+    this.why = h("p", { class: "task-why", id: "task-why", "aria-live": "polite" });
+    this.descriptions = h("div", { class: "visually-hidden" });
     const taskButton = (id) => {
+      this.descriptions.append(h("span", { id: `why-${id}` }));
       const button = h("button", {
         type: "button", class: "task-button", "aria-pressed": "false", title: (SUBTASKS[id] || {}).hint,
         dataset: { subtask: id },
-        onclick: () => this.enabled && onSelect(id),
+        onclick: () => {
+          if (!this.enabled) return;
+          const why = this.reasons.get(id);
+          if (why) onRefused(id, why);
+          else onSelect(id);
+        },
+        onfocus: () => this.explain(id), onmouseenter: () => this.explain(id),
+        onblur: () => this.explain(null), onmouseleave: () => this.explain(null),
       }, subtaskLabel(id));
       this.buttons.set(id, button);
       return button;
@@ -34,7 +52,8 @@ export class Controls {
     this.tasks = h("nav", { class: "tasks", "aria-label": "Tasks" },
       h("h2", { class: "panel-title" }, "Choose a task"),
       grouped.filter((g) => g.subtasks.length).map((g) => h("section", { class: "task-group" },
-        h("h3", {}, g.title), h("div", { class: "task-grid" }, g.subtasks.map(taskButton)))));
+        h("h3", {}, g.title), h("div", { class: "task-grid" }, g.subtasks.map(taskButton)))),
+      this.why, this.descriptions);
 
     const allowed = new Set(interrupts);
     this.interruptButtons = INTERRUPTS.filter((i) => allowed.has(i.id)).map((i) => h("button", {
@@ -50,7 +69,44 @@ export class Controls {
 
   setEnabled(enabled) {
     this.enabled = enabled;
-    for (const b of [...this.buttons.values(), ...this.interruptButtons]) b.setAttribute("aria-disabled", String(!enabled));
+    this.refresh();
+  }
+
+  /** What the cook holds now: tasks that cannot work with it are disabled with their reason. */
+  setHeld(held) {
+    const now = held || null;
+    if (now === this.held) return;
+    this.held = now;
+    this.reasons.clear();
+    for (const id of this.buttons.keys()) {
+      const reason = handsReason(this.needs[id], now);
+      if (reason) this.reasons.set(id, reason);
+    }
+    this.refresh();
+  }
+
+  refresh() {
+    for (const [id, button] of this.buttons) {
+      const reason = this.reasons.get(id) || null;
+      const off = !this.enabled || reason !== null;
+      button.setAttribute("aria-disabled", String(off));
+      button.classList.toggle("unfit", reason !== null);
+      button.title = reason || (SUBTASKS[id] || {}).hint || "";
+      const described = this.descriptions.querySelector(`#why-${id}`);
+      if (described) described.textContent = reason ? `Not possible now: ${reason}.` : "";
+      if (reason) button.setAttribute("aria-describedby", `why-${id}`);
+      else button.removeAttribute("aria-describedby");
+    }
+    for (const b of this.interruptButtons) b.setAttribute("aria-disabled", String(!this.enabled));
+    if (this.explaining) this.explain(this.explaining);
+  }
+
+  /** Show why task `id` is disabled in the line under the tasks (hover and focus); `null` clears it. */
+  explain(id) {
+    this.explaining = id;
+    const reason = id ? this.reasons.get(id) : null;
+    const text = reason ? `${subtaskLabel(id)}: ${reason}.` : "";
+    if (this.why.textContent !== text) this.why.textContent = text;
   }
 
   /** Highlight `subtask` (or nothing); `pending` marks a choice sent but not yet confirmed. */

@@ -25,6 +25,11 @@ export function formatTime(seconds) {
   return `${Math.floor(s / 60)}:${String(s % 60).padStart(2, "0")}`;
 }
 
+/** Time left in wait-for-participant mode, where the game moves only when the cook does: moves, not seconds. */
+export function movesLeft(count) {
+  return `${count} move${count === 1 ? "" : "s"}`;
+}
+
 export class Hud {
   constructor() {
     this.round = h("span", { class: "hud-round", id: "hud-round" });
@@ -38,23 +43,31 @@ export class Hud {
     this.pill = h("span", { class: "link-pill", id: "link-status", role: "status", "aria-live": "polite" });
     this.latency = h("span", { class: "latency", id: "latency", title: "Round trip to the server" });
     this.note = h("span", { class: "hud-note", id: "hud-note", "aria-live": "polite" });
+    this.link = h("div", { class: "hud-link" }, this.note, this.pill, this.latency);
     this.node = h("div", { class: "hud", role: "group", "aria-label": "Game status" },
-      this.round, Object.values(this.items).map((i) => i.node), h("div", { class: "hud-link" }, this.note, this.pill, this.latency));
+      this.round, Object.values(this.items).map((i) => i.node), this.link);
+  }
+
+  /** Put `node` (e.g. the task note) in the HUD, after what the cook holds. */
+  place(node) {
+    this.node.insertBefore(node, this.link);
   }
 
   setText(el, text) {
     if (el.textContent !== text) el.textContent = text;
   }
 
+  /** The round's label; an unscored round (practice) shows no score. */
   setRound(trial) {
     this.setText(this.round, roundLabel(trial));
+    this.items.score.node.hidden = trial.scored === false;
   }
 
   update(state) {
     const hud = state.hud;
     this.setText(this.items.orders.value, String(hud.orders_left));
     this.setText(this.items.time.value,
-      hud.seconds_left === null || hud.seconds_left === undefined ? `${hud.ticks_left} steps` : formatTime(hud.seconds_left));
+      hud.seconds_left === null || hud.seconds_left === undefined ? movesLeft(hud.ticks_left) : formatTime(hud.seconds_left));
     this.setText(this.items.score.value, String(hud.score));
     this.setTask(state.subtask);
     this.setText(this.items.held.value, heldLabel(state.you.held));

@@ -14,6 +14,7 @@ import { paintState } from "./renderer.js";
 import { drawCell } from "./stations.js";
 import { drawAgent, FACING } from "./agents.js";
 import { drawObject } from "./items.js";
+import { iconCanvas as icon } from "./icons.js";
 
 const TERRAIN = { X: "counter", " ": "floor", O: "onion", M: "meat", D: "plate", P: "grill", B: "board", W: "sink",
                   S: "serve" };
@@ -100,18 +101,6 @@ export function examplePicture(example, cssCell = 40, angle = example.fov_angle)
                   `What you see with a ${angle}° field of view: you face east; ${robot}`),
       h("figcaption", {}, angle >= 360 ? "What you see: everything, in this study"
         : "What you see: facing right, everything else is black")));
-}
-
-function icon(draw, cssSize = 44) {
-  const dpr = window.devicePixelRatio || 1;
-  const s = Math.round(cssSize * dpr);
-  const canvas = h("canvas", { class: "legend-icon", "aria-hidden": "true" });
-  canvas.width = s;
-  canvas.height = s;
-  canvas.style.width = `${s / dpr}px`;
-  canvas.style.height = `${s / dpr}px`;
-  draw(canvas.getContext("2d"), s);
-  return canvas;
 }
 
 const OBJECT_LEGEND = [

@@ -4,8 +4,9 @@
  * cell is painted black — nothing is remembered from earlier ticks, so a black cell never shows stale
  * terrain, objects or the robot.
  *
- * The grid is fitted to its container at a whole number of device pixels per cell (devicePixelRatio
- * aware), so lines stay crisp at any zoom. Drawing happens in requestAnimationFrame, only when a new
+ * Only the part of the grid worth drawing is shown (`hello.bounds`: every floor cell and station plus one ring
+ * of cells), fitted to its container at a whole number of device pixels per cell (devicePixelRatio aware), so
+ * the kitchen fills the space and lines stay crisp at any zoom. Drawing happens in requestAnimationFrame, only when a new
  * message arrived or the size changed, so input handling never waits for it.
  *
  * The admin dashboard draws the whole kitchen with the same painter and passes an overlay: the
@@ -20,6 +21,7 @@ import { heldLabel } from "../labels.js";
 
 export class KitchenView {
   constructor(canvas, container, { maxCell = 96, label = null } = {}) {
+    this.bounds = null;
     this.canvas = canvas;
     this.container = container;
     this.ctx = canvas.getContext("2d", { alpha: false });
@@ -36,9 +38,11 @@ export class KitchenView {
     window.addEventListener("resize", this.onDpr);
   }
 
-  setGrid(width, height) {
+  /** The grid's size, and the part of it to draw (`{left, top, width, height}`; default: all of it). */
+  setGrid(width, height, bounds = null) {
     this.width = width;
     this.height = height;
+    this.bounds = bounds || { left: 0, top: 0, width, height };
     this.invalidate();
   }
 
@@ -64,7 +68,7 @@ export class KitchenView {
     const dpr = window.devicePixelRatio || 1;
     const availW = Math.max(this.container.clientWidth, 1);
     const availH = Math.max(this.container.clientHeight, 1);
-    const cssCell = Math.min(availW / this.width, availH / this.height, this.maxCell);
+    const cssCell = Math.min(availW / this.bounds.width, availH / this.bounds.height, this.maxCell);
     const cell = Math.max(8, Math.floor(cssCell * dpr));
     return { dpr, cell };
   }
@@ -72,15 +76,15 @@ export class KitchenView {
   draw() {
     if (!this.width || !this.height) return;
     const { dpr, cell } = this.geometry();
-    const w = cell * this.width;
-    const h = cell * this.height;
+    const w = cell * this.bounds.width;
+    const h = cell * this.bounds.height;
     if (this.canvas.width !== w || this.canvas.height !== h) {
       this.canvas.width = w;
       this.canvas.height = h;
     }
     this.canvas.style.width = `${w / dpr}px`;
     this.canvas.style.height = `${h / dpr}px`;
-    paintState(this.ctx, this.width, this.height, this.state, cell, this.overlay);
+    paintState(this.ctx, this.width, this.height, this.state, cell, this.overlay, this.bounds);
     this.place(w / dpr, h / dpr);
     this.describe(this.state, cell, dpr);
   }
@@ -103,6 +107,8 @@ export class KitchenView {
   describe(state, cell, dpr) {
     const d = this.canvas.dataset;
     d.grid = `${this.width}x${this.height}`;
+    const b = this.bounds;
+    d.bounds = `${b.left},${b.top},${b.width},${b.height}`;
     d.cell = String(cell / dpr);
     d.dpr = String(dpr);
     if (!state) return;
@@ -135,14 +141,18 @@ export class KitchenView {
  * Paint one state message on a grid of `width` × `height` cells of `cell` device pixels: black
  * everywhere, then the listed cells, the `overlay` if any, the robot if present, and the participant's
  * cook. With an overlay the agents stay unmasked, and a robot outside the field of view gets a dashed ring.
+ * `bounds` (`{left, top, width, height}`) paints only that part of the grid, its top-left cell at (0, 0).
  */
-export function paintState(ctx, width, height, state, cell, overlay = null) {
+export function paintState(ctx, width, height, state, cell, overlay = null, bounds = null) {
+  const b = bounds || { left: 0, top: 0, width, height };
   ctx.setTransform(1, 0, 0, 1, 0, 0);
   ctx.fillStyle = OUT_OF_VIEW;
-  ctx.fillRect(0, 0, cell * width, cell * height);
+  ctx.fillRect(0, 0, cell * b.width, cell * b.height);
   if (!state) return;
+  ctx.setTransform(1, 0, 0, 1, -b.left * cell, -b.top * cell);
+  const inside = (x, y) => x >= b.left && y >= b.top && x < b.left + b.width && y < b.top + b.height;
   for (const c of state.cells) {
-    if (c.x < 0 || c.y < 0 || c.x >= width || c.y >= height) continue;
+    if (c.x < 0 || c.y < 0 || c.x >= width || c.y >= height || !inside(c.x, c.y)) continue;
     clipped(ctx, c.x * cell, c.y * cell, cell, () => drawCell(ctx, c, c.x * cell, c.y * cell, cell));
   }
   if (overlay) paintOverlay(ctx, width, height, overlay, cell);
@@ -155,6 +165,7 @@ export function paintState(ctx, width, height, state, cell, overlay = null) {
     const you = state.you;
     clipped(ctx, you.x * cell, you.y * cell, cell, () => drawAgent(ctx, "human", you, you.x * cell, you.y * cell, cell));
   }
+  ctx.setTransform(1, 0, 0, 1, 0, 0);
 }
 
 /** A dashed white ring around an agent the participant cannot see. */

@@ -11,12 +11,12 @@ import { RELATIVE_LABELS, Steering } from "../firstperson/steering.js";
 
 class TopDown {
   constructor(stage, canvas) {
-    this.view = new KitchenView(canvas, stage);
+    this.view = new KitchenView(canvas, stage, { maxCell: 200 });
     this.interruptLabels = {};
   }
 
   configure(hello) {
-    this.view.setGrid(hello.width, hello.height);
+    this.view.setGrid(hello.width, hello.height, hello.bounds);
   }
 
   update(state) {

@@ -1,12 +1,18 @@
 /**
- * The end page, for participants who finished (`done`) and for those who declined consent
- * (`screened_out`): thanks, the study's code (with a copy button) and, when the study configures one,
+ * The end page, for participants who finished (`done`) and for those screened out (`screened_out`: they
+ * declined consent, or did not pass the comprehension quiz): thanks, the study's code (with a copy button) and, when the study configures one,
  * the redirect back to the recruiting platform after a short countdown (with a link to go at once).
  */
 
 import { h, show } from "../dom.js";
 
 export const REDIRECT_SECONDS = 5;
+
+const SCREENED_OUT = {
+  declined_consent: "You chose not to take part, so the study ends here. No game data were recorded.",
+  failed_quiz: "The answers to the questions about the instructions were not all right after the attempts this " +
+    "study allows, so the study ends here. No game data were recorded. Thank you for your time.",
+};
 
 export function finishPage(root, ctx) {
   const { session } = ctx;
@@ -15,9 +21,8 @@ export function finishPage(root, ctx) {
   const title = h("h1", { id: "finish-title", tabindex: "-1" },
     finished ? "Thank you — you have finished the study" : "Thank you for your interest");
   const parts = [title];
-  parts.push(h("p", {}, finished
-    ? "Your answers and games have been saved."
-    : "You chose not to take part, so the study ends here. No game data were recorded."));
+  parts.push(h("p", { id: "finish-text" }, finished ? "Your answers and games have been saved."
+    : SCREENED_OUT[completion.reason] || SCREENED_OUT.declined_consent));
 
   if (completion.code) {
     const code = h("output", { class: "code", id: "completion-code" }, completion.code);

@@ -1,14 +1,15 @@
 /**
- * Instructions: the study's text (Markdown), then a picture of what the black cells mean drawn by the
- * game's own painter (the whole kitchen beside the participant's view with the study's field-of-view angle,
- * `session.fov_angle`), a legend of everything in the kitchen, and the keys. "Start practice" finishes the
- * step.
+ * Instructions: the study's text (Markdown), the recipe (the same strip the trial page shows above the
+ * kitchen), then a picture of what the black cells mean drawn by the game's own painter (the whole kitchen
+ * beside the participant's view with the study's field-of-view angle, `session.fov_angle`), a legend of
+ * everything in the kitchen, and the keys. The button finishes the step.
  */
 
 import { h, show } from "../dom.js";
 import { renderMarkdown } from "../markdown.js";
 import { INTERRUPTS } from "../labels.js";
 import { examplePicture, legend, loadExample } from "../game/picture.js";
+import { RecipeStrip } from "../game/recipe.js";
 import { actionError } from "./common.js";
 
 function coneText(angle) {
@@ -34,6 +35,10 @@ export function instructionsPage(root, ctx) {
 
   show(root, h("section", { class: "card prose wide", id: "instructions", "aria-label": "Instructions" },
     renderMarkdown(ctx.session.instructions),
+    h("h2", {}, "The recipe"),
+    h("p", {}, "Each dish is made in four lines of work, in this order; during a round the step you are at is " +
+      "highlighted from what you hold."),
+    new RecipeStrip({ id: "instructions-recipe", compact: false, icon: 30 }).node,
     h("h2", {}, "What the black cells mean"),
     h("p", { id: "fov-text", dataset: { angle: String(angle) } }, coneText(angle)),
     picture,
@@ -44,8 +49,9 @@ export function instructionsPage(root, ctx) {
       h("thead", {}, h("tr", {}, h("th", { scope: "col" }, "Action"), h("th", { scope: "col" }, "Keys"))),
       h("tbody", {}, INTERRUPTS.map((i) => h("tr", {}, h("td", {}, i.label),
         h("td", {}, i.keys.map((k, n) => [n ? " or " : "", h("kbd", {}, k)])))))),
-    h("p", {}, "A move turns you toward that direction and steps there if the cell is free floor. Interrupts act " +
-      "on the next step; afterwards your task continues from where you are. Stop cancels the task."),
+    h("p", {}, "A move turns you toward that direction and walks one cell if it is free floor. Interrupts act at " +
+      "once, one per key press; afterwards your task continues from where you are. Stop cancels the task. A task " +
+      "that cannot work with what you hold is greyed out, and the reason shows when you point at it."),
     h("div", { class: "actions" }, next), error));
 
   loadExample().then((example) => picture.replaceChildren(examplePicture(example, 40, angle))).catch(() => {

@@ -1,19 +1,24 @@
 /**
- * A practice or main round: an intro card with a start button, then the game — HUD, the kitchen
- * canvas, interrupt buttons under it, task buttons beside it — and a summary card when the round ends.
+ * A practice or main round: an intro card with a start button, then the game — HUD (with a note that says why
+ * a task did nothing), the recipe strip, the kitchen canvas, interrupt buttons under it, task buttons beside
+ * it — and a summary card when the round ends.
  *
  * A round that was started in this tab resumes without the intro card after a refresh (sessionStorage),
- * with a "reconnecting" cover over the kitchen until the server's hello arrives.
+ * with a "reconnecting" cover over the kitchen until the server's hello arrives. While a round is played,
+ * leaving or reloading the page asks for confirmation first.
  */
 
 import { h, show } from "../dom.js";
 import { GameConnection, Link } from "../game/connection.js";
 import { kitchenViewFor } from "../game/views.js";
-import { Hud, roundLabel } from "../game/hud.js";
+import { Hud } from "../game/hud.js";
 import { Controls } from "../game/controls.js";
 import { Activity } from "../game/activity.js";
 import { listenKeys } from "../game/keys.js";
+import { RecipeStrip } from "../game/recipe.js";
+import { TaskNote } from "../game/notes.js";
 import { subtaskLabel } from "../labels.js";
+import { introCard, summaryCard } from "./round_cards.js";
 
 const IDLE_MS = 30000;
 
@@ -47,34 +52,22 @@ export function trialPage(root, ctx) {
     remember(key, true);
     stopGame = playRound(root, ctx, () => remember(key, false));
   };
-  if (started(key)) start();
-  else intro(root, session.trial, start);
+  if (started(key) && session.trial.status === "in_progress") start();
+  else introCard(root, session.trial, start);
   return () => stopGame && stopGame();
 }
 
-function intro(root, trial, onStart) {
-  const practice = trial.kind === "practice";
-  const button = h("button", { type: "button", class: "primary", id: "start-round", onclick: onStart },
-    practice ? "Start practice" : "Start round");
-  show(root, h("section", { class: "card narrow", "aria-labelledby": "round-title" },
-    h("h1", { id: "round-title", tabindex: "-1" }, practice ? "Practice round" : roundLabel(trial)),
-    practice ? h("p", { class: "muted", id: "round-number" }, roundLabel(trial)) : null,
-    practice
-      ? h("p", {}, "Try the controls: choose tasks with the buttons on the right, interrupt with the keys or the " +
-          "buttons under the kitchen. This round is for practice; its result does not count.")
-      : h("p", {}, "Work with the robot to deliver the orders as quickly as you can." +
-          (trial.view === "first_person" ? "" : " Remember: black cells are outside your view.")),
-    trial.view === "first_person"
-      ? h("p", { id: "first-person-note" }, "In this round you see the kitchen through the cook's eyes; what is " +
-          "outside your view is dark. ↑ or W steps forward, ← → or A D turn left and right (stepping that way " +
-          "when the floor is free), ↓ or S turns around, Space interacts with what you face.")
-      : null,
-    h("p", { class: "muted" }, "The round starts as soon as you press the button."),
-    h("div", { class: "actions" }, button)), button);
+/** Ask before leaving the page while a round is played (the browser shows its own confirmation). */
+function confirmLeaving(event) {
+  event.preventDefault();
+  event.returnValue = "";
 }
 
 function playRound(root, ctx, onFinished) {
   const hud = new Hud();
+  const recipe = new RecipeStrip();
+  const note = new TaskNote();
+  hud.place(note.node);
   const canvas = h("canvas", { id: "kitchen", class: "kitchen-canvas", role: "img", "aria-label": "Kitchen" });
   const cover = h("div", { class: "stage-cover", id: "stage-cover", role: "status" },
     h("p", { class: "cover-text" }, "Connecting…"));
@@ -82,15 +75,17 @@ function playRound(root, ctx, onFinished) {
   const announce = h("p", { class: "visually-hidden", "aria-live": "polite", id: "task-announce" });
   const main = h("div", { class: "play-main" }, stage, h("div", { class: "interrupts-slot" }));
   const side = h("aside", { class: "play-side" });
-  const layout = h("section", { class: "play", "aria-label": "Game" }, hud.node, h("div", { class: "play-body" }, main, side), announce);
+  const layout = h("section", { class: "play", "aria-label": "Game" }, hud.node, recipe.node,
+    h("div", { class: "play-body" }, main, side), announce);
   show(root, layout);
   document.body.classList.add("playing");
+  window.addEventListener("beforeunload", confirmLeaving);
 
   let view = null;
   let controls = null;
   let removeKeys = null;
   let lastTask = null;
-  let tickMs = 200;
+  let hello = null;
 
   const setCover = (text, action) => {
     cover.hidden = !text;
@@ -118,34 +113,42 @@ function playRound(root, ctx, onFinished) {
   };
 
   const conn = new GameConnection(ctx.api.token, {
-    onHello(hello) {
-      tickMs = 1000 / hello.tick_rate_hz;
-      if (!view) view = kitchenViewFor(hello.view, stage, canvas, { xr: true, onInterrupt: (a) => sendInterrupt(a) });
-      view.configure(hello);
-      hud.setRound(hello.trial);
-      canvas.dataset.trial = String(hello.trial.id);
+    onHello(message) {
+      hello = message;
+      if (!view) view = kitchenViewFor(message.view, stage, canvas, { xr: true, onInterrupt: (a) => sendInterrupt(a) });
+      view.configure(message);
+      hud.setRound(message.trial);
+      canvas.dataset.trial = String(message.trial.id);
       if (!controls) {
-        controls = new Controls({ subtasks: hello.subtasks, interrupts: hello.interrupts, onSelect: select,
-                                  onInterrupt: sendInterrupt, labels: view.interruptLabels });
+        controls = new Controls({ subtasks: message.subtasks, interrupts: message.interrupts, needs: message.needs,
+                                  onSelect: select, onInterrupt: sendInterrupt, labels: view.interruptLabels,
+                                  onRefused: (id, reason) => note.say(`${subtaskLabel(id)}: ${reason}.`, "blocked") });
         main.querySelector(".interrupts-slot").replaceWith(controls.interrupts);
         side.append(controls.tasks);
-        removeKeys = listenKeys(document, sendInterrupt, { repeatMs: tickMs });
+        removeKeys = listenKeys(document, sendInterrupt, { repeatMs: 1000 / message.tick_rate_hz });
       }
       controls.setEnabled(true);
       controls.setCurrent(null);
       setCover(null);
-      if (hello.resumed && hello.tick > 0) hud.notice("Welcome back: the round continues where you left it.");
+      if (message.resumed && message.tick > 0) hud.notice("Welcome back: the round continues where you left it.");
       activity.resync();
     },
     onState(state) {
       if (view) view.update(state);
       hud.update(state);
+      recipe.update(state.you.held, state.subtask);
       taskChanged(state.subtask);
-      if (controls && !controls.pending) controls.setCurrent(state.subtask);
+      if (controls) {
+        controls.setHeld(state.you.held);
+        if (!controls.pending) controls.setCurrent(state.subtask);
+      }
     },
     onAck(ack) {
       if (controls) controls.setCurrent(ack.subtask);
       taskChanged(ack.subtask);
+    },
+    onBlocked(message) {
+      note.blocked(message);
     },
     onLatency(ms) {
       hud.setLatency(ms);
@@ -157,7 +160,11 @@ function playRound(root, ctx, onFinished) {
       if (link === Link.CONNECTING) setCover("Connecting…");
       if (link === Link.RECONNECTING) setCover("Reconnecting… the game is paused until you are back.");
       if (link === Link.REPLACED) {
-        const here = h("button", { type: "button", class: "primary", onclick: () => conn.connect() }, "Play here instead");
+        window.removeEventListener("beforeunload", confirmLeaving);
+        const here = h("button", { type: "button", class: "primary", onclick: () => {
+          window.addEventListener("beforeunload", confirmLeaving);
+          conn.connect();
+        } }, "Play here instead");
         setCover("This round is open in another window or tab.", here);
         here.focus();
       }
@@ -174,8 +181,10 @@ function playRound(root, ctx, onFinished) {
   const activity = new Activity((type, fields) => conn.send(type, fields), { idleMs: IDLE_MS });
 
   function cleanup() {
+    window.removeEventListener("beforeunload", confirmLeaving);
     conn.stop();
     if (view) view.destroy();
+    note.destroy();
     activity.destroy();
     if (removeKeys) removeKeys();
     document.body.classList.remove("playing");
@@ -188,27 +197,11 @@ function playRound(root, ctx, onFinished) {
       ctx.route();
       return;
     }
-    summary(root, end, ctx);
+    const timed = hello && hello.mode === "fixed_rate";
+    summaryCard(root, end, { scored: ctx.session.trial.scored !== false,
+                             seconds: timed ? end.ticks / hello.tick_rate_hz : null, onContinue: () => ctx.route() });
   }
 
   conn.connect();
   return cleanup;
-}
-
-function summary(root, end, ctx) {
-  const title = end.status === "abandoned" ? "This round has ended" : "Round complete";
-  const text = end.status === "abandoned"
-    ? "The round ended because the connection was lost for too long. You can continue with the study."
-    : end.reason === "delivered" ? `All orders delivered in ${end.ticks} steps.` : "Time is up for this round.";
-  const next = { questionnaire: "Next: a few questions about this round.", practice: "Next: another practice round.",
-                 trial: "Next: the next round.", done: "That was the last round." }[end.next] || "";
-  const button = h("button", { type: "button", class: "primary", id: "continue", onclick: () => ctx.route() }, "Continue");
-  show(root, h("section", { class: "card narrow", id: "round-summary", "aria-labelledby": "summary-title" },
-    h("h1", { id: "summary-title" }, title),
-    h("p", {}, text),
-    h("dl", { class: "summary" },
-      h("dt", {}, "Dishes delivered"), h("dd", { id: "summary-delivered" }, String(end.delivered)),
-      h("dt", {}, "Score"), h("dd", { id: "summary-score" }, String(end.score))),
-    next ? h("p", { class: "muted" }, next) : null,
-    h("div", { class: "actions" }, button)), button);
 }

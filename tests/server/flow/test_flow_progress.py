@@ -27,6 +27,8 @@ def walk(plan) -> list[Phase]:
             progress = progress.apply(Move.ACCEPT_CONSENT)
         elif progress.phase is Phase.INSTRUCTIONS:
             progress = progress.apply(Move.FINISH_INSTRUCTIONS)
+        elif progress.phase is Phase.QUIZ:
+            progress = progress.apply(Move.PASS_QUIZ)
         elif progress.phase in (Phase.PRACTICE, Phase.TRIAL):
             progress = progress.apply(Move.END_TRIAL, trial=(step.trial_kind, step.index))
         else:
@@ -35,8 +37,8 @@ def walk(plan) -> list[Phase]:
     return phases
 
 
-def test_the_paper_study_goes_consent_instructions_practice_then_trials_and_questionnaires(plan):
-    assert walk(plan) == [Phase.CONSENT, Phase.INSTRUCTIONS, Phase.PRACTICE] + [
+def test_the_paper_study_goes_consent_instructions_quiz_practice_then_trials_and_questionnaires(plan):
+    assert walk(plan) == [Phase.CONSENT, Phase.INSTRUCTIONS, Phase.QUIZ, Phase.PRACTICE] + [
         Phase.TRIAL, Phase.QUESTIONNAIRE] * 4 + [Phase.DONE]
     trials = [s for s in plan if s.kind == "trial"]
     assert [(s.trial_kind, s.index, s.number, s.total) for s in trials] == [
@@ -44,38 +46,42 @@ def test_the_paper_study_goes_consent_instructions_practice_then_trials_and_ques
     assert trials[0].robot == "stay" and trials[0].kitchen == "practice"
 
 
-def test_declining_consent_screens_out_for_good(plan):
-    out = Progress(plan, 0).apply(Move.DECLINE_CONSENT)
+@pytest.mark.parametrize(("step", "move", "reason"), [(0, Move.DECLINE_CONSENT, "declined_consent"),
+                                                     (2, Move.FAIL_QUIZ, "failed_quiz")])
+def test_declining_consent_or_failing_the_quiz_screens_out_for_good(plan, step, move, reason):
+    out = Progress(plan, step).apply(move)
     assert out.phase is Phase.SCREENED_OUT and out.status == "screened_out"
-    for move in Move:
+    assert out.screen_out_reason == reason
+    for any_move in Move:
         with pytest.raises(IllegalTransition):
-            out.apply(move)
+            out.apply(any_move)
 
 
 def test_a_trial_or_questionnaire_must_be_the_current_one(plan):
-    at_practice = Progress(plan, 2)
+    at_practice = Progress(plan, 3)
     with pytest.raises(IllegalTransition, match="current trial"):
         at_practice.apply(Move.END_TRIAL, trial=("main", 0))
-    at_questionnaire = Progress(plan, 4)
+    at_questionnaire = Progress(plan, 5)
     assert at_questionnaire.phase is Phase.QUESTIONNAIRE
     with pytest.raises(IllegalTransition, match="current questionnaire"):
         at_questionnaire.apply(Move.SUBMIT_QUESTIONNAIRE, questionnaire="other")
 
 
-@given(step=st.integers(0, 11), move=st.sampled_from(list(Move)))
+@given(step=st.integers(0, 12), move=st.sampled_from(list(Move)))
 def test_only_legal_moves_change_the_state(plan, step, move):
     progress = Progress(plan, step)
     current = progress.current
     legal = {
         Phase.CONSENT: {Move.ACCEPT_CONSENT, Move.DECLINE_CONSENT},
         Phase.INSTRUCTIONS: {Move.FINISH_INSTRUCTIONS},
+        Phase.QUIZ: {Move.PASS_QUIZ, Move.FAIL_QUIZ},
         Phase.PRACTICE: {Move.END_TRIAL}, Phase.TRIAL: {Move.END_TRIAL},
         Phase.QUESTIONNAIRE: {Move.SUBMIT_QUESTIONNAIRE}, Phase.DONE: set(),
     }[progress.phase]
     kwargs = {"trial": (current.trial_kind, current.index), "questionnaire": current.questionnaire}
     if move in legal:
         after = progress.apply(move, **kwargs)
-        assert after.step == step + (0 if move is Move.DECLINE_CONSENT else 1)
+        assert after.step == step + (0 if move in (Move.DECLINE_CONSENT, Move.FAIL_QUIZ) else 1)
     else:
         with pytest.raises(IllegalTransition):
             progress.apply(move, **kwargs)

@@ -32,7 +32,7 @@ def test_choosing_the_dish_subtasks_one_by_one_delivers_past_a_parked_robot(kitc
     todo = list(ONE_DISH)
     while world.orders_left and world.tick < 200:
         if controller.subtask is None and todo:
-            controller.select(Subtask(todo.pop(0)))
+            controller.select(Subtask(todo.pop(0)), world.human.held)
         action, _ = controller.decide(world, kb, rng)
         before = world
         world, events = step(layout, world, {"human": action, "robot": Action.STAY}, rules)

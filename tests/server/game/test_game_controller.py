@@ -27,7 +27,7 @@ def setup(kitchen):
 
 def test_a_subtask_walks_a_shortest_path_and_ends_when_done(setup):
     layout, world, kb, controller = setup
-    controller.select(Subtask.PICKUP_MEAT)
+    controller.select(Subtask.PICKUP_MEAT, None)
     meat = layout.meats[0]
     start = distance(layout, (world.human.pos, world.human.facing), meat)
     for expected_left in range(start - 1, -1, -1):
@@ -49,7 +49,7 @@ def test_a_subtask_walks_a_shortest_path_and_ends_when_done(setup):
 
 def test_interrupts_override_one_tick_each_in_order_and_stop_cancels(setup):
     _, world, kb, controller = setup
-    controller.select(Subtask.PICKUP_ONION)
+    controller.select(Subtask.PICKUP_ONION, None)
     assert controller.interrupt(Interrupt.LEFT) and controller.interrupt(Interrupt.INTERACT)
     assert controller.decide(world, kb, RNG) == (Action.WEST, "interrupt")
     assert controller.decide(world, kb, RNG) == (Action.INTERACT, "interrupt")
@@ -65,9 +65,9 @@ def test_interrupts_override_one_tick_each_in_order_and_stop_cancels(setup):
 
 def test_selecting_replaces_the_subtask_and_drops_queued_interrupts(setup):
     _, _, _, controller = setup
-    controller.select(Subtask.PICKUP_ONION)
+    controller.select(Subtask.PICKUP_ONION, None)
     controller.interrupt(Interrupt.DOWN)
-    controller.select(Subtask.PICKUP_PLATE)
+    controller.select(Subtask.PICKUP_PLATE, None)
     assert controller.subtask is Subtask.PICKUP_PLATE and not controller.queue
 
 
@@ -75,7 +75,7 @@ def test_targets_come_from_the_modelled_kb_not_the_world(setup):
     layout, world, kb, controller = setup
     counter = (4, 3)  # the island, reachable from both sides
     world = type(world)(**{**{f: getattr(world, f) for f in world.__slots__}, "objects": ((counter, "clean_plate"),)})
-    controller.select(Subtask.PICKUP_CLEAN_PLATE)
+    controller.select(Subtask.PICKUP_CLEAN_PLATE, None)
     assert controller.decide(world, kb, RNG) == (Action.STAY, "subtask"), "an unseen plate is no target"
     known = update_kb(kb, layout, world, angle=360.0, kb_delay=0)
     action, _ = controller.decide(world, known, RNG)
@@ -86,7 +86,7 @@ def test_the_robot_is_avoided_only_when_in_view(kitchen):
     world = initial_state(kitchen, RULES)
     human = AgentState((5, 2), Direction.WEST)
     controller = ParticipantController(kitchen, RULES, 120.0)
-    controller.select(Subtask.PICKUP_ONION)
+    controller.select(Subtask.PICKUP_ONION, None)
     kb = initial_kb(world)
     visible = type(world)(**{**{f: getattr(world, f) for f in world.__slots__}, "human": human,
                              "robot": AgentState((4, 2), Direction.EAST)})
@@ -98,6 +98,6 @@ def test_the_robot_is_avoided_only_when_in_view(kitchen):
 
 def test_round_trip(setup):
     layout, _, _, controller = setup
-    controller.select(Subtask.WASH_PLATE)
+    controller.select(Subtask.WASH_PLATE, None)
     again = ParticipantController.from_dict(controller.to_dict(), layout, RULES, 120.0)
     assert (again.subtask, again.last) == (Subtask.WASH_PLATE, Subtask.WASH_PLATE)

@@ -19,7 +19,7 @@ def play(engine: TrialEngine, limit: int = 200) -> list:
     outcomes = []
     while not engine.done and len(outcomes) < limit:
         if engine.controller.subtask is None:
-            engine.controller.select(engine.controller.available(engine.world, engine.kb)[0])
+            engine.controller.select(engine.controller.available(engine.world, engine.kb)[0], engine.world.human.held)
         outcomes.append(engine.advance(Action.STAY))
     return outcomes
 

@@ -77,7 +77,7 @@ def test_declining_consent_ends_with_the_screen_out_code(client):
     session = client.post("/api/session/consent", json={"accept": False}, headers=headers).json()
     assert session["state"] == "screened_out"
     assert session["completion"] == {"kind": "screen_out", "code": "OUT7",
-                                     "redirect_url": "https://example.org/out?cc=OUT7"}
+                                     "redirect_url": "https://example.org/out?cc=OUT7", "reason": "declined_consent"}
     again = client.post("/api/session/consent", json={"accept": True}, headers=headers)
     assert again.status_code == 409 and again.json()["detail"]["code"] == "illegal_transition"
 
@@ -89,7 +89,7 @@ def test_the_whole_flow_with_illegal_moves_refused(client, server):
     session = client.post("/api/session/instructions_done", headers=headers).json()
     assert session["state"] == "trial" and session["trial"] == {
         "kind": "main", "index": 0, "number": 1, "total": 1, "kind_number": 1, "kind_total": 1,
-        "view": "top_down", "websocket": "/ws/play"}
+        "scored": True, "status": "new", "view": "top_down", "websocket": "/ws/play"}
     refused = client.post("/api/session/questionnaire", json={"questionnaire_id": "q", "answers": {"a": 1}},
                           headers=headers)
     assert refused.status_code == 409 and refused.json()["detail"]["state"] == "trial"
@@ -107,7 +107,7 @@ def test_the_whole_flow_with_illegal_moves_refused(client, server):
                        headers=headers).json()
     assert done["state"] == "done" and done["trials_done"] == 1
     assert client.get("/api/session/completion", headers=headers).json() == {
-        "kind": "completion", "code": "DONE42", "redirect_url": "https://example.org/done?cc=DONE42"}
+        "kind": "completion", "code": "DONE42", "redirect_url": "https://example.org/done?cc=DONE42", "reason": None}
     services = server.services
     from server.store.tables import AnswerRow
 

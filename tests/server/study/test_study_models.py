@@ -40,9 +40,17 @@ def test_paper_study_is_the_papers_design() -> None:
     assert (study.world.fov_angle, study.world.kb_delay, study.timing.tick_rate_hz) == (120, 3, 5)
     (questionnaire,) = study.questionnaires
     assert questionnaire.when == "after_each_trial"
-    assert len(questionnaire.items) == 5
-    assert all((i.scale.min, i.scale.max) == (1, 7) for i in questionnaire.items)
-    assert any("knew what the robot was doing" in i.text for i in questionnaire.items)
+    ratings = [i for i in questionnaire.items if i.type == "rating"]
+    assert len(ratings) == 5
+    assert all(i.scale is not None and (i.scale.min, i.scale.max) == (1, 7) for i in ratings)
+    assert any("knew what the robot was doing" in i.text for i in ratings)
+    assert [i.id for i in ratings if i.reverse] == ["workload"]
+    (comment,) = [i for i in questionnaire.items if i.type == "text"]
+    assert not comment.required
+    (scale,) = questionnaire.scales
+    assert set(scale.items) == {i.id for i in ratings}
+    assert study.quiz is not None and [q.id for q in study.quiz.questions] == [
+        "black_cells", "cancel_task", "robot_sees"]
 
 
 def test_demo_is_short() -> None:

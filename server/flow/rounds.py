@@ -1,0 +1,71 @@
+"""Rounds seen from the participant's pages: what happens to a round they left, and what the pages say about
+their current and previous round (in progress elsewhere, ended while they were away)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from datetime import datetime, timedelta
+from typing import Literal
+
+from sqlalchemy.orm import Session
+
+from server.flow.plan import Step
+from server.flow.progress import Progress
+from server.store import trials
+from server.store.tables import TrialRow
+from server.study.sections import Reconnect
+
+Return = Literal["resume", "restart", "abandon"]
+RoundStatus = Literal["new", "in_progress", "ended_away", "restart"]
+
+
+def on_return(last_active: datetime, now: datetime, reconnect: Reconnect) -> Return:
+    """What a running round becomes when its participant connects at ``now``: within the study's grace window
+    (counted from its last activity) it resumes; later, what ``reconnect.after_grace`` says."""
+    if now - last_active <= timedelta(seconds=reconnect.grace_seconds):
+        return "resume"
+    return reconnect.after_grace
+
+
+@dataclass(frozen=True, slots=True)
+class RoundFacts:
+    """What the session view says about rounds: the current round's status, and whether the round before the
+    current step ended while the participant was away."""
+
+    current: RoundStatus | None
+    previous_ended_away: bool
+
+
+def round_facts(session: Session, participant_id: int, progress: Progress, now: datetime,
+                reconnect: Reconnect) -> RoundFacts:
+    step = progress.current
+    current: RoundStatus | None = None
+    if step.kind == "trial" and step.trial_kind is not None and step.index is not None and not progress.screened_out:
+        row = trials.latest_attempt(session, participant_id, step.trial_kind, step.index)
+        current = _status(row, now, reconnect)
+    before = _previous_trial(progress)
+    away = False
+    if before is not None and before.trial_kind is not None and before.index is not None:
+        row = trials.latest_attempt(session, participant_id, before.trial_kind, before.index)
+        away = row is not None and row.status == trials.ABANDONED and row.end_reason == "grace_expired"
+    return RoundFacts(current, away)
+
+
+_STATUS_ON_RETURN: dict[Return, RoundStatus] = {"resume": "in_progress", "restart": "restart",
+                                                "abandon": "ended_away"}
+
+
+def _status(row: TrialRow | None, now: datetime, reconnect: Reconnect) -> RoundStatus:
+    if row is None or row.status != trials.RUNNING:
+        return "new"
+    return _STATUS_ON_RETURN[on_return(row.last_active_at, now, reconnect)]
+
+
+def _previous_trial(progress: Progress) -> Step | None:
+    """The trial step right before the current step, counting only questionnaires in between."""
+    for step in reversed(progress.plan[: progress.step]):
+        if step.kind == "trial":
+            return step
+        if step.kind != "questionnaire":
+            return None
+    return None

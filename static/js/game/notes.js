@@ -1,0 +1,49 @@
+/**
+ * The short message in the HUD, beside "your task", that says why a task did nothing ("The onion is not
+ * chopped yet"); never over the kitchen, whose cells it would hide. A polite live region, so screen readers
+ * announce it too. A task that ended itself keeps its message a little longer than a passing notice.
+ */
+
+import { h } from "../dom.js";
+import { blockedText } from "./reasons.js";
+import { subtaskLabel } from "../labels.js";
+
+const NOTICE_MS = 3500;
+const ENDED_MS = 6000;
+
+export class TaskNote {
+  constructor() {
+    this.text = h("span", { class: "task-note-text" });
+    this.node = h("p", { class: "task-note", id: "task-note", role: "status", "aria-live": "polite", hidden: true },
+      this.text);
+    this.timer = 0;
+  }
+
+  /** Say `text` (`kind`: `info` or `blocked`) for `ms` milliseconds. */
+  say(text, kind = "info", ms = NOTICE_MS) {
+    window.clearTimeout(this.timer);
+    this.text.textContent = text;
+    this.node.dataset.kind = kind;
+    this.node.hidden = false;
+    this.timer = window.setTimeout(() => this.clear(), ms);
+  }
+
+  /** A server `blocked` message: why the current task did nothing, or why it stopped. */
+  blocked(message) {
+    const why = blockedText(message);
+    const text = message.ended ? `${subtaskLabel(message.subtask)} stopped: ${why}.` : `${why}.`;
+    this.node.dataset.reason = message.reason;
+    this.say(text, "blocked", message.ended ? ENDED_MS : NOTICE_MS);
+  }
+
+  clear() {
+    window.clearTimeout(this.timer);
+    this.node.hidden = true;
+    this.text.textContent = "";
+    delete this.node.dataset.reason;
+  }
+
+  destroy() {
+    window.clearTimeout(this.timer);
+  }
+}

@@ -1,0 +1,101 @@
+"""What participants are told about time comes from the study (rounds × horizon ÷ tick rate plus the pages),
+and settings a real online study would regret are warned about (the file still validates)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from server.cli import main
+from server.study import load_study
+from server.study.duration import (CONSENT_SECONDS, END_SECONDS, INSTRUCTIONS_SECONDS, ITEM_SECONDS,
+                                   QUIZ_QUESTION_SECONDS, ROUND_PAGES_SECONDS, duration_words, fill_placeholders,
+                                   study_length)
+from server.study.warnings import study_warnings
+
+STUDY_CONFIG = Path(__file__).resolve().parents[3] / "study_config"
+BASE = "id: t\ntitle: Texts\nkitchens: [none_3]\nrobots: [stay]\nfactors: [robot]\n"
+
+
+def write(tmp_path: Path, text: str) -> Path:
+    path = tmp_path / "study.yaml"
+    path.write_text(BASE + text, encoding="utf-8")
+    return path
+
+
+def test_the_paper_studys_length_is_its_rounds_at_full_length_plus_its_pages():
+    study = load_study(STUDY_CONFIG / "paper_study.yaml")
+    length = study_length(study)
+    assert (length.practice_rounds, length.main_rounds, length.round_seconds) == (1, 4, 400 / 5)
+    per_round_questions = 5 * ITEM_SECONDS["rating"] + ITEM_SECONDS["text"]
+    expected = (CONSENT_SECONDS + INSTRUCTIONS_SECONDS + 3 * QUIZ_QUESTION_SECONDS + 5 * (80 + ROUND_PAGES_SECONDS)
+                + 4 * per_round_questions + END_SECONDS)
+    assert length.total_seconds == expected
+    assert length.minutes == -(-expected // 60)
+    values = length.placeholders()
+    assert values["round_time"] == "80 seconds" and values["rounds"] == "5" and values["questions_per_round"] == "6"
+    consent = fill_placeholders(study.consent, values)
+    assert f"up to about {length.minutes} minutes" in consent and "at most\n80 seconds" in consent
+    assert "{" not in consent
+
+
+def test_a_longer_horizon_or_a_slower_clock_lengthens_what_the_texts_promise(tmp_path):
+    short = study_length(load_study(write(tmp_path, "world: {horizon: 150}\n")))
+    long = study_length(load_study(write(tmp_path, "world: {horizon: 1500}\ntiming: {tick_rate_hz: 2.5}\n")))
+    assert (short.round_seconds, long.round_seconds) == (30, 600)
+    assert long.minutes > short.minutes
+    assert long.placeholders()["round_time"] == "10 minutes"
+    assert short.placeholders()["practice_note"] == ""
+    assert [duration_words(s) for s in (1, 59.5, 150)] == ["1 second", "60 seconds", "2.5 minutes"]
+
+
+def test_default_texts_never_say_steps_or_ticks_and_fill_every_placeholder(tmp_path):
+    study = load_study(write(tmp_path, "practice: [{kitchen: practice, robot: stay, count: 2}]\n"))
+    values = study_length(study).placeholders()
+    for text in (study.consent, study.instructions):
+        filled = fill_placeholders(text, values)
+        assert "{" not in filled and " tick" not in filled.lower() and " step" not in filled.lower()
+    assert "The first 2 rounds are practice" in fill_placeholders(study.instructions, values)
+    assert fill_placeholders("{minutes} {unknown} {}", values) == f"{values['minutes']} {{unknown}} {{}}"
+
+
+def warnings_of(tmp_path: Path, text: str) -> list[tuple[str, str]]:
+    return [(w.path, w.code) for w in study_warnings(load_study(write(tmp_path, text)))]
+
+
+def test_recruiting_without_a_completion_code_is_warned_about(tmp_path):
+    assert warnings_of(tmp_path, "") == [("recruiting.completion_code", "no_completion_code")]
+    assert warnings_of(tmp_path, "recruiting: {completion_redirect_url: 'https://x.example/done'}\n") == []
+    assert warnings_of(tmp_path, "recruiting: {url_parameters: []}\n") == []
+    assert warnings_of(tmp_path, "recruiting: {completion_code: REPLACE-WITH-YOUR-COMPLETION-CODE}\n") == [
+        ("recruiting.completion_code", "placeholder_code")]
+
+
+def test_full_counterbalancing_beyond_24_orders_says_how_many_participants_a_complete_design_needs(tmp_path):
+    five = "kitchens: [none_3, mid_2, none_1, mid_1, side_1]\nfactors: [kitchen]\ncounterbalancing: full\n"
+    text = BASE.replace("kitchens: [none_3]\n", "").replace("factors: [robot]\n", "") + five
+    path = tmp_path / "five.yaml"
+    path.write_text(text + "recruiting: {completion_code: X}\n", encoding="utf-8")
+    (warning,) = study_warnings(load_study(path))
+    assert warning.path == "counterbalancing" and warning.code == "many_orders"
+    assert "5 conditions gives 120 orders" in warning.reason and "multiple of 120 participants" in warning.reason
+    assert "latin_square needs 10" in warning.reason
+    four = text.replace(", side_1]", "]")
+    path.write_text(four + "recruiting: {completion_code: X}\n", encoding="utf-8")
+    assert study_warnings(load_study(path)) == []  # 4! = 24 orders: fine
+
+
+def test_a_quiz_without_a_screen_out_code_and_misspelt_placeholders_are_warned_about(tmp_path):
+    quiz = ("quiz: {questions: [{id: q, text: Q, options: [a, b], answer: 1, explanation: E}]}\n"
+            "recruiting: {completion_code: C}\nconsent: 'Takes {minuets} minutes, {minutes} really.'\n")
+    assert warnings_of(tmp_path, quiz) == [("recruiting.screen_out_code", "no_screen_out_code"),
+                                           ("consent", "unknown_placeholder")]
+
+
+def test_validate_prints_warnings_on_stderr_and_still_passes(tmp_path, capsys):
+    path = write(tmp_path, "")
+    assert main(["study", "validate", str(path)]) == 0
+    out, err = capsys.readouterr()
+    assert out.startswith(f"{path}: ok: t")
+    assert err == (f"{path}: recruiting.completion_code: warning: recruiting ids are captured (PROLIFIC_PID, "
+                   "STUDY_ID, SESSION_ID) but no completion code or redirect is set: participants who finish cannot "
+                   "prove it to the recruiting platform\n")
