@@ -50,7 +50,7 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
     """Export ``study_id`` into ``<out_dir>/data`` and analyse ``measures`` (default: :data:`DEFAULT_MEASURES`
     and the study's scales) into ``out_dir``; ``include`` names exclusion rules whose rows are kept."""
     out = Path(out_dir)
-    export = export_study(source, study_id, out / DATA_DIR)
+    export = export_study(source, study_id, out / DATA_DIR, include_invalid=INVALID.name in include)
     cells = pd.read_csv(out / DATA_DIR / "cells.csv", dtype={SUBJECT: str})
     trials = pd.read_csv(out / DATA_DIR / "trials.csv", dtype={SUBJECT: str})
     if cells.empty:
