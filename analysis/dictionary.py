@@ -134,7 +134,7 @@ TRIAL_COLUMNS: tuple[Column, ...] = (
     *(MEASURES[m] for m in CONDUCT_COUNTS),
     Column("decisions", INT, "robot decisions the server asked for (one per world step; empty: not recorded)"),
     Column("missed_decisions", INT, "of these, decisions that missed their deadline (the robot stood still)"),
-    Column("missed_decisions_pct", NUM, "missed_decisions / decisions × 100", "%"),
+    Column("missed_decisions_pct", NUM, "% of the decisions that missed their deadline (missed_decisions / decisions × 100)"),
     Column("invalid_reason", TEXT, "why the server marked the trial invalid (more missed decisions than the "
                                    "study's validity.max_missed_decisions_pct); empty when valid. Invalid trials "
                                    "are not in cells.csv unless exported with --include-invalid"),
