@@ -60,7 +60,7 @@ class Settings(BaseSettings):
     """Joins allowed per client address and minute (bursts up to the same number; 0 = no limit)."""
     max_live_trials: int | None = Field(default=None, ge=1, le=10_000)
     """Live trials this process runs at once; more participants wait for a slot (default: derived from the
-    CPU count, ``server.game.admission.default_capacity``; docs/operations.md §6)."""
+    CPU count, ``server.game.admission.default_capacity``; docs/operations.md, "Admission control")."""
     admission_max_wait_s: float = Field(default=600.0, gt=0, le=86_400)
     """A participant who waited this long for a slot is screened out (reason ``server_full``)."""
     log_level: Literal["debug", "info", "warning", "error"] = "info"

@@ -2,8 +2,9 @@
 
     steakhouse export --study paper_study --out exports/paper_study [--database-url URL] [--include-invalid]
 
-Main trials the server marked invalid (robot decisions past their deadline, docs/operations.md §5) are listed
-in ``excluded.csv`` with the reason and left out of ``cells.csv``; ``--include-invalid`` keeps them there.
+Main trials the server marked invalid (robot decisions past their deadline; docs/operations.md, "Robot
+health") are listed in ``excluded.csv`` with the reason and left out of ``cells.csv``; ``--include-invalid``
+keeps them there.
 
 Without ``--database-url`` the store is the one ``steakhouse serve`` uses by default (``DATABASE_URL`` /
 ``STEAKHOUSE_DATABASE_URL``, else ``sqlite:///./data/steakhouse.sqlite3``). The store is only read.

@@ -1,5 +1,5 @@
 """Admission control: this server process never runs more live trials than it can hold on time
-(issue 13 part 4; docs/operations.md §6).
+(issue 13 part 4; docs/operations.md, "Admission control").
 
 A trial needs a **slot** before it starts (or resumes from the store). There are ``capacity`` slots; a
 participant who reaches a round while all are taken gets a :class:`Ticket` in a first-come, first-served
@@ -11,7 +11,8 @@ The expected wait shown to a participant is ``ceil(position / capacity) × mean 
 slot time is the mean of the last :data:`HISTORY` trials' slot times in this process (the study's trial
 length, horizon ÷ tick rate, until there are any).
 
-Slots are per process (several server processes each admit up to their own capacity; docs/operations.md §6).
+Slots are per process: several server processes each admit up to their own capacity (docs/operations.md,
+"Admission control").
 State lives in one object made at start-up and is touched from the event loop's thread only.
 """
 

@@ -241,7 +241,7 @@ class LiveGame:
 
     def _judge(self, missed: bool) -> None:
         """Count the decision; the moment the trial becomes invalid, say so in the log, the events and the
-        trial row (docs/operations.md §5)."""
+        trial row (docs/operations.md, "Robot health")."""
         was_invalid = self.health.invalid
         self.health = self.health.record(missed)
         if self.health.invalid and not was_invalid:

@@ -9,8 +9,8 @@
 - :meth:`GameRegistry.claim` and :meth:`GameRegistry.wait_turn` come first: a trial that is not live yet
   needs a slot of :class:`~server.game.admission.Admission`; when none is free the participant waits in
   line (``waiting`` messages), and past ``admission_max_wait_s`` is screened out (``server_full``). Practice
-  with the ``stay`` robot needs no slot (docs/operations.md §6). A slot is freed when its trial leaves this
-  process (ended, suspended or unloaded).
+  with the ``stay`` robot needs no slot (docs/operations.md, "Admission control"). A slot is freed when its
+  trial leaves this process (ended, suspended or unloaded).
 - A periodic sweep keeps connected trials' ``last_active_at`` fresh (other server processes judge
   staleness by it) and abandons trials left running by a crash (``abandon`` studies only) once they have
   been idle longer than both the grace window and three sweep intervals.
@@ -67,7 +67,7 @@ WAITING_EVERY_S = 2.0
 """A waiting participant hears from the server at least this often (the client treats 6 s of silence as a
 dropped connection)."""
 EXEMPT_ROBOT = "stay"
-"""Practice with this robot needs no slot: it plans nothing (docs/operations.md §6)."""
+"""Practice with this robot needs no slot: it plans nothing (docs/operations.md, "Admission control")."""
 
 
 def exempt(step: Step) -> bool:

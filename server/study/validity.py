@@ -1,4 +1,4 @@
-"""When a trial counts as data: the study's ``validity`` section (docs/operations.md §5)."""
+"""When a trial counts as data: the study's ``validity`` section (docs/operations.md, "Robot health")."""
 
 from __future__ import annotations
 
