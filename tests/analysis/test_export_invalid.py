@@ -49,3 +49,14 @@ def test_include_invalid_keeps_the_trial_in_the_cells(store, loaded_2x2, tmp_pat
     assert pd.read_csv(tmp_path / "excluded.csv").empty
     trials_csv = pd.read_csv(tmp_path / "trials.csv").set_index("trial_id")
     assert trials_csv.loc[invalid_id, "in_cells"] == 1 and trials_csv.loc[invalid_id, "invalid_reason"] == REASON
+
+
+def test_the_analysis_leaves_the_invalid_trial_out_by_default_and_names_it(store, loaded_2x2, tmp_path):
+    from analysis.study import analyze_study
+
+    _, hit, invalid_id = two_participants_one_invalid_trial(store, loaded_2x2)
+    default = analyze_study(store.engine, "two_by_two", tmp_path / "default", ["ticks"], plots=False)
+    kept = analyze_study(store.engine, "two_by_two", tmp_path / "kept", ["ticks"], include={"invalid"}, plots=False)
+    assert invalid_id not in set(default.cells["trial_id"]) and invalid_id in set(kept.cells["trial_id"])
+    report = (tmp_path / "default" / "report.md").read_text()
+    assert f"participant {hit}, main trial 2" in report and REASON in report
