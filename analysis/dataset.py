@@ -206,11 +206,12 @@ def _wide_rows(participants: Sequence[StoredParticipant], cell_rows: list[dict[s
         if not cells:
             continue
         row: dict[str, Any] = {"participant": p.public_id, "order_index": p.order_index}
-        present = {(c["robot"], c["kitchen"]) for c in cells}
+        present = {design.cell_of(c["robot"], c["kitchen"], c["view"]) for c in cells}
         row["complete"] = int(all(cond in present for cond in design.conditions))
         for cell in cells:
+            levels = design.cell_of(cell["robot"], cell["kitchen"], cell["view"])
             for name in values:
-                row[wide_column(name, cell["robot"], cell["kitchen"])] = cell[name]
+                row[wide_column(name, *levels)] = cell[name]
         row.update(answers.get(p.id, {}).get(None, {}))
         out.append(row)
     return out

@@ -197,8 +197,9 @@ EXCLUDED_COLUMNS: tuple[Column, ...] = (
 )
 
 
-def wide_column(measure: str, robot: str, kitchen: str) -> str:
-    return f"{measure}{WIDE_SEPARATOR}{robot}{WIDE_SEPARATOR}{kitchen}"
+def wide_column(measure: str, *levels: str) -> str:
+    """``measure__robot__kitchen`` (``…__view`` appended when the view is a factor)."""
+    return WIDE_SEPARATOR.join((measure, *levels))
 
 
 def item_columns(items: Iterable[tuple[str, str, str]]) -> list[Column]:
@@ -206,7 +207,7 @@ def item_columns(items: Iterable[tuple[str, str, str]]) -> list[Column]:
     return [Column(item_column(q, i), INT, f"answer to {q}.{i}: “{text}”") for q, i, text in items]
 
 
-def wide_columns(measures: Sequence[Column], conditions: Sequence[tuple[str, str]],
+def wide_columns(measures: Sequence[Column], conditions: Sequence[tuple[str, ...]],
                  end_items: Sequence[Column]) -> list[Column]:
     columns = [
         _PARTICIPANT,
@@ -214,9 +215,10 @@ def wide_columns(measures: Sequence[Column], conditions: Sequence[tuple[str, str
         Column("complete", FLAG, "1 when the participant has a cell in every condition"),
     ]
     for measure in measures:
-        for robot, kitchen in conditions:
-            columns.append(Column(wide_column(measure.name, robot, kitchen), measure.type,
-                                  f"{measure.description} — robot {robot}, kitchen {kitchen}"))
+        for cell in conditions:
+            named = ", ".join(f"{factor} {level}" for factor, level in zip(("robot", "kitchen", "view"), cell))
+            columns.append(Column(wide_column(measure.name, *cell), measure.type,
+                                  f"{measure.description} — {named}"))
     return columns + list(end_items)
 
 

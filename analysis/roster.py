@@ -80,12 +80,12 @@ def excluded_row(p: StoredParticipant, trials: Sequence[StoredTrial], used: Used
 
 def _missing_cells(p: StoredParticipant, trials: Sequence[StoredTrial], used: Used, design: Design) -> list[str]:
     """``missing cell robot=…, kitchen=… (why)`` for each condition without a cell."""
-    present = {(t.robot, t.kitchen) for t in used.get(p.id, {}).values()}
+    present = {design.cell_of(t.robot, t.kitchen, t.view) for t in used.get(p.id, {}).values()}
     out = []
-    for robot, kitchen in design.conditions:
-        if (robot, kitchen) not in present:
-            label = cell_label(("robot", "kitchen"), (robot, kitchen))
-            out.append(f"missing cell {label} ({_why_missing(p, trials, f'{robot}@{kitchen}')})")
+    for cell in design.conditions:
+        if cell not in present:
+            label = cell_label(("robot", "kitchen", "view")[:len(cell)], cell)
+            out.append(f"missing cell {label} ({_why_missing(p, trials, '@'.join(cell))})")
     return out
 
 
