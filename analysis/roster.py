@@ -72,7 +72,7 @@ def excluded_row(p: StoredParticipant, trials: Sequence[StoredTrial], used: Used
     missing = _missing_cells(p, trials, used, design)
     if not missing:
         return None
-    invalid = any(INVALID_MARK in m for m in missing)
+    invalid = any(f" {INVALID_MARK}: " in m for m in missing)
     return {"participant": p.public_id, "category": "invalid" if invalid else "incomplete",
             "reason": "; ".join(missing),
             "in_cells": int(bool(used.get(p.id)))}
