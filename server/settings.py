@@ -14,7 +14,7 @@ from typing import Literal
 from pydantic import AliasChoices, Field, SecretStr, field_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
-from server.game.admission import default_capacity
+from server.game.admission import DEFAULT_MAX_WAIT_S, default_capacity
 from study_config import STUDY_DIR
 
 DEFAULT_DATABASE_URL = "sqlite:///./data/steakhouse.sqlite3"
@@ -61,7 +61,7 @@ class Settings(BaseSettings):
     max_live_trials: int | None = Field(default=None, ge=1, le=10_000)
     """Live trials this process runs at once; more participants wait for a slot (default: derived from the
     CPU count, ``server.game.admission.default_capacity``; docs/operations.md, "Admission control")."""
-    admission_max_wait_s: float = Field(default=600.0, gt=0, le=86_400)
+    admission_max_wait_s: float = Field(default=DEFAULT_MAX_WAIT_S, gt=0, le=86_400)
     """A participant who waited this long for a slot is screened out (reason ``server_full``)."""
     log_level: Literal["debug", "info", "warning", "error"] = "info"
 

@@ -26,6 +26,8 @@ from collections import deque
 from dataclasses import dataclass, field
 
 HISTORY = 20
+DEFAULT_MAX_WAIT_S = 600.0
+"""How long a participant may wait for a slot before being screened out (``STEAKHOUSE_ADMISSION_MAX_WAIT_S``)."""
 TRIAL_CORE_SHARE = 0.030
 """CPU one live trial costs, as a share of one core: the server's and the robot workers' CPU over the
 trials at the largest passing N of ``benchmarks/load/capacity.py`` (docs/operations.md §2: N = 30 on the

@@ -6,11 +6,9 @@
 - :meth:`GameRegistry.detach` pauses the trial and starts the reconnect grace timer. When it fires with
   nobody back: ``abandon`` ends the trial as abandoned and moves the participant on; ``resume`` and
   ``restart`` unload the trial, which stays ``running`` in the store until the participant returns.
-- :meth:`GameRegistry.claim` and :meth:`GameRegistry.wait_turn` come first: a trial that is not live yet
-  needs a slot of :class:`~server.game.admission.Admission`; when none is free the participant waits in
-  line (``waiting`` messages), and past ``admission_max_wait_s`` is screened out (``server_full``). Practice
-  with the ``stay`` robot needs no slot (docs/operations.md, "Admission control"). A slot is freed when its
-  trial leaves this process (ended, suspended or unloaded).
+- :meth:`GameRegistry.claim` comes first: a trial that is not live here yet needs a slot; when none is
+  free the participant waits in the :class:`~server.game.lobby.Lobby` (docs/operations.md, "Admission
+  control"). A slot is freed when its trial leaves this process (ended, suspended or unloaded).
 - A periodic sweep keeps connected trials' ``last_active_at`` fresh (other server processes judge
   staleness by it) and abandons trials left running by a crash (``abandon`` studies only) once they have
   been idle longer than both the grace window and three sweep intervals.
@@ -20,16 +18,12 @@ from __future__ import annotations
 
 import asyncio
 import logging
-import math
-import time
 from typing import Any
 
 from planner.kb import KnowledgeBase, initial_kb
 from planner.state import WorldState
 from server.catalog import Catalog, LoadedStudy
-from server.flow import service
-from server.flow.plan import Step
-from server.flow.progress import IllegalTransition, Move, Phase
+from server.flow.progress import Phase
 from server.flow.service import progress_of
 from server.game.admission import Admission, Ticket
 from server.game.connection import Connection
@@ -38,8 +32,8 @@ from server.game.engine import TrialEngine
 from server.game.health import RobotHealth
 from server.game.live import GameDeps, LiveGame
 from server.game.meta import TrialMeta
+from server.game.lobby import Lobby
 from server.game.resume import Prepared, abandon_stale, prepare_trial
-from server.protocol.server import Waiting
 from server.store import trials
 from server.store.tables import ParticipantRow
 from server.store.types import utcnow
@@ -63,24 +57,14 @@ class TrialAbandoned(Exception):
         self.prepared = prepared
 
 
-WAITING_EVERY_S = 2.0
-"""A waiting participant hears from the server at least this often (the client treats 6 s of silence as a
-dropped connection)."""
-EXEMPT_ROBOT = "stay"
-"""Practice with this robot needs no slot: it plans nothing (docs/operations.md, "Admission control")."""
-
-
-def exempt(step: Step) -> bool:
-    return step.trial_kind == "practice" and step.robot == EXEMPT_ROBOT
+UNLIMITED = 1_000_000
 
 
 class GameRegistry:
-    def __init__(self, catalog: Catalog, deps: GameDeps, sweep_interval: float,
-                 admission: Admission | None = None, max_wait_s: float = 600.0) -> None:
+    def __init__(self, catalog: Catalog, deps: GameDeps, sweep_interval: float, lobby: Lobby | None = None) -> None:
         self.catalog = catalog
-        self.admission = admission or Admission(1_000_000)
-        self.max_wait_s = max_wait_s
-        self._tickets: dict[int, Ticket] = {}
+        self.lobby = lobby or Lobby(catalog, deps.store, deps.writer, Admission(UNLIMITED))
+        """Tests and tools that build a registry themselves get no cap (``UNLIMITED`` slots)."""
         self.deps = GameDeps(deps.store, deps.writer, deps.pool, deps.deadline_fraction, deps.max_message_bytes,
                              on_end=self._ended)
         self.sweep_interval = sweep_interval
@@ -90,7 +74,6 @@ class GameRegistry:
         self._timers: dict[int, asyncio.TimerHandle] = {}
         self._background: set[asyncio.Task[Any]] = set()
         self._sweeper: asyncio.Task[None] | None = None
-        self._waiters: dict[int, Connection] = {}
 
     # -- lifecycle ------------------------------------------------------------------------------------
 
@@ -121,8 +104,8 @@ class GameRegistry:
     # -- admission ------------------------------------------------------------------------------------
 
     async def claim(self, participant: ParticipantRow) -> Ticket | None:
-        """``None`` when the participant may start now (their trial is live here, exempt, or a slot was
-        free); else their place in line (the same one if they already wait, e.g. from a reloaded tab)."""
+        """``None`` when the participant may start now (their trial is live here, or the lobby let them in);
+        else their place in line (:class:`~server.game.lobby.Lobby`)."""
         progress = progress_of(participant)
         if progress.phase not in (Phase.PRACTICE, Phase.TRIAL):
             return None
@@ -131,87 +114,12 @@ class GameRegistry:
         if game is not None and not game.finished and (game.meta.kind, game.meta.index) == (
                 step.trial_kind, step.index):
             return None
-        if exempt(step) or self.admission.try_enter(participant.id):
-            return None
-        ticket = self._tickets.get(participant.id)
-        if ticket is None or ticket.granted.is_set() and not self.admission.holds(participant.id):
-            resuming = await asyncio.to_thread(self._running_attempt, participant.id, step)
-            ticket = self.admission.enqueue(participant.id, first=resuming)
-            self._tickets[participant.id] = ticket
-        return ticket
-
-    def _running_attempt(self, participant_id: int, step: Step) -> bool:
-        with self.deps.store.transaction() as session:
-            row = trials.latest_attempt(session, participant_id, str(step.trial_kind), int(step.index or 0))
-            return row is not None and row.status == trials.RUNNING
-
-    async def wait_turn(self, participant: ParticipantRow, ticket: Ticket, conn: Connection) -> bool:
-        """Tell ``conn`` its place in line and expected wait until the ticket is granted (``True``), or the
-        wait passes ``max_wait_s`` (``False``: the participant is screened out, reason ``server_full``). The
-        wait is logged as an ``admission_wait`` event. Cancelled when the participant leaves."""
-        loaded = self.catalog.get(participant.study_id)
-        timing = loaded.study.timing if loaded else None
-        trial_s = loaded.rules.horizon / timing.tick_rate_hz if loaded and timing else 60.0
-        first_position = self.admission.position(ticket)
-        outcome = "left"
-        try:
-            while not ticket.granted.is_set():
-                waited = time.monotonic() - ticket.since
-                if waited >= self.max_wait_s:
-                    outcome = "timeout"
-                    return False
-                position = self.admission.position(ticket)
-                eta = 5 * math.ceil(self.admission.eta_s(position, trial_s) / 5)
-                conn.send(Waiting(position=position, eta_s=eta))
-                ticket.changed.clear()
-                pause = min(WAITING_EVERY_S, self.max_wait_s - waited)
-                changed = asyncio.ensure_future(ticket.changed.wait())
-                granted = asyncio.ensure_future(ticket.granted.wait())
-                try:
-                    await asyncio.wait({changed, granted}, timeout=pause, return_when=asyncio.FIRST_COMPLETED)
-                finally:
-                    changed.cancel()
-                    granted.cancel()
-            outcome = "admitted"
-            return True
-        finally:
-            if outcome != "admitted" and self._tickets.get(participant.id) is ticket:
-                if outcome == "timeout" or not self._other_waiter(participant.id, conn):
-                    self._tickets.pop(participant.id, None)
-                    self.admission.leave(ticket)
-            if outcome == "admitted":
-                self._tickets.pop(participant.id, None)
-            self.deps.writer.add_event({
-                "participant_id": participant.id, "trial_id": None, "tick": None, "kind": "admission_wait",
-                "payload": {"outcome": outcome, "waited_s": round(time.monotonic() - ticket.since, 2),
-                            "first_position": first_position, "capacity": self.admission.capacity},
-                "created_at": utcnow()})
-            if outcome == "timeout":
-                await asyncio.to_thread(self._screen_out, participant.id)
-
-    def _other_waiter(self, participant_id: int, conn: Connection) -> bool:
-        """Whether another connection of the participant still waits on the same ticket (a reloaded tab)."""
-        return self._waiters.get(participant_id) not in (None, conn)
-
-    def waiting_on(self, participant_id: int, conn: Connection) -> None:
-        self._waiters[participant_id] = conn
-
-    def done_waiting(self, participant_id: int, conn: Connection) -> None:
-        if self._waiters.get(participant_id) is conn:
-            del self._waiters[participant_id]
-
-    def _screen_out(self, participant_id: int) -> None:
-        try:
-            service.move(self.deps.store, participant_id, Move.SERVER_FULL)
-        except IllegalTransition:
-            log.info("participant %d moved on while waiting for a slot", participant_id)
-        log.warning("participant %d waited %.0f s for a free slot and was screened out (server_full)",
-                    participant_id, self.max_wait_s)
+        return await self.lobby.claim(participant.id, step)
 
     def release(self, participant_id: int) -> None:
         """Free the participant's slot unless their trial is live here (a failed start, a refusal)."""
         if participant_id not in self._by_participant:
-            self.admission.release(participant_id)
+            self.lobby.admission.release(participant_id)
 
     # -- participants ---------------------------------------------------------------------------------
 
@@ -314,7 +222,7 @@ class GameRegistry:
             del self.games[game.meta.trial_id]
         if self._by_participant.get(game.meta.participant_id) is game:
             del self._by_participant[game.meta.participant_id]
-            self.admission.release(game.meta.participant_id)
+            self.lobby.admission.release(game.meta.participant_id)
 
     def live(self) -> list[LiveGame]:
         return sorted(self.games.values(), key=lambda g: g.meta.trial_id)

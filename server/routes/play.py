@@ -4,7 +4,7 @@ Starts or resumes the trial of their current step; one connection per participan
 the older, which gets ``error: replaced``).
 
 When this server process already runs as many live trials as it can hold on time, the participant first
-waits for a slot (``server.game.admission``): ``waiting`` messages with their place in line and the
+waits for a slot (``server.game.lobby``): ``waiting`` messages with their place in line and the
 expected wait; past the limit ``error`` ``server_full`` (close 4503) and the participant is screened out.
 
 Refusals before the game starts are typed too: ``error`` with code ``unauthorized`` (close 4401) or
@@ -51,13 +51,11 @@ async def _admitted(websocket: WebSocket, registry: GameRegistry, participant: P
     if ticket is None:
         return True
     conn.wait()
-    registry.waiting_on(participant.id, conn)
-    turn = asyncio.ensure_future(registry.wait_turn(participant, ticket, conn))
+    turn = asyncio.ensure_future(registry.lobby.wait_turn(participant, ticket, conn))
     gone = asyncio.ensure_future(_gone(websocket))
     try:
         await asyncio.wait({turn, gone}, return_when=asyncio.FIRST_COMPLETED)
     finally:
-        registry.done_waiting(participant.id, conn)
         gone.cancel()
         if not turn.done():
             turn.cancel()

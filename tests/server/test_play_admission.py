@@ -47,7 +47,7 @@ def test_with_one_slot_the_second_participant_waits_then_plays(live_server, stud
     assert [m["seq"] for m in received2] == list(range(1, len(received2) + 1))
     events = eventually(lambda: admission_events(server), lambda e: len(e) == 1)
     assert events[0]["outcome"] == "admitted" and events[0]["first_position"] == 1 and events[0]["capacity"] == 1
-    assert eventually(lambda: registry.admission.live, lambda n: n == 0) == 0
+    assert eventually(lambda: registry.lobby.admission.live, lambda n: n == 0) == 0
 
 
 def test_a_participant_who_waits_too_long_is_screened_out(live_server, study_file):
@@ -96,4 +96,4 @@ def test_a_participant_who_leaves_the_line_frees_their_place(live_server, study_
     asyncio.run(scenario())
     events = eventually(lambda: admission_events(server), lambda e: len(e) == 1)
     assert events[0]["outcome"] == "left"
-    assert registry.admission.waiting == 0
+    assert registry.lobby.admission.waiting == 0

@@ -8,6 +8,7 @@ import logging
 import httpx
 from steakhouse_testing import Player, play_to_end
 
+from server.store import trials
 from server.store.tables import EventRow, TrialRow
 
 ADMIN = {"Authorization": "Bearer admin-secret"}
@@ -50,7 +51,9 @@ def test_a_trial_with_a_frozen_robot_is_flagged_invalid_with_its_reason(live_ser
     assert [p["invalid_trials"] for p in people] == [1]
 
 
-def test_a_trial_with_a_robot_on_time_is_valid_and_counts_its_decisions(live_server, study_file):
+def test_the_trial_row_counts_every_decision_and_every_miss_the_ticks_recorded(live_server, study_file):
+    """Whatever the machine's speed: one decision per tick, the misses are the ticks where the robot missed,
+    and the trial is invalid exactly when they pass the study's 5 %."""
     server = live_server([study_file(world={"orders": 1, "horizon": 20, "kb_delay": 1})])
 
     async def scenario():
@@ -64,6 +67,9 @@ def test_a_trial_with_a_robot_on_time_is_valid_and_counts_its_decisions(live_ser
         return hello, end
 
     hello, end = asyncio.run(scenario())
+    trial_id = hello["trial"]["id"]
     with server.services.store.transaction() as session:
-        row = session.get(TrialRow, hello["trial"]["id"])
-        assert (row.decisions, row.missed_decisions, row.invalid_reason) == (end["ticks"], 0, None)
+        row = session.get(TrialRow, trial_id)
+        missed = sum(1 for t in trials.ticks(session, trial_id) if t.robot_missed)
+        assert (row.decisions, row.missed_decisions) == (end["ticks"], missed)
+        assert (row.invalid_reason is not None) == (100 * missed > 5 * end["ticks"])

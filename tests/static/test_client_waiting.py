@@ -72,7 +72,7 @@ def test_a_participant_waits_for_a_free_slot_then_plays(busy_server, new_page):
     assert page.inner_text("#link-status") == "Waiting for your round"
     text = page.inner_text("body").lower()
     assert not any(word in text for word in CONDITION_WORDS), text
-    assert registry.admission.waiting == 1
+    assert registry.lobby.admission.waiting == 1
 
     release.set()
     drawn = wait_drawn(page)
