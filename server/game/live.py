@@ -327,6 +327,8 @@ class LiveGame:
                     await task
         if self.connection is not None:
             self.connection.begin_close(1012)
+        with contextlib.suppress(Exception):  # the counts are recomputed from the ticks on resume anyway
+            await asyncio.to_thread(self._store_health, self.health)
         await self.deps.pool.close_trial(self.meta.trial_id)
 
     def spectator(self) -> dict[str, Any]:
