@@ -31,8 +31,8 @@ from server.game.controller import ParticipantController
 from server.game.engine import TrialEngine
 from server.game.health import RobotHealth
 from server.game.live import GameDeps, LiveGame
-from server.game.meta import TrialMeta
 from server.game.lobby import Lobby
+from server.game.meta import TrialMeta
 from server.game.resume import Prepared, abandon_stale, prepare_trial
 from server.store import trials
 from server.store.tables import ParticipantRow

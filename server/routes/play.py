@@ -23,8 +23,8 @@ from fastapi import APIRouter, WebSocket
 from server.deps import SUBPROTOCOL, ServicesDep, find_participant, offered_subprotocols, participant_token
 from server.game.connection import Connection
 from server.game.registry import GameRegistry, NoTrial, TrialAbandoned
-from server.store.tables import ParticipantRow
 from server.protocol.server import Error, ServerMessage, TrialEnd
+from server.store.tables import ParticipantRow
 
 router = APIRouter()
 log = logging.getLogger(__name__)
@@ -56,15 +56,17 @@ async def _admitted(websocket: WebSocket, registry: GameRegistry, participant: P
     try:
         await asyncio.wait({turn, gone}, return_when=asyncio.FIRST_COMPLETED)
     finally:
+        left = gone.done()
         gone.cancel()
         if not turn.done():
             turn.cancel()
-            with contextlib.suppress(asyncio.CancelledError):
-                await turn
+        for task in (turn, gone):
+            with contextlib.suppress(asyncio.CancelledError, Exception):
+                await task
     if turn.cancelled() or turn.exception() is not None:
         conn.broken()
         return False
-    if gone.done():
+    if left:
         if turn.result():
             registry.release(participant.id)
         conn.broken()
