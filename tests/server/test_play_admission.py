@@ -97,3 +97,35 @@ def test_a_participant_who_leaves_the_line_frees_their_place(live_server, study_
     events = eventually(lambda: admission_events(server), lambda e: len(e) == 1)
     assert events[0]["outcome"] == "left"
     assert registry.lobby.admission.waiting == 0
+
+
+def test_a_reloaded_tab_keeps_the_place_in_line(live_server, study_file):
+    server = live_server([study_file(**STUDY)], max_live_trials=1)
+    registry = server.services.registry
+
+    async def scenario():
+        first, second, third = Player(server.url), Player(server.url), Player(server.url)
+        for player in (first, second, third):
+            await player.ready()
+        sock1 = await first.socket()
+        await sock1.recv()
+        old = await second.socket()
+        await old.recv()
+        behind = await third.socket()
+        behind_first = await behind.recv()
+        reloaded = await second.socket()  # the same participant, a new tab, before the old one closes
+        again = await reloaded.recv()
+        await old.close()
+        await play_to_end(sock1)
+        hello = await reloaded.until(lambda m: m["type"] != "waiting")
+        await play_to_end(reloaded)
+        third_hello = await behind.until(lambda m: m["type"] != "waiting")
+        for thing in (sock1, reloaded, behind, first, second, third):
+            await thing.close()
+        return behind_first, again, hello, third_hello
+
+    behind_first, again, hello, third_hello = asyncio.run(scenario())
+    assert behind_first["position"] == 2
+    assert again["type"] == "waiting" and again["position"] == 1
+    assert hello["type"] == "hello" and third_hello["type"] == "hello"
+    assert eventually(lambda: registry.lobby.admission.waiting, lambda n: n == 0) == 0
