@@ -24,20 +24,30 @@ STUDY = {
 CONDITION_WORDS = ("stay", "none_3", "busy server test study")
 
 
-@pytest.fixture(scope="module")
-def busy_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[ThreadServer]:
+def serve(tmp_path_factory: pytest.TempPathFactory, **settings: float) -> Iterator[ThreadServer]:
     from server.app import create_app
     from server.settings import Settings
 
     folder = tmp_path_factory.mktemp("busy")
     study = folder / "busy.yaml"
     study.write_text(yaml.safe_dump(STUDY), encoding="utf-8")
-    settings = Settings(database_url=f"sqlite:///{folder / 'store.sqlite3'}", study_files=(study,),
+    config = Settings(database_url=f"sqlite:///{folder / 'store.sqlite3'}", study_files=(study,),
                         robot_workers=0, admin_token="busy-admin", flush_interval_s=0.1,
                         static_dir=Path(__file__).resolve().parents[2] / "static", join_rate_per_minute=0,
-                        max_live_trials=1)
-    with ThreadServer(create_app(settings)) as thread:
+                        max_live_trials=1, **settings)
+    with ThreadServer(create_app(config)) as thread:
         yield thread
+
+
+@pytest.fixture(scope="module")
+def busy_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[ThreadServer]:
+    yield from serve(tmp_path_factory)
+
+
+@pytest.fixture(scope="module")
+def impatient_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[ThreadServer]:
+    """Participants may wait 3 s for a slot."""
+    yield from serve(tmp_path_factory, admission_max_wait_s=3.0)
 
 
 def test_a_participant_waits_for_a_free_slot_then_plays(busy_server, new_page):
@@ -79,3 +89,33 @@ def test_a_participant_waits_for_a_free_slot_then_plays(busy_server, new_page):
     assert drawn.trial != held[0]
     assert page.locator("#stage-cover").is_hidden()
     holder.join(30)
+
+
+def test_a_participant_who_waited_too_long_gets_the_screen_out_code(impatient_server, new_page):
+    holding, release = threading.Event(), threading.Event()
+
+    async def take_the_slot() -> None:
+        player = Player(impatient_server.url)
+        await player.ready("busy")
+        sock = await player.socket()
+        await sock.recv()
+        holding.set()
+        await asyncio.to_thread(release.wait, 60)
+        await sock.close()
+        await player.close()
+
+    holder = threading.Thread(target=lambda: asyncio.run(take_the_slot()), daemon=True)
+    holder.start()
+    assert holding.wait(30)
+    try:
+        page, _ = new_page()
+        page.goto(f"{impatient_server.url}/?study=busy")
+        for selector in ("#consent-agree", "#instructions-done", "#start-round"):
+            page.wait_for_selector(selector)
+            page.click(selector)
+        page.wait_for_selector("#completion-code")
+        assert page.inner_text("#completion-code") == "BUSY-1"
+        assert "too busy to start your round" in page.inner_text("#finish-text")
+    finally:
+        release.set()
+        holder.join(30)
