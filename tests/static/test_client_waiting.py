@@ -1,6 +1,6 @@
 """The waiting page in real Chromium: with one live-trial slot taken, a participant who starts their round is
 told when it starts and their place in line (nothing about the round's condition), then plays once the slot
-frees (docs/protocol.md, "Waiting for a slot")."""
+frees; one who waits past the limit gets the screen-out code and why (docs/protocol.md, "Waiting for a slot")."""
 
 from __future__ import annotations
 
@@ -32,9 +32,9 @@ def serve(tmp_path_factory: pytest.TempPathFactory, **settings: float) -> Iterat
     study = folder / "busy.yaml"
     study.write_text(yaml.safe_dump(STUDY), encoding="utf-8")
     config = Settings(database_url=f"sqlite:///{folder / 'store.sqlite3'}", study_files=(study,),
-                        robot_workers=0, admin_token="busy-admin", flush_interval_s=0.1,
-                        static_dir=Path(__file__).resolve().parents[2] / "static", join_rate_per_minute=0,
-                        max_live_trials=1, **settings)
+                      robot_workers=0, admin_token="busy-admin", flush_interval_s=0.1,
+                      static_dir=Path(__file__).resolve().parents[2] / "static", join_rate_per_minute=0,
+                      max_live_trials=1, **settings)
     with ThreadServer(create_app(config)) as thread:
         yield thread
 
