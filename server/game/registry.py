@@ -6,6 +6,9 @@
 - :meth:`GameRegistry.detach` pauses the trial and starts the reconnect grace timer. When it fires with
   nobody back: ``abandon`` ends the trial as abandoned and moves the participant on; ``resume`` and
   ``restart`` unload the trial, which stays ``running`` in the store until the participant returns.
+- :meth:`GameRegistry.claim` comes first: a trial that is not live here yet needs a slot; when none is
+  free the participant waits in the :class:`~server.game.lobby.Lobby` (docs/operations.md, "Admission
+  control"). A slot is freed when its trial leaves this process (ended, suspended or unloaded).
 - A periodic sweep keeps connected trials' ``last_active_at`` fresh (other server processes judge
   staleness by it) and abandons trials left running by a crash (``abandon`` studies only) once they have
   been idle longer than both the grace window and three sweep intervals.
@@ -22,10 +25,13 @@ from planner.state import WorldState
 from server.catalog import Catalog, LoadedStudy
 from server.flow.progress import Phase
 from server.flow.service import progress_of
+from server.game.admission import Admission, Ticket
 from server.game.connection import Connection
 from server.game.controller import ParticipantController
 from server.game.engine import TrialEngine
+from server.game.health import RobotHealth
 from server.game.live import GameDeps, LiveGame
+from server.game.lobby import Lobby
 from server.game.meta import TrialMeta
 from server.game.resume import Prepared, abandon_stale, prepare_trial
 from server.store import trials
@@ -51,9 +57,14 @@ class TrialAbandoned(Exception):
         self.prepared = prepared
 
 
+UNLIMITED = 1_000_000
+
+
 class GameRegistry:
-    def __init__(self, catalog: Catalog, deps: GameDeps, sweep_interval: float) -> None:
+    def __init__(self, catalog: Catalog, deps: GameDeps, sweep_interval: float, lobby: Lobby | None = None) -> None:
         self.catalog = catalog
+        self.lobby = lobby or Lobby(catalog, deps.store, deps.writer, Admission(UNLIMITED))
+        """Tests and tools that build a registry themselves get no cap (``UNLIMITED`` slots)."""
         self.deps = GameDeps(deps.store, deps.writer, deps.pool, deps.deadline_fraction, deps.max_message_bytes,
                              on_end=self._ended)
         self.sweep_interval = sweep_interval
@@ -89,6 +100,26 @@ class GameRegistry:
     def _touch(self, trial_ids: list[int]) -> None:
         with self.deps.store.transaction() as session:
             trials.touch_many(session, trial_ids, utcnow())
+
+    # -- admission ------------------------------------------------------------------------------------
+
+    async def claim(self, participant: ParticipantRow) -> Ticket | None:
+        """``None`` when the participant may start now (their trial is live here, or the lobby let them in);
+        else their place in line (:class:`~server.game.lobby.Lobby`)."""
+        progress = progress_of(participant)
+        if progress.phase not in (Phase.PRACTICE, Phase.TRIAL):
+            return None
+        step = progress.current
+        game = self._by_participant.get(participant.id)
+        if game is not None and not game.finished and (game.meta.kind, game.meta.index) == (
+                step.trial_kind, step.index):
+            return None
+        return await self.lobby.claim(participant.id, step)
+
+    def release(self, participant_id: int) -> None:
+        """Free the participant's slot unless their trial is live here (a failed start, a refusal)."""
+        if participant_id not in self._by_participant:
+            self.lobby.admission.release(participant_id)
 
     # -- participants ---------------------------------------------------------------------------------
 
@@ -143,7 +174,9 @@ class GameRegistry:
                          kind_total=sum(1 for s in progress.plan if s.trial_kind == row.kind),
                          condition=row.condition_id, robot=row.robot, kitchen=row.kitchen, view=row.view,
                          seed=row.seed, test_run=participant.test_run)
-        return LiveGame(meta, loaded, engine, self.deps, resumed=prepared.outcome == "resume")
+        health = RobotHealth(study.validity.max_missed_decisions_pct, rules.horizon, prepared.decisions,
+                             prepared.missed, row.invalid_reason)
+        return LiveGame(meta, loaded, engine, self.deps, resumed=prepared.outcome == "resume", health=health)
 
     def detach(self, game: LiveGame, conn: Connection) -> None:
         if not game.detach(conn) or game.finished:
@@ -189,6 +222,7 @@ class GameRegistry:
             del self.games[game.meta.trial_id]
         if self._by_participant.get(game.meta.participant_id) is game:
             del self._by_participant[game.meta.participant_id]
+            self.lobby.admission.release(game.meta.participant_id)
 
     def live(self) -> list[LiveGame]:
         return sorted(self.games.values(), key=lambda g: g.meta.trial_id)
