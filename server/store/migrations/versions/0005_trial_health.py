@@ -1,6 +1,6 @@
 """Robot health per trial: decisions made, decisions that missed their deadline, and why a trial is invalid.
 
-Revision ID: 0005_ih
+Revision ID: 0005
 Revises: 0004
 Create Date: 2026-12-02
 """
@@ -10,7 +10,7 @@ from __future__ import annotations
 import sqlalchemy as sa
 from alembic import op
 
-revision = "0005_ih"
+revision = "0005"
 down_revision = "0004"
 branch_labels = None
 depends_on = None
