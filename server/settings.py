@@ -57,6 +57,10 @@ class Settings(BaseSettings):
     """How often trials left running by a vanished participant or a crashed server are checked."""
     join_rate_per_minute: int = Field(default=60, ge=0)
     """Joins allowed per client address and minute (bursts up to the same number; 0 = no limit)."""
+    resume_link_minutes: int = Field(default=60, ge=1, le=7 * 24 * 60)
+    """How long a resume link made in the admin (moving a participant to a new device) stays valid."""
+    max_body_bytes: int = Field(default=64 * 1024, ge=1024, le=16 << 20)
+    """Request bodies above this many bytes are refused with 413 before they are read (``server.security``)."""
     log_level: Literal["debug", "info", "warning", "error"] = "info"
 
     @field_validator("database_url")

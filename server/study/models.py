@@ -15,11 +15,13 @@ from typing import Annotated, Any
 
 from pydantic import Field, ValidationInfo, field_validator
 
-from server.study.base import Loc, NotEmpty, RobotName, Slug, StudyModel, duplicate_problems, raise_problems
+from planner.registry import PLANNER_NAMES
+from server.study.base import (Loc, NotEmpty, RobotName, Slug, StudyModel, duplicate_problems, raise_problems,
+                               robot_problem)
 from server.study.conditions import Condition, Factor, cross_conditions
 from server.study.counterbalance import MAX_FULL_CONDITIONS, condition_orders
 from server.study.device import DeviceRequirements
-from server.study.kitchens import Kitchen, KitchenEntry
+from server.study.kitchens import Kitchen, KitchenEntry, base_dir_of, resolve_kitchens
 from server.study.questionnaire import Questionnaire
 from server.study.quiz import Quiz
 from server.study.sections import Assignment, Counterbalancing, Practice, Reconnect, Recruiting, Timing, World
@@ -81,16 +83,24 @@ class Study(StudyModel):
     notes: str = ""
     """Free text for experimenters (admin pages only)."""
 
-    @field_validator("kitchens")
+    @field_validator("kitchens", mode="before")
     @classmethod
-    def _unique_kitchens(cls, kitchens: tuple[Kitchen, ...]) -> tuple[Kitchen, ...]:
-        raise_problems(duplicate_problems([k.name for k in kitchens], "kitchen"), kitchens)
-        return kitchens
+    def _resolve_kitchens(cls, kitchens: Any, info: ValidationInfo) -> Any:
+        """Every entry resolved and its grid checked, and duplicates found, all reported together."""
+        if not isinstance(kitchens, (list, tuple)):
+            return kitchens
+        resolved, problems = resolve_kitchens(kitchens, base_dir_of(info))
+        raise_problems([(loc, reason) for loc, reason, _ in problems], kitchens, [w for _, _, w in problems])
+        return resolved
 
-    @field_validator("robots")
+    @field_validator("robots", mode="before")
     @classmethod
-    def _unique_robots(cls, robots: tuple[str, ...]) -> tuple[str, ...]:
-        raise_problems(duplicate_problems(robots, "robot"), robots)
+    def _check_robots(cls, robots: Any) -> Any:
+        """Unknown robots and duplicates, reported together (one never hides the other)."""
+        if not isinstance(robots, (list, tuple)) or not all(isinstance(r, str) for r in robots):
+            return robots
+        problems = [((i,), robot_problem(r)) for i, r in enumerate(robots) if r not in PLANNER_NAMES]
+        raise_problems(sorted(problems + duplicate_problems(robots, "robot")), robots)
         return robots
 
     @field_validator("views")

@@ -5,7 +5,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 
-from steakhouse_testing import Player, play_to_end
+from steakhouse_testing import Player, condition_order, play_to_end
 
 from server.store import trials
 from server.store.tables import TrialRow
@@ -178,7 +178,7 @@ def test_a_participant_goes_from_practice_through_every_condition_to_the_end(liv
         rows = sorted(s.query(TrialRow).all(), key=lambda r: r.id)
         assert [(r.kind, r.condition_id, r.status, r.end_reason) for r in rows] == [
             ("practice", "stay@none_3", "finished", "horizon")] + [
-            ("main", c, "finished", "horizon") for c in joined["condition_order"]]
+            ("main", c, "finished", "horizon") for c in condition_order(server.services, joined["participant_id"])]
         assert len({r.seed for r in rows}) == 3 and {r.config_hash for r in rows} == {
             server.services.catalog.get("tiny").study.config_hash()}
 
