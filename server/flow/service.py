@@ -90,13 +90,13 @@ def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recrui
         existing = participants.by_recruit_id(session, study.id, recruit_id)
         if existing is not None:
             holder = participants.by_token(session, presented_token) if presented_token else None
-            if holder is None or holder.id != existing.id:
+            if presented_token is None or holder is None or holder.id != existing.id:
                 session.add(EventRow(participant_id=existing.id, trial_id=None, tick=None, kind="join_refused",
                                      payload={"reason": "already_started", "had_token": presented_token is not None},
                                      created_at=utcnow()))
                 return Refused(existing)
             found = participants.assignment_of(session, existing.id)
-            if found is None or presented_token is None:
+            if found is None:
                 raise ApiError(500, "internal", "participant without assignment")
             return Joined(presented_token, existing, found, rejoined=True)
     token = secrets.token_urlsafe(32)

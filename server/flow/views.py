@@ -1,10 +1,10 @@
 """What ``GET /api/session`` answers: the participant's state and what to show next.
 
-Never a condition, robot, kitchen or the participant's condition order (nor its index): the pages show
-"round 2 of 5", not which robot is playing (blinding, ``docs/protocol.md`` §1). ``fov_angle`` (the study's field of view, the same in every trial)
-lets the instructions draw the cone the participant will have; a trial's ``view`` (top-down or first-person)
-lets the round's intro card explain its controls (the participant sees the view anyway). Consent and
-instructions have their duration placeholders filled in from the study (:mod:`server.study.duration`).
+Never a condition, robot, kitchen or the participant's condition order (nor its index): the pages show "round 2 of
+5", not which robot is playing (blinding, ``docs/protocol.md`` §1). ``fov_angle`` (the study's field of view, the
+same in every trial) lets the instructions draw the cone the participant will have; a trial's ``view`` (top-down
+or first-person) lets the round's intro card explain its controls (the participant sees the view anyway). Consent
+and instructions have their duration placeholders filled in from the study (:mod:`server.study.duration`).
 """
 
 from __future__ import annotations

@@ -1,9 +1,10 @@
 """The admin API under ``/api/admin/`` (bearer token from ``STEAKHOUSE_ADMIN_TOKEN``; 401 without it).
 
-Studies with the fill of each condition order and their recruiting links, participants with progress, flags
-and questionnaire answers, setting flags, one-time resume links (a participant moving to a new device), live trials (summary and the full spectator view with the scene the
-dashboard draws), stored trials, their ticks and events, and their frames for the replay viewer, and the robot
-worker pool. The logic lives in ``server.admin`` and ``server.store``; these routes only wire it.
+Studies with the fill of each condition order and their recruiting links, participants with progress, flags and
+questionnaire answers, setting flags, one-time resume links (a participant moving to a new device), live trials
+(summary and the full spectator view with the scene the dashboard draws), stored trials, their ticks and events,
+and their frames for the replay viewer, and the robot worker pool. The logic lives in ``server.admin`` and
+``server.store``; these routes only wire it.
 """
 
 from __future__ import annotations

@@ -1,9 +1,10 @@
 """The participant's REST API (token-scoped after join); every state change answers the new session view.
 
 ``POST /api/studies/{study_id}/join`` → token and state (never the condition order: participants are blind);
-``POST /api/studies/{study_id}/resume`` (an experimenter's one-time resume link → a token on this device); ``GET /api/session``;
-``POST /api/session/device``; ``POST /api/session/consent``; ``POST /api/session/instructions_done``;
-``POST /api/session/quiz``; ``POST /api/session/questionnaire``; ``GET /api/session/completion``. Illegal transitions answer 409, invalid answers 422; joins beyond the
+``POST /api/studies/{study_id}/resume`` (an experimenter's one-time resume link → a token on this device);
+``GET /api/session``; ``POST /api/session/device``; ``POST /api/session/consent``;
+``POST /api/session/instructions_done``; ``POST /api/session/quiz``; ``POST /api/session/questionnaire``;
+``GET /api/session/completion``. Illegal transitions answer 409, invalid answers 422; joins beyond the
 per-address limit answer 429 (:mod:`server.security`).
 """
 

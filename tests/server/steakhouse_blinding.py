@@ -60,9 +60,11 @@ def forbidden_names(study: Any, protocol_words: set[str]) -> tuple[dict[str, str
 
 def hits(recorder: Recorder, forbidden: dict[str, str]) -> list[str]:
     """Every received message containing a forbidden name as a whole word: ``where: name (what)``."""
-    patterns = {name: re.compile(r"(?<![A-Za-z0-9_])" + re.escape(name) + r"(?![A-Za-z0-9_])") for name in forbidden}
+    patterns = {name: re.compile(r"(?<![A-Za-z0-9_])" + re.escape(name) + r"(?![A-Za-z0-9_])")
+                for name in forbidden}
     found = []
     for where, data in recorder.received:
         text = data.decode("utf-8", errors="replace")
-        found += [f"{where}: {name!r} ({forbidden[name]})" for name, pattern in patterns.items() if pattern.search(text)]
+        found += [f"{where}: {name!r} ({forbidden[name]})" for name, pattern in patterns.items()
+                  if pattern.search(text)]
     return found
