@@ -18,6 +18,9 @@ from planner.layout import Layout, parse_layout
 from study_config import STUDY_DIR
 
 TIMEOUT_MS = 15_000
+FIRST_FRAME_TIMEOUT_MS = 90_000
+"""How long a page may take to draw its first 3D frame: software WebGL compiles its shaders on the CPU, and on a
+busy machine the page's thread was seen blocked for ~20 s doing it. A bound on a wait for state, not a delay."""
 SCREENSHOTS = Path(os.environ.get("STEAKHOUSE_SCREENSHOTS") or
                    Path(__file__).resolve().parents[2] / "test-output" / "screenshots")
 """Where screenshots go: ``test-output/screenshots/`` (git-ignored), or ``$STEAKHOUSE_SCREENSHOTS``."""
