@@ -110,14 +110,14 @@ def resolve_kitchens(entries: list[Any] | tuple[Any, ...], base_dir: Path,
         except ValueError as exc:
             problems.append(((index,), str(exc), None))
             resolved.append(None)
-    names = [k.name if isinstance(k, Kitchen) else _entry_name(entries[i]) for i, k in enumerate(resolved)]
+    names = [k.name if isinstance(k, Kitchen) else entry_name(entries[i]) for i, k in enumerate(resolved)]
     problems += [(loc, reason, None) for loc, reason in duplicate_problems(names, "kitchen")
                  if names[int(loc[0])] is not None]
     problems.sort(key=lambda p: p[0])
     return (None if problems else tuple(resolved)), problems
 
 
-def _entry_name(entry: Any) -> str | None:
+def entry_name(entry: Any) -> str | None:
     """The kitchen name an entry would have (its file stem), for duplicates among entries that failed."""
     if isinstance(entry, str) and entry.strip():
         return Path(entry).stem if entry.endswith(LAYOUT_SUFFIX) or "/" in entry else entry

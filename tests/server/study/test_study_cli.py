@@ -96,3 +96,29 @@ def test_kitchen_files_are_checked_as_serve_would_and_every_problem_is_listed(
         "B, W, S, 1, 2",
     ], "\n".join(lines)
     assert lines[-1] == "1 of 1 study file(s) invalid"
+
+
+def test_a_bad_kitchen_or_robot_does_not_hide_the_checks_of_factors_and_counterbalancing(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    study = tmp_path / "study.yaml"
+    study.write_text(
+        "id: masks\ntitle: Masks\nkitchens: [none_3, missing.layout]\nrobots: [fov_aware, terminator]\n"
+        "factors: [robot, kitchen]\ncounterbalancing: {scheme: fixed, order: [nope@none_3]}\n",
+        encoding="utf-8",
+    )
+    assert main(["study", "validate", str(study)]) == 1
+    problems = [line.split(" (line ")[0].split(": ", 1)[1] for line in capsys.readouterr()[1].splitlines()[:-1]]
+    assert problems == [
+        f"kitchens[1]: no kitchen file at {(tmp_path / 'missing.layout').resolve()}",
+        "robots[1]: unknown robot 'terminator'; choose one of: fov_aware, baseline, no_rollout, stay",
+        "counterbalancing.order[0]: unknown condition 'nope@none_3'; conditions are: fov_aware@none_3, "
+        "fov_aware@missing, terminator@none_3, terminator@missing",
+        "counterbalancing.order: missing conditions: fov_aware@none_3, fov_aware@missing, terminator@none_3, "
+        "terminator@missing",
+    ], problems
+    study.write_text(study.read_text(encoding="utf-8").replace("factors: [robot, kitchen]", "factors: [robot]"),
+                     encoding="utf-8")
+    assert main(["study", "validate", str(study)]) == 1
+    assert ("factors: kitchens has 2 entries but 'kitchen' is not a factor; add it to factors or keep one entry"
+            in capsys.readouterr()[1])
