@@ -73,7 +73,7 @@ def create_app(settings: Settings | None = None, *, robot_factory: Callable[...,
 
     app = FastAPI(title="Steakhouse Study", version="0.1.0", lifespan=lifespan)
     errors.install(app)
-    security.install(app, settings.join_rate_per_minute)
+    security.install(app, settings.join_rate_per_minute, settings.max_body_bytes)
     for module in (health, participant, play, admin, admin_exports):
         app.include_router(module.router)
     static = settings.static_root()

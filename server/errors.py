@@ -1,11 +1,15 @@
 """Typed API errors: every refusal has an HTTP status, a stable ``code`` and a readable ``message``.
 
 Body: ``{"detail": {"code": ..., "message": ...}}`` (422 answer problems: ``{"detail": [problems]}``,
-the shape of FastAPI's own validation errors). Nothing about other participants or internals is included.
+the shape of FastAPI's own validation errors). Nothing about other participants or internals is included,
+and a request's own input is quoted at most as a short excerpt (:data:`EXCERPT_CHARS` characters): a large
+body is never echoed back, and a non-finite number (``NaN``, ``Infinity``) is quoted as text.
 """
 
 from __future__ import annotations
 
+import json
+import math
 from typing import Any
 
 from fastapi import FastAPI, Request
@@ -14,6 +18,10 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
 
 from server.flow.progress import IllegalTransition
+
+
+EXCERPT_CHARS = 60
+"""The most of a request's own input an error body quotes."""
 
 
 class ApiError(Exception):
@@ -51,7 +59,7 @@ def install(app: FastAPI) -> None:
 
     async def invalid_request(_: Request, exc: Exception) -> JSONResponse:
         assert isinstance(exc, RequestValidationError)
-        return JSONResponse({"detail": jsonable_encoder(_printable(exc.errors()))}, 422)
+        return JSONResponse({"detail": [_problem(error) for error in exc.errors()]}, 422)
 
     app.add_exception_handler(ApiError, api_error)
     app.add_exception_handler(IllegalTransition, illegal)
@@ -59,13 +67,43 @@ def install(app: FastAPI) -> None:
     app.add_exception_handler(RequestValidationError, invalid_request)
 
 
-def _printable(value: Any) -> Any:
-    """FastAPI's validation problems with any raw bytes echoed back as text: a body that is not UTF-8 would
-    otherwise make FastAPI's own 422 handler fail with a 500."""
+def _problem(error: Any) -> dict[str, Any]:
+    """One of FastAPI's validation problems as JSON: its location, type and message, the input quoted only as
+    an excerpt, and the context as short text (it may hold exceptions or non-finite numbers)."""
+    out: dict[str, Any] = {"type": str(error.get("type", "")), "loc": [_scalar(part) for part in error.get("loc", ())],
+                           "msg": excerpt(error.get("msg", ""), 200)}
+    if "input" in error:
+        out["input"] = _quoted(error["input"])
+    if error.get("ctx"):
+        out["ctx"] = {str(key): _quoted(value) for key, value in error["ctx"].items()}
+    return jsonable_encoder(out)
+
+
+def excerpt(value: Any, limit: int = EXCERPT_CHARS) -> str:
+    """``value`` as text, cut to ``limit`` characters (with "…" when cut)."""
     if isinstance(value, bytes):
-        return value.decode("utf-8", errors="replace")
-    if isinstance(value, dict):
-        return {key: _printable(item) for key, item in value.items()}
-    if isinstance(value, list | tuple):
-        return [_printable(item) for item in value]
-    return value
+        value = value[: limit * 4].decode("utf-8", errors="replace")
+    if not isinstance(value, str):
+        try:
+            value = json.dumps(value, allow_nan=True, default=str)[: limit * 4]
+        except ValueError:
+            value = "…"
+    return value if len(value) <= limit else value[: limit - 1] + "…"
+
+
+def _scalar(value: Any) -> str | int:
+    return value if isinstance(value, int) and not isinstance(value, bool) and abs(value) < 2**53 else excerpt(value)
+
+
+def _quoted(value: Any) -> Any:
+    """A short JSON-safe quote of ``value``: small finite numbers, booleans and ``None`` as they are,
+    everything else as an excerpt of its text."""
+    if value is None or isinstance(value, bool):
+        return value
+    if isinstance(value, int) and abs(value) < 2**53:
+        return value
+    if isinstance(value, float) and math.isfinite(value):
+        return value
+    if isinstance(value, float):
+        return str(value)
+    return excerpt(value)

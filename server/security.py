@@ -15,10 +15,15 @@
   the socket peer, or — only when uvicorn trusts the proxy (``FORWARDED_ALLOW_IPS``, default 127.0.0.1) —
   the ``X-Forwarded-For`` client (see ``docs/operations.md``). Buckets live in this process: with several
   processes the limit applies per process.
+- :class:`BodyLimit` (pure ASGI middleware) refuses request bodies over ``max_body_bytes`` (default 64 KiB)
+  with ``413 {"detail": {"code": "too_large", …}}``: at once when ``Content-Length`` says so (the body is
+  never read), or as soon as a streamed body passes the limit (reading stops there). Nothing of the body is
+  echoed.
 """
 
 from __future__ import annotations
 
+import json
 import math
 import threading
 import time
@@ -79,6 +84,65 @@ class SecurityHeaders:
         await self.app(scope, receive, send_with_headers)
 
 
+def _too_large(limit: int) -> bytes:
+    return json.dumps({"detail": {"code": "too_large",
+                                  "message": f"the request body is larger than {limit} bytes"}}).encode()
+
+
+class BodyLimit:
+    """Answers 413 to HTTP requests whose body is over ``limit`` bytes, without reading (or echoing) it.
+
+    A streamed body (no ``Content-Length``) is counted as the app reads it; past the limit the 413 is sent at
+    once and the app is told the client went away (whatever it does then is dropped)."""
+
+    def __init__(self, app: ASGIApp, limit: int) -> None:
+        self.app, self.limit = app, limit
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+        declared = dict(scope.get("headers", [])).get(b"content-length")
+        if declared is not None and (not declared.strip().isdigit() or int(declared) > self.limit):
+            await self._refuse(send)
+            return
+        seen = 0
+        started = refused = False
+
+        async def counted_receive() -> Message:
+            nonlocal seen, refused
+            if refused:
+                return {"type": "http.disconnect"}
+            message = await receive()
+            if message["type"] == "http.request":
+                seen += len(message.get("body", b""))
+                if seen > self.limit and not started:
+                    refused = True
+                    await self._refuse(send)
+                    return {"type": "http.disconnect"}
+            return message
+
+        async def tracked_send(message: Message) -> None:
+            nonlocal started
+            if refused:
+                return
+            started = started or message["type"] == "http.response.start"
+            await send(message)
+
+        try:
+            await self.app(scope, counted_receive, tracked_send)
+        except Exception:
+            if not refused:
+                raise
+
+    async def _refuse(self, send: Send) -> None:
+        body = _too_large(self.limit)
+        await send({"type": "http.response.start", "status": 413,
+                    "headers": [(b"content-type", b"application/json"), (b"content-length", str(len(body)).encode()),
+                                (b"connection", b"close")]})
+        await send({"type": "http.response.body", "body": body})
+
+
 class JoinLimiter:
     """Token buckets keyed by client address: ``rate`` joins per minute with bursts of ``rate``; ``rate`` 0
     switches the limit off. Thread-safe; at most :data:`MAX_TRACKED_ADDRESSES` buckets (the least recently
@@ -119,7 +183,8 @@ async def limit_joins(conn: HTTPConnection) -> None:
                        headers={"Retry-After": str(max(1, math.ceil(wait)))})
 
 
-def install(app: FastAPI, join_rate_per_minute: int) -> None:
-    """Add the security headers and the join limiter to ``app``."""
+def install(app: FastAPI, join_rate_per_minute: int, max_body_bytes: int) -> None:
+    """Add the security headers, the request body limit and the join limiter to ``app``."""
     app.state.join_limiter = JoinLimiter(join_rate_per_minute)
+    app.add_middleware(BodyLimit, limit=max_body_bytes)
     app.add_middleware(SecurityHeaders)

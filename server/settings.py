@@ -63,6 +63,10 @@ class Settings(BaseSettings):
     CPU count, ``server.game.admission.default_capacity``; docs/operations.md, "Admission control")."""
     admission_max_wait_s: float = Field(default=DEFAULT_MAX_WAIT_S, gt=0, le=86_400)
     """A participant who waited this long for a slot is screened out (reason ``server_full``)."""
+    resume_link_minutes: int = Field(default=60, ge=1, le=7 * 24 * 60)
+    """How long a resume link made in the admin (moving a participant to a new device) stays valid."""
+    max_body_bytes: int = Field(default=64 * 1024, ge=1024, le=16 << 20)
+    """Request bodies above this many bytes are refused with 413 before they are read (``server.security``)."""
     log_level: Literal["debug", "info", "warning", "error"] = "info"
 
     @field_validator("database_url")

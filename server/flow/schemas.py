@@ -20,14 +20,22 @@ class JoinRequest(BaseModel):
 
 
 class JoinResponse(BaseModel):
+    """What the participant's browser learns on joining: never the condition order (the participant is blind
+    to their conditions, ``docs/protocol.md`` §1); experimenters see it in the admin."""
+
     token: str
     """Send as ``Authorization: Bearer <token>`` (or ``?token=`` on the websocket). Shown once."""
     participant_id: str
     study_id: str
-    order_index: int
-    condition_order: list[str]
     state: str
     rejoined: bool
+
+
+class ResumeRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    code: Annotated[str, StringConstraints(max_length=200)]
+    """The code from the resume link's fragment (``#resume=<code>``)."""
 
 
 class ConsentRequest(BaseModel):
@@ -53,6 +61,7 @@ class QuizRequest(BaseModel):
 
 
 class StudyPublic(BaseModel):
+    """The public facts of a study: no title (it may name the conditions), only what the landing page needs."""
+
     id: str
-    title: str
     url_parameters: list[str]

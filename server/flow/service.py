@@ -1,8 +1,12 @@
 """The participant operations behind the REST API and the game: each one transaction over the store.
 
-- :func:`join`: least-filled condition order (see :mod:`server.store.assignment`), plan, token. A second
-  join with the same recruiting participant id (the study's first URL parameter, e.g. ``PROLIFIC_PID``)
-  returns the same participant with a fresh token (the old one stops working): never two assignments.
+- :func:`join`: least-filled condition order (see :mod:`server.store.assignment`), plan, token. A recruiting
+  id (the study's first URL parameter, e.g. ``PROLIFIC_PID``) is not a password: a second join with it
+  answers the same participant only from the browser holding that participant's token (the token is kept);
+  from any other browser it is refused (``409 already_started``), the attempt stored as a ``join_refused``
+  event, and the participant's session and token are left as they were. Never two assignments.
+- :func:`resume_on_new_device`: the experimenter's one-time resume link redeemed (:mod:`server.admin.resume`):
+  a fresh token for the participant, the old one stops working.
 - :func:`move`: one state-machine transition, applied only if nobody moved the participant meanwhile.
 - :func:`submit_questionnaire`: answers checked, stored and the transition made, all or nothing.
 - :func:`submit_quiz`: one attempt at the comprehension quiz stored; passed → the next step, the last allowed
@@ -13,6 +17,7 @@
 
 from __future__ import annotations
 
+import logging
 import secrets
 import uuid
 from dataclasses import dataclass
@@ -35,6 +40,19 @@ from server.study.device import DeviceInfo, device_problems
 from server.store.types import utcnow
 
 
+log = logging.getLogger(__name__)
+
+ALREADY_STARTED = ("this ID has already started in another browser; continue there, or contact the "
+                   "researcher")
+
+
+@dataclass(frozen=True)
+class Refused:
+    """A join with a recruiting id that already started elsewhere: the participant it belongs to."""
+
+    participant: ParticipantRow
+
+
 @dataclass(frozen=True)
 class Joined:
     token: str
@@ -47,36 +65,72 @@ def progress_of(row: ParticipantRow) -> Progress:
     return Progress(plan_from_json(row.plan), row.step, screened_out=row.status == "screened_out")
 
 
-def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run: bool) -> Joined:
+def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run: bool,
+         presented_token: str | None = None) -> Joined:
+    """Join ``loaded``'s study, or come back to it: ``presented_token`` is the token the browser already holds
+    (its ``Authorization`` header), which alone resumes a participant whose recruiting id is known."""
     study = loaded.study
     names = study.recruiting.url_parameters
     kept = {name: recruiting[name] for name in names if name in recruiting}
     recruit_id = kept.get(names[0]) if names else None
-    token = secrets.token_urlsafe(32)
     with store.transaction() as session:
         assignment.lock_study(session, study.id)
-        if recruit_id:
-            existing = participants.by_recruit_id(session, study.id, recruit_id)
-            if existing is not None:
-                participants.rotate_token(session, existing.id, token)
-                found = participants.assignment_of(session, existing.id)
-                if found is None:
-                    raise ApiError(500, "internal", "participant without assignment")
-                return Joined(token, existing, found, rejoined=True)
-        counts = assignment.order_counts(session, study.id, len(loaded.orders), utcnow(),
-                                         study.assignment.in_progress_window_minutes)
-        index = assignment.least_filled(counts)
-        order = list(loaded.orders[index])
-        plan = build_plan(study, order)
-        row = participants.create(
-            session, study_id=study.id, public_id=uuid.uuid4().hex, token=token, recruit_id=recruit_id,
-            recruiting=kept, config_hash=study.config_hash(), plan=plan_to_json(plan),
-            state=Progress(plan, 0).phase.value, test_run=test_run or study.test_run, order_index=index,
-            condition_order=order)
+        outcome = _join_in(session, loaded, kept, recruit_id, test_run, presented_token)
+    if isinstance(outcome, Refused):
+        log.warning("join refused: the recruiting id of participant %s already started in another browser",
+                    outcome.participant.public_id)
+        raise ApiError(409, "already_started", ALREADY_STARTED)
+    return outcome
+
+
+def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recruit_id: str | None, test_run: bool,
+             presented_token: str | None) -> Joined | Refused:
+    study = loaded.study
+    if recruit_id:
+        existing = participants.by_recruit_id(session, study.id, recruit_id)
+        if existing is not None:
+            holder = participants.by_token(session, presented_token) if presented_token else None
+            if presented_token is None or holder is None or holder.id != existing.id:
+                session.add(EventRow(participant_id=existing.id, trial_id=None, tick=None, kind="join_refused",
+                                     payload={"reason": "already_started", "had_token": presented_token is not None},
+                                     created_at=utcnow()))
+                return Refused(existing)
+            found = participants.assignment_of(session, existing.id)
+            if found is None:
+                raise ApiError(500, "internal", "participant without assignment")
+            return Joined(presented_token, existing, found, rejoined=True)
+    token = secrets.token_urlsafe(32)
+    counts = assignment.order_counts(session, study.id, len(loaded.orders), utcnow(),
+                                     study.assignment.in_progress_window_minutes)
+    index = assignment.least_filled(counts)
+    order = list(loaded.orders[index])
+    plan = build_plan(study, order)
+    row = participants.create(
+        session, study_id=study.id, public_id=uuid.uuid4().hex, token=token, recruit_id=recruit_id,
+        recruiting=kept, config_hash=study.config_hash(), plan=plan_to_json(plan),
+        state=Progress(plan, 0).phase.value, test_run=test_run or study.test_run, order_index=index,
+        condition_order=order)
+    found = participants.assignment_of(session, row.id)
+    if found is None:
+        raise ApiError(500, "internal", "assignment not stored")
+    return Joined(token, row, found, rejoined=False)
+
+
+def resume_on_new_device(store: Store, participant_id: int, expected_token_hash: str) -> Joined | None:
+    """Give the participant a fresh token (their old browser's stops working), if their token is still the one
+    the resume link was made for (so a link works once); ``None`` otherwise."""
+    token = secrets.token_urlsafe(32)
+    with store.transaction() as session:
+        row = _load(session, participant_id)
+        if not secrets.compare_digest(row.token_hash, expected_token_hash):
+            return None
+        participants.rotate_token(session, row.id, token)
+        session.add(EventRow(participant_id=row.id, trial_id=None, tick=None, kind="resume_link_used",
+                             payload={}, created_at=utcnow()))
         found = participants.assignment_of(session, row.id)
         if found is None:
-            raise ApiError(500, "internal", "assignment not stored")
-        return Joined(token, row, found, rejoined=False)
+            raise ApiError(500, "internal", "participant without assignment")
+        return Joined(token, row, found, rejoined=True)
 
 
 def _apply(session: Session, row: ParticipantRow, progress: Progress, new: Progress, move_: Move) -> None:

@@ -1,10 +1,10 @@
 """What ``GET /api/session`` answers: the participant's state and what to show next.
 
-Never the condition's robot or kitchen names beyond the assigned order given at join: the pages show
-"round 2 of 5", not which robot is playing. ``fov_angle`` (the study's field of view, the same in every trial)
-lets the instructions draw the cone the participant will have; a trial's ``view`` (top-down or first-person)
-lets the round's intro card explain its controls (the participant sees the view anyway). Consent and
-instructions have their duration placeholders filled in from the study (:mod:`server.study.duration`).
+Never a condition, robot, kitchen or the participant's condition order (nor its index): the pages show "round 2 of
+5", not which robot is playing (blinding, ``docs/protocol.md`` §1). ``fov_angle`` (the study's field of view, the
+same in every trial) lets the instructions draw the cone the participant will have; a trial's ``view`` (top-down
+or first-person) lets the round's intro card explain its controls (the participant sees the view anyway). Consent
+and instructions have their duration placeholders filled in from the study (:mod:`server.study.duration`).
 """
 
 from __future__ import annotations
@@ -17,8 +17,7 @@ from server.catalog import LoadedStudy
 from server.flow.progress import Phase
 from server.flow.rounds import RoundFacts, round_facts
 from server.flow.service import completion, progress_of, quiz_attempts
-from server.store import participants
-from server.store.tables import AssignmentRow, ParticipantRow
+from server.store.tables import ParticipantRow
 from server.store.types import utcnow
 from server.study.device import DeviceRequirements
 from server.study.duration import fill_placeholders, study_length
@@ -31,14 +30,13 @@ def load_session_view(session: Session, loaded: LoadedStudy, participant_id: int
     row = session.get(ParticipantRow, participant_id)
     if row is None:
         raise LookupError(participant_id)
-    order = participants.assignment_of(session, participant_id)
     progress = progress_of(row)
     facts = round_facts(session, participant_id, progress, utcnow(), loaded.study.reconnect)
     attempts = quiz_attempts(session, participant_id) if progress.phase is Phase.QUIZ else 0
-    return session_view(loaded, row, order, facts, attempts)
+    return session_view(loaded, row, facts, attempts)
 
 
-def session_view(loaded: LoadedStudy, row: ParticipantRow, order: AssignmentRow | None,
+def session_view(loaded: LoadedStudy, row: ParticipantRow,
                  facts: RoundFacts | None = None, quiz_attempts_used: int = 0) -> dict[str, Any]:
     progress = progress_of(row)
     phase = progress.phase
@@ -54,8 +52,6 @@ def session_view(loaded: LoadedStudy, row: ParticipantRow, order: AssignmentRow 
         "steps": len(progress.plan),
         "trials_done": done,
         "trials_total": len(trial_steps),
-        "order_index": order.order_index if order else None,
-        "condition_order": list(order.condition_order) if order else [],
         "test_run": row.test_run,
         "fov_angle": study.world.fov_angle,
         "device": _device(row, study.device),

@@ -1,22 +1,26 @@
 """The admin API under ``/api/admin/`` (bearer token from ``STEAKHOUSE_ADMIN_TOKEN``; 401 without it).
 
-Studies with the fill of each condition order and their recruiting links, participants with progress, flags
-and questionnaire answers, setting flags, live trials (summary and the full spectator view with the scene the
-dashboard draws), stored trials, their ticks and events, and their frames for the replay viewer, and the robot
-worker pool. The logic lives in ``server.admin`` and ``server.store``; these routes only wire it.
+Studies with the fill of each condition order and their recruiting links, participants with progress, flags and
+questionnaire answers, setting flags, one-time resume links (a participant moving to a new device), live trials
+(summary and the full spectator view with the scene the dashboard draws), stored trials, their ticks and events,
+and their frames for the replay viewer, and the robot worker pool. The logic lives in ``server.admin`` and
+``server.store``; these routes only wire it.
 """
 
 from __future__ import annotations
 
+import time
+from datetime import UTC, datetime
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Depends, Query, Request
+from fastapi import APIRouter, Depends, Path, Query, Request
 from pydantic import BaseModel, ConfigDict, Field
 
 from server.admin.answers import participant_answers
 from server.admin.links import study_links
 from server.admin.live import live_view
 from server.admin.replay import replay
+from server.admin.resume import link_secret, make_code, resume_path
 from server.catalog import LoadedStudy
 from server.deps import ServicesDep, path_study, require_admin
 from server.services import Services
@@ -26,10 +30,17 @@ from server.store.overview import (
     invalid_trial_counts, order_breakdown, participant_names, participant_public, trial_public,
 )
 from server.study.warnings import study_warnings
-from server.store.tables import TrialRow
+from server.store.tables import EventRow, TrialRow
 from server.store.types import utcnow
 
 router = APIRouter(prefix="/api/admin", tags=["admin"], dependencies=[Depends(require_admin)])
+
+STORE_INT_MAX = 2**63 - 1
+TrialId = Annotated[int, Path(ge=1, le=STORE_INT_MAX)]
+"""A trial's id: a positive 64-bit integer (the store's key); anything else is a 422 naming ``trial_id``."""
+PublicId = Annotated[str, Path(min_length=1, max_length=64)]
+"""A participant's public id (a 32-character hex string)."""
+TickStart = Annotated[int, Query(ge=0, le=STORE_INT_MAX)]
 
 
 class FlagsRequest(BaseModel):
@@ -74,7 +85,7 @@ def list_participants(services: ServicesDep, study_id: Annotated[str | None, Que
 
 
 @router.post("/participants/{participant_id}/flags")
-def set_flags(participant_id: str, body: FlagsRequest, services: ServicesDep) -> dict[str, Any]:
+def set_flags(participant_id: PublicId, body: FlagsRequest, services: ServicesDep) -> dict[str, Any]:
     if body.excluded and not (body.reason or "").strip():
         raise ApiError(422, "reason_required", "excluding a participant needs a reason")
     with services.store.transaction() as session:
@@ -86,8 +97,25 @@ def set_flags(participant_id: str, body: FlagsRequest, services: ServicesDep) ->
         return participant_public(row, participants.assignment_of(session, row.id))
 
 
+@router.post("/participants/{participant_id}/resume_link")
+def resume_link(participant_id: PublicId, request: Request, services: ServicesDep) -> dict[str, Any]:
+    """A one-time link that moves the participant to a new device (``server.admin.resume``): valid for
+    ``resume_link_minutes``, void once used or once the participant's token changes."""
+    expires = int(time.time()) + services.settings.resume_link_minutes * 60
+    with services.store.transaction() as session:
+        row = participants.by_public_id(session, participant_id)
+        if row is None:
+            raise ApiError(404, "not_found", "no such participant")
+        code = make_code(link_secret(services.admin_token), row.public_id, row.token_hash, expires)
+        session.add(EventRow(participant_id=row.id, trial_id=None, tick=None, kind="resume_link_made",
+                             payload={"expires": expires}, created_at=utcnow()))
+        path = resume_path(row.study_id, code)
+    return {"participant_id": participant_id, "path": path, "url": str(request.base_url).rstrip("/") + path,
+            "expires_at": datetime.fromtimestamp(expires, UTC).isoformat()}
+
+
 @router.get("/participants/{participant_id}/answers")
-def answers(participant_id: str, services: ServicesDep) -> dict[str, Any]:
+def answers(participant_id: PublicId, services: ServicesDep) -> dict[str, Any]:
     with services.store.transaction() as session:
         row = participants.by_public_id(session, participant_id)
         if row is None:
@@ -111,7 +139,7 @@ def live(services: ServicesDep) -> list[dict[str, Any]]:
 
 
 @router.get("/live/{trial_id}")
-def live_trial(trial_id: int, services: ServicesDep) -> dict[str, Any]:
+def live_trial(trial_id: TrialId, services: ServicesDep) -> dict[str, Any]:
     game = services.registry.games.get(trial_id)
     if game is None:
         raise ApiError(404, "not_live", "no live trial with this id in this server process")
@@ -136,7 +164,7 @@ def list_trials(services: ServicesDep, study_id: Annotated[str | None, Query(max
 
 
 @router.get("/trials/{trial_id}")
-def trial_replay(trial_id: int, services: ServicesDep, start: Annotated[int, Query(ge=0)] = 0,
+def trial_replay(trial_id: TrialId, services: ServicesDep, start: TickStart = 0,
                  limit: Annotated[int, Query(ge=1, le=10_000)] = 10_000) -> dict[str, Any]:
     """A stored trial for replay: its row, the kitchen grid, the initial state and the ticks from ``start``."""
     with services.store.transaction() as session:
@@ -157,7 +185,7 @@ def trial_replay(trial_id: int, services: ServicesDep, start: Annotated[int, Que
 
 
 @router.get("/trials/{trial_id}/frames")
-def trial_frames(trial_id: int, services: ServicesDep, start: Annotated[int, Query(ge=0)] = 0,
+def trial_frames(trial_id: TrialId, services: ServicesDep, start: TickStart = 0,
                  limit: Annotated[int, Query(ge=1, le=5_000)] = 2_000) -> dict[str, Any]:
     """A stored trial drawn tick by tick for the replay viewer (see ``server.admin.replay``)."""
     with services.store.transaction() as session:
@@ -171,7 +199,7 @@ def trial_frames(trial_id: int, services: ServicesDep, start: Annotated[int, Que
 
 
 @router.get("/trials/{trial_id}/events")
-def trial_events(trial_id: int, services: ServicesDep) -> list[dict[str, Any]]:
+def trial_events(trial_id: TrialId, services: ServicesDep) -> list[dict[str, Any]]:
     with services.store.transaction() as session:
         return [{"id": e.id, "tick": e.tick, "kind": e.kind, "payload": e.payload,
                  "created_at": e.created_at.isoformat()} for e in trials.events(session, trial_id)]

@@ -1,26 +1,32 @@
 """The participant's REST API (token-scoped after join); every state change answers the new session view.
 
-``POST /api/studies/{study_id}/join`` → token and condition order; ``GET /api/session``;
-``POST /api/session/device``; ``POST /api/session/consent``; ``POST /api/session/instructions_done``;
-``POST /api/session/quiz``; ``POST /api/session/questionnaire``; ``GET /api/session/completion``. Illegal transitions answer 409, invalid answers 422; joins beyond the
+``POST /api/studies/{study_id}/join`` → token and state (never the condition order: participants are blind);
+``POST /api/studies/{study_id}/resume`` (an experimenter's one-time resume link → a token on this device);
+``GET /api/session``; ``POST /api/session/device``; ``POST /api/session/consent``;
+``POST /api/session/instructions_done``; ``POST /api/session/quiz``; ``POST /api/session/questionnaire``;
+``GET /api/session/completion``. Illegal transitions answer 409, invalid answers 422; joins beyond the
 per-address limit answer 429 (:mod:`server.security`).
 """
 
 from __future__ import annotations
 
+import time
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Depends
+from fastapi import APIRouter, Depends, Request
 
+from server.admin.resume import link_secret, read_code, verify
 from server.catalog import LoadedStudy
-from server.deps import ParticipantDep, ServicesDep, participant_study, path_study
+from server.deps import ParticipantDep, ServicesDep, bearer, participant_study, path_study
+from server.errors import ApiError
 from server.flow import service
 from server.flow.progress import Move
 from server.flow.schemas import (ConsentRequest, JoinRequest, JoinResponse, QuestionnaireRequest, QuizRequest,
-                                 StudyPublic)
+                                 ResumeRequest, StudyPublic)
 from server.flow.views import load_session_view
 from server.security import limit_joins
 from server.services import Services
+from server.store import participants
 from server.study.device import DeviceInfo
 
 router = APIRouter(prefix="/api", tags=["participant"])
@@ -30,16 +36,40 @@ StudyDep = Annotated[LoadedStudy, Depends(participant_study)]
 @router.get("/studies/{study_id}")
 def study_info(loaded: Annotated[LoadedStudy, Depends(path_study)]) -> StudyPublic:
     study = loaded.study
-    return StudyPublic(id=study.id, title=study.title, url_parameters=list(study.recruiting.url_parameters))
+    return StudyPublic(id=study.id, url_parameters=list(study.recruiting.url_parameters))
 
 
 @router.post("/studies/{study_id}/join", dependencies=[Depends(limit_joins)])
-def join(loaded: Annotated[LoadedStudy, Depends(path_study)], body: JoinRequest,
+def join(loaded: Annotated[LoadedStudy, Depends(path_study)], body: JoinRequest, request: Request,
          services: ServicesDep) -> JoinResponse:
-    joined = service.join(services.store, loaded, body.recruiting, body.test_run)
+    """Join, or come back with the token this browser holds (``Authorization``); a known recruiting id from
+    a browser without its token answers ``409 already_started`` (:func:`server.flow.service.join`)."""
+    joined = service.join(services.store, loaded, body.recruiting, body.test_run, bearer(request))
+    return _joined(loaded, joined)
+
+
+@router.post("/studies/{study_id}/resume", dependencies=[Depends(limit_joins)])
+def resume(loaded: Annotated[LoadedStudy, Depends(path_study)], body: ResumeRequest,
+           services: ServicesDep) -> JoinResponse:
+    """Redeem a resume link made by the experimenter (:mod:`server.admin.resume`): this browser gets a new
+    token for the participant; 410 ``link_invalid`` for a used, expired or altered link."""
+    code = read_code(body.code)
+    with services.store.transaction() as session:
+        row = participants.by_public_id(session, code.public_id) if code is not None else None
+        token_hash = row.token_hash if row is not None and row.study_id == loaded.id else None
+        participant_id = row.id if row is not None else None
+    secret = link_secret(services.admin_token)
+    joined = None
+    if code is not None and token_hash is not None and participant_id is not None and verify(
+            secret, code, token_hash, time.time()):
+        joined = service.resume_on_new_device(services.store, participant_id, token_hash)
+    if joined is None:
+        raise ApiError(410, "link_invalid", "this resume link is no longer valid; please contact the researcher")
+    return _joined(loaded, joined)
+
+
+def _joined(loaded: LoadedStudy, joined: service.Joined) -> JoinResponse:
     return JoinResponse(token=joined.token, participant_id=joined.participant.public_id, study_id=loaded.id,
-                        order_index=joined.assignment.order_index,
-                        condition_order=list(joined.assignment.condition_order),
                         state=joined.participant.state, rejoined=joined.rejoined)
 
 

@@ -25,23 +25,28 @@ class StudyModel(BaseModel):
     model_config = ConfigDict(frozen=True, extra="forbid")
 
 
-def raise_problems(problems: Sequence[tuple[Loc, str]], value: Any) -> None:
+def raise_problems(problems: Sequence[tuple[Loc, str]], value: Any,
+                   where: Sequence[str | None] = ()) -> None:
     """Raise every ``(location, reason)`` at once, located below the field being validated.
 
     Pydantic merges a ``ValidationError`` raised inside a validator into the outer one, prefixing
-    each location with the field's own, so one validator can report several precise problems.
+    each location with the field's own, so one validator can report several precise problems. ``where``
+    (one per problem, optional) names the place in another file a problem comes from (a kitchen layout's
+    ``file:line:column``); the loader prints it after the field.
     """
     if not problems:
         return
+    places = list(where) + [None] * (len(problems) - len(where))
     raise ValidationError.from_exception_data(
         "Study",
         [
             InitErrorDetails(
-                type=PydanticCustomError(STUDY_ERROR, "{reason}", {"reason": reason}),
+                type=PydanticCustomError(STUDY_ERROR, "{reason}",
+                                         {"reason": reason, **({"where": place} if place else {})}),
                 loc=loc,
                 input=value,
             )
-            for loc, reason in problems
+            for (loc, reason), place in zip(problems, places, strict=True)
         ],
     )
 
@@ -67,9 +72,14 @@ def _check_slug(value: str) -> str:
     return value
 
 
+def robot_problem(value: str) -> str:
+    """Why ``value`` is not a robot planner's name."""
+    return f"unknown robot {value!r}; choose one of: {', '.join(PLANNER_NAMES)}"
+
+
 def _check_robot(value: str) -> str:
     if value not in PLANNER_NAMES:
-        raise ValueError(f"unknown robot {value!r}; choose one of: {', '.join(PLANNER_NAMES)}")
+        raise ValueError(robot_problem(value))
     return value
 
 

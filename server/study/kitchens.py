@@ -1,8 +1,10 @@
 """Kitchens named by a study: a shipped layout by name, or a layout file by path relative to the study.
 
-Only existence is checked here; the layout's grid is parsed and validated by ``planner`` when a trial
-starts. The file's SHA-256 is part of the resolved study, so editing a kitchen changes the study's
-config hash (a trial's record says exactly which grid it was played on).
+The layout's grid is parsed here with the same checker ``serve`` and the game use
+(:func:`planner.layout.parse_layout`), so ``steakhouse study validate`` refuses every kitchen ``serve`` would
+refuse, naming the file, line and column (:class:`KitchenFileError`). The file's SHA-256 is part of the
+resolved study, so editing a kitchen changes the study's config hash (a trial's record says exactly which
+grid it was played on).
 """
 
 from __future__ import annotations
@@ -14,7 +16,8 @@ from typing import Annotated, Any
 
 from pydantic import BeforeValidator, Field, ValidationInfo
 
-from server.study.base import StudyModel
+from planner.layout import LayoutError, parse_layout
+from server.study.base import Loc, StudyModel, duplicate_problems
 
 LAYOUT_SUFFIX = ".layout"
 _NAME = re.compile(r"^[A-Za-z0-9_-]+$")
@@ -47,8 +50,18 @@ class Kitchen(StudyModel):
     """Absolute path of the layout file; machine-specific, so left out of the config hash."""
 
 
+class KitchenFileError(ValueError):
+    """A kitchen file whose grid cannot be played: ``where`` is the entry as written with the line and column
+    (``my/kitchen.layout:3:7``), ``reason`` what is wrong."""
+
+    def __init__(self, where: str, reason: str) -> None:
+        super().__init__(f"({where}): {reason}")
+        self.where, self.reason = where, reason
+
+
 def resolve_kitchen(entry: str, base_dir: Path) -> Kitchen:
-    """Resolve a study's kitchen entry; ``ValueError`` with a readable reason when it names nothing.
+    """Resolve a study's kitchen entry and check its grid; ``ValueError`` with a readable reason when it names
+    nothing, :class:`KitchenFileError` when its grid is invalid.
 
     A bare name (no folder separator, no ``.layout`` suffix) is a shipped kitchen; anything else is a
     path, relative to ``base_dir`` (the study file's folder) unless absolute.
@@ -67,21 +80,65 @@ def resolve_kitchen(entry: str, base_dir: Path) -> Kitchen:
     if not _NAME.match(path.stem):
         raise ValueError(f"kitchen file name {path.name!r} must use only letters, digits, '-' and '_'")
     try:
-        digest = hashlib.sha256(path.read_bytes()).hexdigest()
+        data = path.read_bytes()
     except OSError as exc:
         raise ValueError(f"cannot read kitchen file {path}: {exc.strerror}") from exc
-    return Kitchen(name=path.stem, source=entry, sha256=digest, path=path.resolve())
+    shown = entry if not is_name else f"{entry}{LAYOUT_SUFFIX}"
+    try:
+        parse_layout(data.decode("utf-8"), name=path.stem, source=shown)
+    except UnicodeDecodeError as exc:
+        raise KitchenFileError(shown, f"not a UTF-8 text file ({exc.reason})") from exc
+    except LayoutError as exc:
+        where = shown if exc.line is None else f"{shown}:{exc.line}" + (f":{exc.column}" if exc.column else "")
+        raise KitchenFileError(where, exc.reason) from exc
+    return Kitchen(name=path.stem, source=entry, sha256=hashlib.sha256(data).hexdigest(), path=path.resolve())
 
 
-def _kitchen_before(value: Any, info: ValidationInfo) -> Any:
+def resolve_kitchens(entries: list[Any] | tuple[Any, ...], base_dir: Path,
+                     ) -> tuple[tuple[Any, ...] | None, list[tuple[Loc, str, str | None]]]:
+    """Resolve every entry of a study's ``kitchens``: the kitchens, or ``None`` and every problem at once
+    (``(location, reason, where)``: an unknown name, a missing file, an invalid grid, a duplicate), so one bad
+    entry never hides another's problem."""
+    resolved: list[Any] = []
+    problems: list[tuple[Loc, str, str | None]] = []
+    for index, entry in enumerate(entries):
+        try:
+            resolved.append(_kitchen_before(entry, base_dir))
+        except KitchenFileError as exc:
+            problems.append(((index,), exc.reason, exc.where))
+            resolved.append(None)
+        except ValueError as exc:
+            problems.append(((index,), str(exc), None))
+            resolved.append(None)
+    names = [k.name if isinstance(k, Kitchen) else entry_name(entries[i]) for i, k in enumerate(resolved)]
+    problems += [(loc, reason, None) for loc, reason in duplicate_problems(names, "kitchen")
+                 if names[int(loc[0])] is not None]
+    problems.sort(key=lambda p: p[0])
+    return (None if problems else tuple(resolved)), problems
+
+
+def entry_name(entry: Any) -> str | None:
+    """The kitchen name an entry would have (its file stem), for duplicates among entries that failed."""
+    if isinstance(entry, str) and entry.strip():
+        return Path(entry).stem if entry.endswith(LAYOUT_SUFFIX) or "/" in entry else entry
+    if isinstance(entry, dict) and isinstance(entry.get("name"), str):
+        return str(entry["name"])
+    return None
+
+
+def base_dir_of(info: ValidationInfo) -> Path:
+    """The study file's folder, from the validation context (the working directory without one)."""
+    context = info.context if isinstance(info.context, dict) else {}
+    return Path(context.get("base_dir", Path.cwd()))
+
+
+def _kitchen_before(value: Any, base_dir: Path) -> Any:
     if isinstance(value, (Kitchen, dict)):
         return value
     if not isinstance(value, str):
         raise ValueError(f"a kitchen is a name or a path (text), got {value!r}")
-    context = info.context if isinstance(info.context, dict) else {}
-    base_dir = Path(context.get("base_dir", Path.cwd()))
     return resolve_kitchen(value, base_dir)
 
 
-KitchenEntry = Annotated[Kitchen, BeforeValidator(_kitchen_before)]
+KitchenEntry = Annotated[Kitchen, BeforeValidator(lambda value, info: _kitchen_before(value, base_dir_of(info)))]
 """A kitchen written as a string in YAML (name or path), resolved against ``context["base_dir"]``."""

@@ -11,6 +11,7 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from server.study.base import STUDY_ERROR, Loc, StudyModel
+from server.study.kitchens import KitchenFileError
 from server.study.models import Study
 from server.study.yaml_source import ParsedYaml, YamlSyntaxError, parse_yaml
 
@@ -37,12 +38,15 @@ class StudyProblem:
     """What is wrong, in words."""
     line: int | None = None
     """1-based line of the field (or its nearest written parent) when known."""
+    source: str | None = None
+    """The place in another file the problem is in, e.g. a kitchen layout's ``my/kitchen.layout:3:7``."""
 
     def __str__(self) -> str:
         where = f" (line {self.line})" if self.line is not None and self.path else ""
         if not self.path:
             return f"{self.file}: {self.reason}"
-        return f"{self.file}: {self.path}: {self.reason}{where}"
+        source = f" ({self.source})" if self.source else ""
+        return f"{self.file}: {self.path}{source}: {self.reason}{where}"
 
 
 class StudyConfigError(Exception):
@@ -95,10 +99,10 @@ def _problems(exc: ValidationError, file: str, parsed: ParsedYaml) -> list[Study
     problems = []
     for error in exc.errors():
         loc: Loc = tuple(error["loc"])
-        reason = _reason(error)
+        reason, source = _reason(error), _source(error)
         if loc[-1:] == ("[key]",):
             loc, reason = loc[:-1], f"key: {reason}"
-        problems.append(StudyProblem(file, render_path(loc), reason, parsed.line_of(loc)))
+        problems.append(StudyProblem(file, render_path(loc), reason, parsed.line_of(loc), source))
     return problems
 
 
@@ -110,8 +114,19 @@ def render_path(loc: Loc) -> str:
     return out
 
 
+def _source(error: Any) -> str | None:
+    """Where in another file (a kitchen layout) the problem is, when it is there."""
+    ctx = error.get("ctx") or {}
+    if isinstance(ctx.get("error"), KitchenFileError):
+        return str(ctx["error"].where)
+    where = ctx.get("where") if error["type"] == STUDY_ERROR else None
+    return str(where) if where else None
+
+
 def _reason(error: Any) -> str:
     kind = error["type"]
+    if kind == "value_error" and isinstance(error["ctx"]["error"], KitchenFileError):
+        return str(error["ctx"]["error"].reason)
     if kind == "value_error":
         return str(error["ctx"]["error"])
     if kind == STUDY_ERROR:

@@ -15,11 +15,13 @@ from typing import Annotated, Any
 
 from pydantic import Field, ValidationInfo, field_validator
 
-from server.study.base import Loc, NotEmpty, RobotName, Slug, StudyModel, duplicate_problems, raise_problems
+from planner.registry import PLANNER_NAMES
+from server.study.base import (Loc, NotEmpty, RobotName, Slug, StudyModel, duplicate_problems, raise_problems,
+                               robot_problem)
 from server.study.conditions import Condition, Factor, cross_conditions
 from server.study.counterbalance import MAX_FULL_CONDITIONS, condition_orders
 from server.study.device import DeviceRequirements
-from server.study.kitchens import Kitchen, KitchenEntry
+from server.study.kitchens import Kitchen, KitchenEntry, base_dir_of, entry_name, resolve_kitchens
 from server.study.questionnaire import Questionnaire
 from server.study.quiz import Quiz
 from server.study.sections import Assignment, Counterbalancing, Practice, Reconnect, Recruiting, Timing, World
@@ -84,16 +86,26 @@ class Study(StudyModel):
     notes: str = ""
     """Free text for experimenters (admin pages only)."""
 
-    @field_validator("kitchens")
+    @field_validator("kitchens", mode="before")
     @classmethod
-    def _unique_kitchens(cls, kitchens: tuple[Kitchen, ...]) -> tuple[Kitchen, ...]:
-        raise_problems(duplicate_problems([k.name for k in kitchens], "kitchen"), kitchens)
-        return kitchens
+    def _resolve_kitchens(cls, kitchens: Any, info: ValidationInfo) -> Any:
+        """Every entry resolved and its grid checked, and duplicates found, all reported together."""
+        if not isinstance(kitchens, (list, tuple)):
+            return kitchens
+        _remember_levels(info, "kitchens", [entry_name(k) for k in kitchens])
+        resolved, problems = resolve_kitchens(kitchens, base_dir_of(info))
+        raise_problems([(loc, reason) for loc, reason, _ in problems], kitchens, [w for _, _, w in problems])
+        return resolved
 
-    @field_validator("robots")
+    @field_validator("robots", mode="before")
     @classmethod
-    def _unique_robots(cls, robots: tuple[str, ...]) -> tuple[str, ...]:
-        raise_problems(duplicate_problems(robots, "robot"), robots)
+    def _check_robots(cls, robots: Any, info: ValidationInfo) -> Any:
+        """Unknown robots and duplicates, reported together (one never hides the other)."""
+        if not isinstance(robots, (list, tuple)) or not all(isinstance(r, str) for r in robots):
+            return robots
+        _remember_levels(info, "robots", list(robots))
+        problems = [((i,), robot_problem(r)) for i, r in enumerate(robots) if r not in PLANNER_NAMES]
+        raise_problems(sorted(problems + duplicate_problems(robots, "robot")), robots)
         return robots
 
     @field_validator("views")
@@ -113,7 +125,7 @@ class Study(StudyModel):
     def _check_factors(cls, factors: tuple[Factor, ...], info: ValidationInfo) -> tuple[Factor, ...]:
         problems = duplicate_problems(factors, "factor")
         for factor, field in _FACTOR_LEVELS.items():
-            levels = _view_levels(info.data) if factor == "view" else info.data.get(field)
+            levels = _view_levels(info.data) if factor == "view" else _levels(info, field)
             if factor not in factors and levels is not None and len(levels) != 1:
                 problems.append(
                     ((), f"{field} has {len(levels)} entries but {factor!r} is not a factor; "
@@ -125,9 +137,11 @@ class Study(StudyModel):
     @field_validator("counterbalancing")
     @classmethod
     def _check_counterbalancing(cls, value: Counterbalancing, info: ValidationInfo) -> Counterbalancing:
-        if not all(field in info.data for field in ("kitchens", "robots", "view", "views", "factors")):
+        data = {**info.data, **{field: _levels(info, field) for field in ("kitchens", "robots")}}
+        if not all(data.get(field) is not None for field in ("kitchens", "robots", "factors")) or not all(
+                field in data for field in ("view", "views")):
             return value
-        ids = [c.id for c in _conditions(info.data)]
+        ids = [c.id for c in _conditions(data)]
         problems: list[tuple[Loc, str]] = []
         if value.scheme == "full" and len(ids) > MAX_FULL_CONDITIONS:
             problems.append(
@@ -204,8 +218,24 @@ def _view_levels(data: dict[str, Any]) -> tuple[ViewName, ...]:
     return (view or DEFAULT_VIEW,)
 
 
+def _remember_levels(info: ValidationInfo, field: str, names: list[str | None]) -> None:
+    """Keep a factor's levels as written (names) in the validation context, so the checks of later fields
+    (factors, counterbalancing) still run when an entry of this field is invalid: one bad entry must not hide
+    another problem of the file."""
+    if isinstance(info.context, dict) and all(name is not None for name in names):
+        info.context.setdefault("levels_as_written", {})[field] = tuple(names)
+
+
+def _levels(info: ValidationInfo, field: str) -> Any:
+    """The validated levels of ``field``, else (when it failed) its levels as written, else ``None``."""
+    if info.data.get(field) is not None:
+        return info.data[field]
+    context = info.context if isinstance(info.context, dict) else {}
+    return context.get("levels_as_written", {}).get(field)
+
+
 def _conditions(data: dict[str, Any]) -> tuple[Condition, ...]:
-    levels: dict[Factor, Sequence[str]] = {"robot": data["robots"], "kitchen": [k.name for k in data["kitchens"]],
-                                           "view": _view_levels(data)}
+    kitchens = [k if isinstance(k, str) else k.name for k in data["kitchens"]]
+    levels: dict[Factor, Sequence[str]] = {"robot": data["robots"], "kitchen": kitchens, "view": _view_levels(data)}
     return cross_conditions(levels, data["factors"])
 

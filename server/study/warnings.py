@@ -7,6 +7,8 @@ the study. Each names the field it is about.
 from __future__ import annotations
 
 import math
+import re
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 from server.study.counterbalance import williams_rows
@@ -16,6 +18,9 @@ from server.study.models import Study
 PLACEHOLDER_PREFIX = "REPLACE-WITH-YOUR-"
 """How the codes shipped in ``study_config/paper_study.yaml`` begin (``REPLACE-WITH-YOUR-COMPLETION-CODE``): a
 study still using one is warned about."""
+
+EVERYDAY_WORDS = frozenset({"stay", "practice"})
+"""Robot or kitchen names that are ordinary words of the instructions ("stay", "practice"): not warned about."""
 
 FULL_ORDERS_WARNING = 24
 """``full`` counterbalancing beyond this many orders gets a warning (4 conditions give 24 orders)."""
@@ -28,7 +33,7 @@ class StudyWarning:
     reason: str
     code: str
     """A stable name for tools (``no_completion_code``, ``placeholder_code``, ``no_screen_out_code``,
-    ``many_orders``, ``unknown_placeholder``)."""
+    ``many_orders``, ``unknown_placeholder``, ``names_condition``)."""
 
     def __str__(self) -> str:
         return f"{self.path}: warning: {self.reason}"
@@ -69,4 +74,41 @@ def study_warnings(study: Study) -> list[StudyWarning]:
         for token in unknown_placeholders(getattr(study, field), names):
             out.append(StudyWarning(field, f"{token} is not a placeholder and is shown as written; placeholders: "
                                            f"{', '.join('{' + n + '}' for n in names)}", "unknown_placeholder"))
+    out += condition_name_warnings(study)
     return out
+
+
+def condition_name_warnings(study: Study) -> list[StudyWarning]:
+    """Texts shown to participants that name a condition, a robot or a kitchen: participants must stay blind
+    to their conditions (``docs/protocol.md`` §1), and the platform sends these texts as written."""
+    names = {c.id for c in study.conditions} | set(study.robots) | {k.name for k in study.kitchens}
+    names |= {p.robot for p in study.practice} | {p.kitchen.name for p in study.practice}
+    pattern = re.compile(r"(?<![A-Za-z0-9_])(" + "|".join(
+        re.escape(n) for n in sorted(names - EVERYDAY_WORDS, key=len, reverse=True)) + r")(?![A-Za-z0-9_@])")
+    out = []
+    for path, text in participant_texts(study):
+        found = sorted(set(pattern.findall(text)))
+        if found:
+            out.append(StudyWarning(path, f"shown to participants but names {', '.join(map(repr, found))}: "
+                                          "participants must not learn their conditions", "names_condition"))
+    return out
+
+
+def participant_texts(study: Study) -> Iterator[tuple[str, str]]:
+    """``(field path, text)`` of everything the study file writes for participants to read."""
+    yield "consent", study.consent
+    yield "instructions", study.instructions
+    if study.quiz is not None:
+        for i, question in enumerate(study.quiz.questions):
+            where = f"quiz.questions[{i}]"
+            yield f"{where}.text", question.text
+            yield f"{where}.explanation", question.explanation
+            yield from ((f"{where}.options[{j}]", option) for j, option in enumerate(question.options))
+    for i, questionnaire in enumerate(study.questionnaires):
+        yield f"questionnaires[{i}].title", questionnaire.title
+        for j, item in enumerate(questionnaire.items):
+            where = f"questionnaires[{i}].items[{j}]"
+            yield f"{where}.text", item.text
+            yield from ((f"{where}.options[{k}]", option) for k, option in enumerate(item.options))
+            if item.scale is not None:
+                yield from ((f"{where}.scale.labels[{value}]", label) for value, label in item.scale.labels.items())

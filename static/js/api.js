@@ -44,6 +44,9 @@ export class Api {
     return this.request("POST", `/api/studies/${encodeURIComponent(studyId)}/join`,
                         { recruiting, test_run: Boolean(testRun) });
   }
+  resume(studyId, code) {
+    return this.request("POST", `/api/studies/${encodeURIComponent(studyId)}/resume`, { code });
+  }
   session() { return this.request("GET", "/api/session"); }
   device(info) { return this.request("POST", "/api/session/device", info); }
   consent(accept) { return this.request("POST", "/api/session/consent", { accept }); }

@@ -5,7 +5,11 @@
  * URL scheme (see docs/client.md):  /?study=<study id>&PROLIFIC_PID=…&STUDY_ID=…&SESSION_ID=…
  *   test_run=1   join as a test run (not counted for assignment, excluded from exports)
  *   new=1        forget the session stored in this browser for this study and join again
- * Only the parameters the study lists in `recruiting.url_parameters` are sent to the server.
+ *   #resume=…    a one-time resume link from the researcher (moving to a new device; in the fragment, so it
+ *                never reaches a server log): this browser takes over the participant's session
+ * Only the parameters the study lists in `recruiting.url_parameters` are sent to the server. A recruiting id
+ * already started in another browser is refused (409 `already_started`): only the browser holding the
+ * participant's token continues (docs/protocol.md §1).
  */
 
 import { Api } from "./api.js";
@@ -25,7 +29,16 @@ export function readLink(location = window.location) {
     raw,
     testRun: ["1", "true", "yes"].includes((params.get("test_run") || "").toLowerCase()),
     fresh: ["1", "true", "yes"].includes((params.get("new") || "").toLowerCase()),
+    resume: new URLSearchParams((location.hash || "").replace(/^#/, "")).get("resume") || "",
   };
+}
+
+function dropResumeFragment() {
+  try {
+    window.history.replaceState(null, "", window.location.pathname + window.location.search);
+  } catch {
+    /* the link stays in the address bar; it is used up anyway */
+  }
 }
 
 function storageKey(study) {
@@ -73,8 +86,15 @@ export async function enter(link) {
   for (const name of info.url_parameters) {
     if (name in link.raw) recruiting[name] = link.raw[name];
   }
+  if (link.resume) {
+    const moved = await api.resume(link.study, link.resume);
+    dropResumeFragment();
+    api.token = moved.token;
+    saveStored(link.study, { token: moved.token, recruiting, participant: moved.participant_id });
+    return { api, session: await api.session(), info };
+  }
   if (link.fresh) forgetStored(link.study);
-  const stored = loadStored(link.study);
+  let stored = loadStored(link.study);
   if (stored && sameParameters(stored.recruiting, recruiting)) {
     api.token = stored.token;
     try {
@@ -82,8 +102,12 @@ export async function enter(link) {
     } catch (exc) {
       if (exc.status !== 401) throw exc;
       forgetStored(link.study);
+      stored = null;
     }
   }
+  // A token stored for this study goes with the join: the server resumes its participant when the recruiting
+  // id is theirs, and keeps the token.
+  api.token = stored ? stored.token : "";
   const joined = await api.join(link.study, recruiting, link.testRun);
   api.token = joined.token;
   saveStored(link.study, { token: joined.token, recruiting, participant: joined.participant_id });

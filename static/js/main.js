@@ -68,7 +68,14 @@ function retryButton() {
 }
 
 function failure(exc) {
-  if (exc.status === 404) {
+  if (exc.status === 409 && exc.code === "already_started") {
+    messagePage(root, "This ID has already started in another browser",
+      ["Please continue in the browser where you started, or contact the researcher.",
+       "For your privacy and the study's, a session can only continue in the browser it started in."]);
+  } else if (exc.status === 410 && exc.code === "link_invalid") {
+    messagePage(root, "This link is no longer valid",
+      "Resume links work once and for a limited time. Please contact the researcher for a new one.");
+  } else if (exc.status === 404) {
     messagePage(root, "This study is not available", "Please check the link you were given, or contact the researcher.");
   } else if (exc.status === 401) {
     messagePage(root, "Your session was not found", "Please open the link you were given again.", retryButton());

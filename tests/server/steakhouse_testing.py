@@ -160,6 +160,17 @@ class ProcessServer:
         self._out = None
 
 
+def condition_order(services: Any, public_id: str) -> list[str]:
+    """The participant's condition order as the store has it (the participant's own answers never carry it:
+    they are blind to their conditions)."""
+    from server.store import participants
+
+    with services.store.transaction() as session:
+        row = participants.by_public_id(session, public_id)
+        found = participants.assignment_of(session, row.id) if row is not None else None
+        return list(found.condition_order) if found is not None else []
+
+
 class Player:
     """A participant: the REST calls of the flow, then websockets to play."""
 

@@ -5,6 +5,11 @@ and query parameters and JSON bodies drawn from the operation's JSON schemas, th
 types, unknown fields, arbitrary JSON, bytes that are not JSON, odd content types, hostile path segments —
 and sent with no token, a garbage token, participants' tokens in every state of the flow, or the admin
 token. The property: the server never answers 5xx, and every error it answers is JSON with a ``detail``.
+Numbers include ``NaN`` and ``±Infinity`` (as Python's and JavaScript's JSON writers may send them) and
+integers far beyond 64 bits; some bodies pass the body limit. A second test sends the known hostile inputs
+one by one: non-finite and out-of-range numbers (422 naming the field), bodies over the limit, declared or
+streamed (413, never read or echoed), out-of-range path ids (404 / 422), and long inputs (quoted at most as a
+short excerpt).
 """
 
 from __future__ import annotations
@@ -22,9 +27,10 @@ from steakhouse_testing import Player, play_to_end
 
 REQUESTS_PER_EXAMPLE = 6
 EXAMPLES = 150
+LIMIT = 64 * 1024
 
-json_leaf = st.one_of(st.none(), st.booleans(), st.integers(-2**70, 2**70),
-                      st.floats(allow_nan=False, allow_infinity=False), st.text(max_size=20))
+json_leaf = st.one_of(st.none(), st.booleans(), st.integers(-2**70, 2**70), st.integers(-10**40, 10**40),
+                      st.floats(), st.text(max_size=20))
 json_value = st.recursive(json_leaf, lambda inner: st.one_of(
     st.lists(inner, max_size=4), st.dictionaries(st.text(max_size=10), inner, max_size=4)), max_leaves=12)
 hostile_text = st.one_of(st.text(max_size=80), st.sampled_from(
@@ -53,7 +59,7 @@ def from_schema(schema: dict[str, Any], components: dict[str, Any], depth: int =
     if kind == "integer":
         return st.integers(schema.get("minimum", -(2**63)), schema.get("maximum", 2**63))
     if kind == "number":
-        return st.floats(allow_nan=False, allow_infinity=False)
+        return st.floats()
     if kind == "boolean":
         return st.booleans()
     if kind == "null":
@@ -101,13 +107,15 @@ def requests(draw: st.DrawFn, ops: list[tuple[str, str, dict[str, Any]]], compon
         headers["Authorization"] = draw(st.sampled_from(["Bearer ", "bearer ", "Basic ", ""])) + token
     content: bytes | None = None
     body_schema = (op.get("requestBody", {}).get("content", {}).get("application/json", {}).get("schema"))
-    shape = draw(st.sampled_from(["schema", "schema", "json", "bytes", "none"]))
+    shape = draw(st.sampled_from(["schema", "schema", "json", "bytes", "none", "big"]))
     if shape == "schema" and body_schema is not None:
         content = _dumps(draw(from_schema(body_schema, components)))
     elif shape == "json" or (shape == "schema" and body_schema is None):
         content = _dumps(draw(json_value))
     elif shape == "bytes":
         content = draw(st.binary(max_size=300))
+    elif shape == "big":
+        content = b'{"recruiting": {"PROLIFIC_PID": "' + b"a" * LIMIT + b'"}}'
     if content is not None:
         headers["Content-Type"] = draw(st.sampled_from(["application/json", "application/json", "text/plain",
                                                         "application/x-www-form-urlencoded", "application/xml"]))
@@ -117,7 +125,7 @@ def requests(draw: st.DrawFn, ops: list[tuple[str, str, dict[str, Any]]], compon
 def _dumps(value: Any) -> bytes:
     import json
 
-    return json.dumps(value, allow_nan=False).encode()
+    return json.dumps(value, allow_nan=True).encode()
 
 
 async def participants_in_every_state(url: str) -> list[str]:
@@ -170,6 +178,7 @@ def test_no_generated_request_gets_a_5xx(live_server, study_file):
                 seen[response.status_code] = seen.get(response.status_code, 0) + 1
                 where = f"{request['method']} {request['url']} {request['params']} → {response.status_code}"
                 assert response.status_code < 500, f"{where}: {response.text[:300]}"
+                assert len(response.content) < 16_384 or response.status_code < 300, f"{where}: a long error"
                 if response.status_code >= 400 and response.headers.get("content-type", "").startswith(
                         "application/json"):
                     assert "detail" in response.json(), where
@@ -179,3 +188,71 @@ def test_no_generated_request_gets_a_5xx(live_server, study_file):
     assert sum(seen.values()) >= EXAMPLES * REQUESTS_PER_EXAMPLE
     assert math.fsum(v for k, v in seen.items() if k < 300) > 0, seen
     assert {401, 422} <= set(seen), seen
+
+
+def _raw(client: httpx.Client, method: str, path: str, body: str | bytes, token: str | None = None,
+         **headers: str) -> httpx.Response:
+    sent = {"Content-Type": "application/json", **headers}
+    if token:
+        sent["Authorization"] = f"Bearer {token}"
+    return client.request(method, path, content=body.encode() if isinstance(body, str) else body, headers=sent)
+
+
+def _fields(response: httpx.Response) -> list[str]:
+    """The last part of each problem's location (the field the 422 names)."""
+    return [str(problem["loc"][-1]) for problem in response.json()["detail"]]
+
+
+@pytest.mark.parametrize("db_url", ["sqlite"], indirect=True)
+def test_hostile_inputs_get_a_4xx_naming_the_field_and_no_echo(live_server, study_file):
+    study = study_file(world={"orders": 1, "horizon": 20, "kb_delay": 1},
+                       quiz={"questions": [{"id": "seen", "text": "?", "options": ["a", "b"], "answer": 1,
+                                            "explanation": "a"}]})
+    server = live_server([study])
+    with httpx.Client(base_url=server.url, timeout=60) as client:
+        for number in ("NaN", "Infinity", "-Infinity", "1e400"):
+            response = _raw(client, "POST", "/api/studies/tiny/join", f'{{"recruiting": {{"PROLIFIC_PID": {number}}}}}')
+            assert response.status_code == 422 and _fields(response) == ["PROLIFIC_PID"], response.text
+            response = _raw(client, "POST", "/api/studies/tiny/join", f'{{"test_run": {number}}}')
+            assert response.status_code == 422 and _fields(response) == ["test_run"], response.text
+        token = client.post("/api/studies/tiny/join", json={}).json()["token"]
+        device = ('{"screen_width": 1920, "screen_height": 1080, "viewport_width": 1600, "viewport_height": 900, '
+                  '"pixel_ratio": %s, "fine_pointer": true, "touch": false}')
+        for number in ("NaN", "Infinity", "1e400", "-1", "1e9"):
+            response = _raw(client, "POST", "/api/session/device", device % number, token)
+            assert response.status_code == 422 and _fields(response) == ["pixel_ratio"], response.text
+        response = _raw(client, "POST", "/api/session/device", device.replace("1920", "1" + "0" * 30) % "1", token)
+        assert response.status_code == 422 and _fields(response) == ["screen_width"], response.text
+        _raw(client, "POST", "/api/session/consent", '{"accept": true}', token)
+        _raw(client, "POST", "/api/session/instructions_done", "", token)
+        for number in ("NaN", "Infinity", "1e400", str(10**30), "-" + "9" * 4000):
+            response = _raw(client, "POST", "/api/session/quiz", f'{{"answers": {{"seen": {number}}}}}', token)
+            assert response.status_code == 422 and _fields(response) == ["seen"], response.text
+            assert len(response.content) < 1000, "the number is quoted as a short excerpt at most"
+        huge_int = _raw(client, "POST", "/api/session/quiz", '{"answers": {"seen": ' + "9" * 5000 + "}}", token)
+        assert 400 <= huge_int.status_code < 500 and "9" * 100 not in huge_int.text
+        # Bodies over the limit: 413 from the declared length, before anything is read; streamed: at the limit.
+        big = b'{"recruiting": {"PROLIFIC_PID": "' + b"x" * (10 << 20) + b'"}}'
+        for sent in (big, iter([big[i:i + 65536] for i in range(0, len(big), 65536)])):
+            response = client.post("/api/studies/tiny/join", content=sent, headers={"Content-Type": "application/json"})
+            assert response.status_code == 413 and response.json()["detail"]["code"] == "too_large"
+            assert len(response.content) < 200
+        # Just under the limit: the 422 quotes a short excerpt, never the input.
+        long = _raw(client, "POST", "/api/studies/tiny/join", '{"recruiting": {"PROLIFIC_PID": "' + "y" * 60000 + '"}}')
+        assert long.status_code == 422 and "y" * 100 not in long.text and len(long.content) < 1000
+        unknown = _raw(client, "POST", "/api/studies/tiny/join", '{"' + "k" * 60000 + '": 1}')
+        assert unknown.status_code == 422 and "k" * 100 not in unknown.text
+        # Out-of-range path ids: 404 or 422 naming the id, never 5xx.
+        admin = {"Authorization": "Bearer admin-secret"}
+        for trial_id in ("1" + "0" * 22, str(2**63), "-1", "0", "1e3", "NaN"):
+            for path in ("/api/admin/trials/{}", "/api/admin/trials/{}/frames", "/api/admin/trials/{}/events",
+                         "/api/admin/live/{}"):
+                response = client.get(path.format(trial_id), headers=admin)
+                assert response.status_code == 422 and _fields(response) == ["trial_id"], (path, response.text)
+        assert client.get("/api/admin/trials/" + str(2**63 - 1), headers=admin).status_code == 404
+        huge_start = client.get("/api/admin/trials/1/frames", params={"start": "9" * 30}, headers=admin)
+        assert huge_start.status_code == 422 and _fields(huge_start) == ["start"]
+        for path in ("/api/admin/participants/{}/answers", "/api/admin/participants/{}/resume_link"):
+            method = "POST" if path.endswith("link") else "GET"
+            response = client.request(method, path.format("p" * 5000), headers=admin)
+            assert response.status_code == 422 and "p" * 100 not in response.text

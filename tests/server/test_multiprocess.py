@@ -84,7 +84,8 @@ def test_two_processes_share_assignment_and_admin_views(db_url, study_file, tmp_
     finally:
         for server in servers:
             server.kill()
-    orders = Counter(j["order_index"] for j in joined)
+    order_of = {p["participant_id"]: p["order_index"] for p in participants[0][1]}
+    orders = Counter(order_of[j["participant_id"]] for j in joined)
     assert len(orders) == 6 and sum(orders.values()) == JOINS
     assert max(orders.values()) - min(orders.values()) <= 1, orders
     by_process = Counter(j["process"] for j in joined)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 
-from steakhouse_testing import Player, play_to_end
+from steakhouse_testing import Player, condition_order, play_to_end
 
 from server.store import trials
 from server.store.tables import TrialRow
@@ -174,11 +174,11 @@ def test_a_participant_goes_from_practice_through_every_condition_to_the_end(liv
     sizes = [(layout.width, layout.height) for layout in (load_layout(k) for k in ("none_3", "practice", "practice"))]
     assert [(h["width"], h["height"]) for h in hellos] == sizes
     assert session["state"] == "done" and completion["code"] == "C0DE"
+    order = condition_order(server.services, joined["participant_id"])
     with server.services.store.transaction() as s:
         rows = sorted(s.query(TrialRow).all(), key=lambda r: r.id)
         assert [(r.kind, r.condition_id, r.status, r.end_reason) for r in rows] == [
-            ("practice", "stay@none_3", "finished", "horizon")] + [
-            ("main", c, "finished", "horizon") for c in joined["condition_order"]]
+            ("practice", "stay@none_3", "finished", "horizon")] + [("main", c, "finished", "horizon") for c in order]
         assert len({r.seed for r in rows}) == 3 and {r.config_hash for r in rows} == {
             server.services.catalog.get("tiny").study.config_hash()}
 

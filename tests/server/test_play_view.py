@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import asyncio
 
-from steakhouse_testing import Player, play_every_trial
+from steakhouse_testing import Player, condition_order, play_every_trial
 
 from analysis.export import read_dataset
 from server.store.tables import TrialRow
@@ -28,7 +28,7 @@ def test_each_trial_is_played_recorded_and_exported_in_its_view(live_server, stu
         return joined, [trial["view"] for trial, _ in played], [hello for _, hello in played]
 
     joined, told, hellos = asyncio.run(scenario())
-    order = joined["condition_order"]
+    order = condition_order(server.services, joined["participant_id"])
     assert sorted(order) == ["stay@practice@first_person", "stay@practice@top_down"]
     expected = ["first_person", *(cid.rsplit("@", 1)[1] for cid in order)]
     assert told == expected

@@ -100,14 +100,12 @@ def test_a_participant_token_reaches_only_its_own_session_and_trial(live_server,
         forged_rest = await alice.http.get("/api/session", headers={"Authorization": f"Bearer {forged}"})
         async with connect(server.url.replace("http", "ws") + f"/ws/play?token={forged}") as ws:
             forged_ws = json.loads(await asyncio.wait_for(ws.recv(), 10))
-        # Rejoining with Bob's recruiting id issues a new token; the old one stops working everywhere.
-        old = bob.token
+        # Joining with Bob's recruiting id from another browser does not get his session; his token still works.
         again = Player(server.url)
-        rejoined = await again.join(PROLIFIC_PID="bob")
+        rejoined = await again.http.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "bob"}})
         await again.close()
-        stale = await bob.http.get("/api/session", headers={"Authorization": f"Bearer {old}"})
-        async with connect(server.url.replace("http", "ws") + f"/ws/play?token={old}") as ws:
-            stale_ws = json.loads(await asyncio.wait_for(ws.recv(), 10))
+        stale = await bob.http.get("/api/session", headers=bob.headers)
+        stale_ws = await sock_b.until(lambda m: m["type"] in ("state", "error"))
         for sock in (sock_a, sock_b):
             await sock.close()
         await alice.close()
@@ -126,8 +124,9 @@ def test_a_participant_token_reaches_only_its_own_session_and_trial(live_server,
     assert r["completion"].status_code == 409
     assert r["forged_rest"].status_code == 401 and r["forged_rest"].json() == UNAUTHORIZED
     assert r["forged_ws"]["code"] == "unauthorized"
-    assert r["rejoined"]["rejoined"] is True and r["rejoined"]["participant_id"] == r["joined_b"]["participant_id"]
-    assert r["stale"].status_code == 401 and r["stale_ws"]["code"] == "unauthorized"
+    assert r["rejoined"].status_code == 409 and r["rejoined"].json()["detail"]["code"] == "already_started"
+    assert "token" not in r["rejoined"].text and r["joined_b"]["participant_id"] not in r["rejoined"].text
+    assert r["stale"].status_code == 200 and r["stale_ws"]["type"] == "state"
 
     def stored() -> tuple[dict[int, int], dict[int, int]]:
         with server.services.store.transaction() as session:
@@ -224,7 +223,10 @@ def test_no_participant_message_leaves_the_field_of_view_under_load(live_server,
                                  capture=True))
     time.sleep(0.5)  # the writer flushes every 0.1 s: every tick a message showed is stored
     assert not stats.errors, stats.errors[:5]
-    assert len(stats.transcripts) >= 6 and stats.messages > 600
+    # How many ticks 6 s hold depends on the machine's load; what the property needs is that every participant
+    # played, and (below) that the robot was both shown and hidden.
+    assert len(stats.transcripts) >= 6
+    assert all(any(m["type"] == "state" for m in t.messages) for t in stats.transcripts)
     shown = hidden = 0
     for transcript in stats.transcripts:
         s, h = check_masked(server, transcript.trial_id, transcript.messages)

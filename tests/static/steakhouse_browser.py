@@ -20,6 +20,9 @@ from study_config import STUDY_DIR
 TIMEOUT_MS = 60_000
 """How long a browser test waits for a state before failing: generous, for a machine kept busy by other work
 (a passing wait returns as soon as the state is reached)."""
+FIRST_FRAME_TIMEOUT_MS = 90_000
+"""How long a page may take to draw its first 3D frame: software WebGL compiles its shaders on the CPU, and on a
+busy machine the page's thread was seen blocked for ~20 s doing it. A bound on a wait for state, not a delay."""
 SCREENSHOTS = Path(os.environ.get("STEAKHOUSE_SCREENSHOTS") or
                    Path(__file__).resolve().parents[2] / "test-output" / "screenshots")
 """Where screenshots go: ``test-output/screenshots/`` (git-ignored), or ``$STEAKHOUSE_SCREENSHOTS``."""

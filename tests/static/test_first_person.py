@@ -13,7 +13,8 @@ from typing import Any
 
 import pytest
 from conftest import ADMIN_TOKEN
-from steakhouse_browser import TIMEOUT_MS, kitchen, screenshot, start_first_round, wait_drawn
+from steakhouse_browser import (FIRST_FRAME_TIMEOUT_MS, TIMEOUT_MS, kitchen, screenshot, start_first_round,
+                                wait_drawn)
 
 from planner.fov import view
 from planner.geometry import Direction
@@ -70,7 +71,7 @@ def test_a_first_person_round_renders_moves_and_masks(study_server, new_gl_page)
     page, _ = new_gl_page()
     states = record_states(page)
     start_first_round(page, study_server.link(STUDY))
-    drawn = wait_drawn(page, "d.view === 'first_person' && +d.frames > 0")
+    drawn = wait_drawn(page, "d.view === 'first_person' && +d.frames > 0", timeout=FIRST_FRAME_TIMEOUT_MS)
     assert drawn.pos == (3, 2) and drawn.facing is Direction.SOUTH
     gl = page.eval_on_selector("#kitchen", "el => [el.getContext('webgl2') !== null, el.getContext('2d') === null,"
                                            " el.dataset.lens, el.width, el.height]")
@@ -114,7 +115,8 @@ def test_a_first_person_round_renders_moves_and_masks(study_server, new_gl_page)
     assert admin.is_hidden("#participant-camera")
     admin.click("#camera-toggle")
     admin.wait_for_function("() => { const c = document.querySelector('#camera-canvas');"
-                            " return c && +c.dataset.frames > 0 && c.dataset.you === '4,1,north'; }", timeout=TIMEOUT_MS)
+                            " return c && +c.dataset.frames > 0 && c.dataset.you === '4,1,north'; }",
+                            timeout=FIRST_FRAME_TIMEOUT_MS)
     camera_cells = admin.eval_on_selector("#camera-canvas", "el => el.dataset.drawn").split(";")
     fov = study_server.live(trial_id)["fov_cells"]
     assert camera_cells == [f"{x},{y}" for x, y in fov], "the camera shows what the participant's screen showed"
@@ -124,7 +126,8 @@ def test_a_first_person_round_renders_moves_and_masks(study_server, new_gl_page)
     admin.goto(f"{study_server.url}/admin/#/replay/{trial_id}")
     admin.click("#camera-toggle")
     admin.wait_for_function("() => { const c = document.querySelector('#camera-canvas');"
-                            " return c && +c.dataset.frames > 0 && c.dataset.tick === '0'; }", timeout=TIMEOUT_MS)
+                            " return c && +c.dataset.frames > 0 && c.dataset.tick === '0'; }",
+                            timeout=FIRST_FRAME_TIMEOUT_MS)
     first = study_server.get(f"/api/admin/trials/{trial_id}/frames", start=0, limit=1)["frames"][0]
     camera_cells = admin.eval_on_selector("#camera-canvas", "el => el.dataset.drawn").split(";")
     assert (first["human"]["x"], first["human"]["y"]) == (3, 2)
@@ -138,7 +141,7 @@ def test_enter_vr_opens_a_session_with_an_emulated_headset(study_server, new_gl_
       window.__xrDevice = new IWER.XRDevice(IWER.metaQuest3);
       window.__xrDevice.installRuntime({ forceInstall: true });""")
     start_first_round(page, study_server.link(STUDY))
-    drawn = wait_drawn(page, "d.view === 'first_person' && +d.frames > 0")
+    drawn = wait_drawn(page, "d.view === 'first_person' && +d.frames > 0", timeout=FIRST_FRAME_TIMEOUT_MS)
     page.wait_for_selector("#enter-vr", timeout=TIMEOUT_MS)
     page.click("#enter-vr")
     page.wait_for_selector("#enter-vr[data-presenting='true']", timeout=TIMEOUT_MS)

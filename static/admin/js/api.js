@@ -81,6 +81,10 @@ export class AdminApi {
   setFlags(participantId, flags) {
     return this.request("POST", `/api/admin/participants/${enc(participantId)}/flags`, flags);
   }
+  /** A one-time, expiring link that moves the participant to a new device: `{path, url, expires_at}`. */
+  resumeLink(participantId) {
+    return this.request("POST", `/api/admin/participants/${enc(participantId)}/resume_link`);
+  }
   answers(participantId) { return this.request("GET", `/api/admin/participants/${enc(participantId)}/answers`); }
   live() { return this.request("GET", "/api/admin/live"); }
   liveTrial(trialId) { return this.request("GET", `/api/admin/live/${enc(trialId)}`); }

@@ -65,6 +65,7 @@ export function participantsPage(root, { api, params, go }) {
   const frame = pageFrame("Participants", { id: "participants", controls: [select, refresh] });
   show(root, frame.node);
   const open = new Map();
+  const resumeLinks = new Map();
   let editing = null;
 
   api.studies().then((studies) => {
@@ -114,8 +115,25 @@ export function participantsPage(root, { api, params, go }) {
       h("button", { type: "button", class: "small secondary", dataset: { action: "answers" }, "aria-expanded": String(open.has(id)),
                     onclick: () => toggleAnswers(p) }, open.has(id) ? "Hide answers" : "Answers"),
       h("a", { href: `#/trials?participant=${encodeURIComponent(id)}` }, "Trials"),
+      h("button", { type: "button", class: "small secondary", dataset: { action: "resume-link" },
+                    title: "A link that moves this participant to a new device (works once; their old browser stops)",
+                    onclick: () => makeResumeLink(p, problem) }, "Resume link"),
     ];
-    return h("div", { class: "row-actions" }, editing === id ? excludeForm(p, problem) : buttons, problem);
+    const link = resumeLinks.get(id);
+    const shown = link ? h("div", { class: "resume-link" },
+      h("input", { type: "text", readonly: "", value: link.url, id: `resume-link-${id}`, "aria-label": "Resume link",
+                   onfocus: (event) => event.target.select() }),
+      h("span", { class: "muted" }, ` works once, until ${when(link.expires_at)}`)) : null;
+    return h("div", { class: "row-actions" }, editing === id ? excludeForm(p, problem) : buttons, shown, problem);
+  }
+
+  async function makeResumeLink(p, problem) {
+    try {
+      resumeLinks.set(p.participant_id, await api.resumeLink(p.participant_id));
+      render(last);
+    } catch (exc) {
+      problem.textContent = errorText(exc);
+    }
   }
 
   async function toggleAnswers(p) {

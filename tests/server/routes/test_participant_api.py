@@ -47,13 +47,14 @@ def join(client, **recruiting) -> tuple[dict, dict]:
     return body, {"Authorization": f"Bearer {body['token']}"}
 
 
-def test_join_answers_a_token_and_the_condition_order(client):
+def test_join_answers_a_token_but_never_the_condition_order(client):
     body, headers = join(client, PROLIFIC_PID="p1", STUDY_ID="s")
-    assert body["condition_order"] == ["stay@practice"] and body["order_index"] == 0
+    assert set(body) == {"token", "participant_id", "study_id", "state", "rejoined"}
     assert body["state"] == "consent" and body["rejoined"] is False and len(body["token"]) > 30
     session = client.get("/api/session", headers=headers).json()
     assert session["state"] == "consent" and "Consent" in session["consent"]
-    assert client.get("/api/studies/tiny").json() == {"id": "tiny", "title": "Test study",
+    assert not {"condition_order", "order_index"} & set(session)
+    assert client.get("/api/studies/tiny").json() == {"id": "tiny",
                                                       "url_parameters": ["PROLIFIC_PID", "STUDY_ID", "SESSION_ID"]}
 
 

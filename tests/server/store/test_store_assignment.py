@@ -6,11 +6,13 @@ import threading
 from collections import Counter
 from datetime import timedelta
 
+import pytest
 from sqlalchemy import update
 
+from server.errors import ApiError
 from server.flow import service
 from server.store import assignment, participants
-from server.store.tables import ParticipantRow
+from server.store.tables import EventRow, ParticipantRow
 from server.store.types import utcnow
 
 
@@ -49,16 +51,22 @@ def test_counted_participants_exclude_test_runs_excluded_screened_out_and_stale(
     assert counts(store, loaded) == [1, 1], "a test run is never counted"
 
 
-def test_a_recruiting_id_joins_once_and_gets_a_fresh_token(store, loaded):
+def test_a_recruiting_id_joins_once_and_only_its_token_comes_back(store, loaded):
     first = service.join(store, loaded, {"PROLIFIC_PID": "abc", "SESSION_ID": "s1", "OTHER": "dropped"}, False)
-    again = service.join(store, loaded, {"PROLIFIC_PID": "abc", "SESSION_ID": "s2"}, False)
-    assert again.rejoined and again.participant.id == first.participant.id
+    again = service.join(store, loaded, {"PROLIFIC_PID": "abc", "SESSION_ID": "s2"}, False, first.token)
+    assert again.rejoined and again.participant.id == first.participant.id and again.token == first.token
     assert again.assignment.order_index == first.assignment.order_index
     assert first.participant.recruiting == {"PROLIFIC_PID": "abc", "SESSION_ID": "s1"}
+    other = service.join(store, loaded, {"PROLIFIC_PID": "other"}, False)
+    for token in (None, "forged", other.token):
+        with pytest.raises(ApiError) as refused:
+            service.join(store, loaded, {"PROLIFIC_PID": "abc"}, False, token)
+        assert (refused.value.status, refused.value.code) == (409, "already_started")
     with store.transaction() as session:
-        assert participants.by_token(session, first.token) is None
-        assert participants.by_token(session, again.token).id == first.participant.id
-    assert counts(store, loaded) == [1, 0]
+        assert participants.by_token(session, first.token).id == first.participant.id
+        refusals = session.query(EventRow).filter(EventRow.kind == "join_refused").all()
+        assert [e.participant_id for e in refusals] == [first.participant.id] * 3
+    assert counts(store, loaded) == [1, 1]
 
 
 def test_concurrent_joins_in_threads_stay_balanced(store, loaded):

@@ -61,3 +61,64 @@ def test_validate_needs_a_file(capsys: pytest.CaptureFixture[str]) -> None:
         main(["study", "validate"])
     assert info.value.code == 2
     assert "FILE" in capsys.readouterr().err
+
+
+def test_kitchen_files_are_checked_as_serve_would_and_every_problem_is_listed(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    (tmp_path / "my").mkdir()
+    grid = (STUDY_CONFIG / "layouts" / "none_3.layout").read_text(encoding="utf-8").splitlines()
+    grid[2] = grid[2][:6] + "Q" + grid[2][7:]
+    (tmp_path / "my" / "kitchen.layout").write_text("\n".join(grid) + "\n", encoding="utf-8")
+    (tmp_path / "my" / "open.layout").write_text("X X\nX2X\nX1X\n", encoding="utf-8")
+    study = tmp_path / "study.yaml"
+    study.write_text(
+        "id: kitchens\ntitle: Kitchens\n"
+        "kitchens: [none_3, my/kitchen.layout, my/missing.layout, none_3, my/open.layout]\n"
+        "robots: [fov_aware, terminator, fov_aware]\nfactors: [robot, kitchen]\n"
+        "practice:\n  - {kitchen: my/kitchen.layout, robot: stay}\n",
+        encoding="utf-8",
+    )
+    assert main(["study", "validate", str(study)]) == 1
+    out, err = capsys.readouterr()
+    assert out == ""
+    lines = err.splitlines()
+    problems = [line.split(" (line ")[0] for line in lines[:-1]]
+    assert problems == [
+        f"{study}: kitchens[1] (my/kitchen.layout:3:7): unknown character 'Q'; allowed: X, space, O, M, D, P, B, W, "
+        "S, 1, 2",
+        f"{study}: kitchens[2]: no kitchen file at {(tmp_path / 'my' / 'missing.layout').resolve()}",
+        f"{study}: kitchens[3]: duplicate kitchen 'none_3' (already at [0])",
+        f"{study}: kitchens[4] (my/open.layout:1:2): the kitchen is not closed: floor on the border",
+        f"{study}: robots[1]: unknown robot 'terminator'; choose one of: fov_aware, baseline, no_rollout, stay",
+        f"{study}: robots[2]: duplicate robot 'fov_aware' (already at [0])",
+        f"{study}: practice[0].kitchen (my/kitchen.layout:3:7): unknown character 'Q'; allowed: X, space, O, M, D, P, "
+        "B, W, S, 1, 2",
+    ], "\n".join(lines)
+    assert lines[-1] == "1 of 1 study file(s) invalid"
+
+
+def test_a_bad_kitchen_or_robot_does_not_hide_the_checks_of_factors_and_counterbalancing(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    study = tmp_path / "study.yaml"
+    study.write_text(
+        "id: masks\ntitle: Masks\nkitchens: [none_3, missing.layout]\nrobots: [fov_aware, terminator]\n"
+        "factors: [robot, kitchen]\ncounterbalancing: {scheme: fixed, order: [nope@none_3]}\n",
+        encoding="utf-8",
+    )
+    assert main(["study", "validate", str(study)]) == 1
+    problems = [line.split(" (line ")[0].split(": ", 1)[1] for line in capsys.readouterr()[1].splitlines()[:-1]]
+    assert problems == [
+        f"kitchens[1]: no kitchen file at {(tmp_path / 'missing.layout').resolve()}",
+        "robots[1]: unknown robot 'terminator'; choose one of: fov_aware, baseline, no_rollout, stay",
+        "counterbalancing.order[0]: unknown condition 'nope@none_3'; conditions are: fov_aware@none_3, "
+        "fov_aware@missing, terminator@none_3, terminator@missing",
+        "counterbalancing.order: missing conditions: fov_aware@none_3, fov_aware@missing, terminator@none_3, "
+        "terminator@missing",
+    ], problems
+    study.write_text(study.read_text(encoding="utf-8").replace("factors: [robot, kitchen]", "factors: [robot]"),
+                     encoding="utf-8")
+    assert main(["study", "validate", str(study)]) == 1
+    assert ("factors: kitchens has 2 entries but 'kitchen' is not a factor; add it to factors or keep one entry"
+            in capsys.readouterr()[1])

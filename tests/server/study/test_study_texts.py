@@ -99,3 +99,24 @@ def test_validate_prints_warnings_on_stderr_and_still_passes(tmp_path, capsys):
     assert err == (f"{path}: recruiting.completion_code: warning: recruiting ids are captured (PROLIFIC_PID, "
                    "STUDY_ID, SESSION_ID) but no completion code or redirect is set: participants who finish cannot "
                    "prove it to the recruiting platform\n")
+
+
+def test_texts_shown_to_participants_that_name_a_condition_are_warned_about(tmp_path):
+    text = ("robots: [fov_aware, baseline]\nrecruiting: {completion_code: C}\n"
+            "instructions: 'Today you meet the fov_aware robot in none_3; stay near the grill.'\n"
+            "questionnaires: [{id: q, title: 'About baseline', items: [{id: a, text: 'Was fov_aware@none_3 fun?', "
+            "scale: {min: 1, max: 5, labels: {1: 'like the baseline one'}}}]}]\n")
+    (tmp_path / "s").mkdir()
+    path = tmp_path / "s" / "study.yaml"
+    path.write_text(BASE.replace("robots: [stay]\n", "") + text, encoding="utf-8")
+    found = {w.path: w.reason for w in study_warnings(load_study(path)) if w.code == "names_condition"}
+    assert found == {
+        "instructions": "shown to participants but names 'fov_aware', 'none_3': participants must not learn their "
+                        "conditions",
+        "questionnaires[0].title": "shown to participants but names 'baseline': participants must not learn their "
+                                   "conditions",
+        "questionnaires[0].items[0].text": "shown to participants but names 'fov_aware@none_3': participants must "
+                                           "not learn their conditions",
+        "questionnaires[0].items[0].scale.labels[1]": "shown to participants but names 'baseline': participants "
+                                                      "must not learn their conditions",
+    }
