@@ -189,9 +189,6 @@ def test_kill_one_process_mid_trial_its_participants_resume_on_the_other(db_url,
         assert [n.rsplit(":", 1)[1] for n in names] == [process_of(victim), process_of(survivor)]
     for record in stayed:
         assert [n.rsplit(":", 1)[1] for n in stored["processes"][record.trial_id]] == [process_of(survivor)]
-    for r in moved:
-        print("DEBUG", [round(t - killed_at, 3) for t, _ in r.closes], [(round(t - killed_at, 3), e) for t, e in r.failed],
-              [round(t - killed_at, 3) for t, _ in r.hellos])
     print(f"\nfailover: {len(moved)} of {players} participants moved; time from kill -9 to the resumed hello: "
           f"median {statistics.median(resume_s):.2f} s, max {max(resume_s):.2f} s; ticks played again "
           f"(seen before the kill − resumed tick): {sorted(lost)} at {rate} Hz, flush every {FLUSH_S} s")
