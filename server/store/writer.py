@@ -119,5 +119,4 @@ def _touch_trials(session: Session, ticks: Sequence[Row]) -> None:
         seen = latest.get(row["trial_id"])
         if seen is None or row["tick"] > seen["tick"]:
             latest[row["trial_id"]] = row
-    for trial_id, row in latest.items():
-        trials.touch(session, trial_id, row["recorded_at"], ticks=row["tick"])
+    trials.touch_ticks(session, [(trial_id, row["recorded_at"], row["tick"]) for trial_id, row in latest.items()])
