@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from datetime import datetime
-from typing import Any
+from typing import Any, cast
 
-from sqlalchemy import bindparam, case, func, select, update
+from sqlalchemy import Table, bindparam, case, func, select, update
 from sqlalchemy.orm import Session
 
 from server.store.tables import EventRow, TickRow, TrialRow
@@ -74,7 +74,7 @@ def touch_ticks(session: Session, latest: Sequence[tuple[int, datetime, int]]) -
     executed for all of them (the writer calls it for every live trial at every flush)."""
     if not latest:
         return
-    table = TrialRow.__table__
+    table = cast(Table, TrialRow.__table__)
     when = bindparam("when_", type_=table.c.last_active_at.type)
     ticks = bindparam("ticks_", type_=table.c.ticks.type)
     statement = update(table).where(table.c.id == bindparam("trial_id_")).values(
