@@ -1,8 +1,8 @@
 /**
  * Live trials of every server process (another's from its last stored tick): a list (polled every 2 s) and
- * the live view of one trial (polled every 300 ms): the whole kitchen with the participant's field of view as a translucent mask, the kitchen
- * as the participant's modelled knowledge has it, the knowledge gap, the robot's belief over the
- * participant's subtask and its decision, and tick lateness.
+ * the live view of one trial (polled every 300 ms): the whole kitchen with the participant's field of view
+ * as a translucent mask, the kitchen as the participant's modelled knowledge has it, the knowledge gap, the
+ * robot's belief over the participant's subtask and its decision, and tick lateness.
  */
 
 import { h, show } from "../../js/dom.js";
