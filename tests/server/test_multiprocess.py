@@ -65,7 +65,11 @@ def test_two_processes_share_assignment_and_admin_views(db_url, study_file, tmp_
 
         async def live_pair() -> tuple[dict[str, Any], ...]:
             started = [await start_trial(url, f"live-{i}") for i, url in enumerate(urls)]
-            views = tuple(admin(url, "/api/admin/live") for url in urls)
+            # The other process's trial is listed from the store: its ticks and connection event arrive there
+            # within a flush interval.
+            views = tuple(eventually(lambda u=url: admin(u, "/api/admin/live"),
+                                     lambda r: len(r[1]) == 2 and all(t["connected"] and t["tick"] >= 3 for t in r[1]))
+                          for url in urls)
             # Process i watches the trial process 1 - i runs, then the owner's own view of it, then again.
             others = []
             for i, url in enumerate(urls):
