@@ -15,6 +15,10 @@ phase:
 - ``store``: committing the rows every 0.5 s of trial time (a temporary SQLite file, as ``BatchWriter``),
   per tick.
 
+With ``--robot NAME`` (e.g. ``fov_aware``) the robot is that planner, run in this process, and two more
+phases show the robot worker's share: ``robot`` (the decision, ``server.robots.choice.run_decision``) and
+``reply`` (pickling its answer and unpickling it in the server).
+
 Prints CPU µs per tick for each phase (``time.thread_time``: CPU time of this thread, so other work on a
 busy machine does not count; median over 5 repetitions of the whole run) and what the total means
 at 5 Hz: the share of one core that ``--trials`` trials cost the server process apart from websockets and
@@ -39,18 +43,19 @@ from typing import Any
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[1]))
 
-from planner.geometry import ACTIONS  # noqa: E402
+from planner.geometry import ACTIONS, Action  # noqa: E402
 from planner.layout import parse_layout  # noqa: E402
 from planner.rules import Rules  # noqa: E402
 from planner.subtasks import Subtask  # noqa: E402
 from server.game import snapshot  # noqa: E402
 from server.game.engine import TrialEngine  # noqa: E402
 from server.game.records import tick_row  # noqa: E402
-from server.robots.choice import RobotChoice  # noqa: E402
+from server.robots.choice import RobotChoice, run_decision  # noqa: E402
 from server.store.engine import Store  # noqa: E402
 from server.store.writer import write_batch  # noqa: E402
 
 PHASES = ("step", "record", "mask", "json", "to_worker", "store")
+ROBOT_PHASES = ("robot", "reply")
 KITCHENS = ("none_3", "mid_2")
 
 
@@ -63,11 +68,19 @@ def make_trials(count: int, seed: int) -> list[TrialEngine]:
 
 
 def run(trials: int, ticks: int, seed: int, store: Store, timer: Callable[[], float] = time.thread_time,
-        ) -> dict[str, float]:
+        robot: str | None = None) -> dict[str, float]:
     """Seconds spent per phase over ``ticks`` ticks of ``trials`` trials (``trial_id`` 1..trials)."""
     rng = random.Random(seed)
     engines = make_trials(trials, seed)
-    spent = dict.fromkeys(PHASES, 0.0)
+    policies = []
+    if robot is not None:
+        from planner.robots import make_robot
+
+        for engine in engines:
+            policy = make_robot(robot, engine.layout, engine.rules)
+            policy.reset(engine.world)
+            policies.append(policy)
+    spent = dict.fromkeys(PHASES + (ROBOT_PHASES if robot else ()), 0.0)
     rows: list[dict[str, Any]] = []
     flush_every = 3  # 0.5 s at 5 Hz
     for tick in range(ticks):
@@ -78,8 +91,19 @@ def run(trials: int, ticks: int, seed: int, store: Store, timer: Callable[[], fl
             payload = pickle.dumps(("decide", tick, trial_id, engine.world, engine.last_events, seed, tick, 0.0),
                                    protocol=pickle.HIGHEST_PROTOCOL)
             pickle.loads(payload)
+            spent["to_worker"] += timer() - t0
+            action = rng.choice(ACTIONS)
+            if policies:
+                r0 = timer()
+                value, info = run_decision(policies[trial_id - 1], engine.world, engine.last_events, seed, tick,
+                                           time.monotonic() + 60.0)
+                r1 = timer()
+                pickle.loads(pickle.dumps((tick, "ok", (value, info)), protocol=pickle.HIGHEST_PROTOCOL))
+                spent["robot"] += r1 - r0
+                spent["reply"] += timer() - r1
+                action = Action(value)
             t1 = timer()
-            outcome = engine.advance(rng.choice(ACTIONS))
+            outcome = engine.advance(action)
             t2 = timer()
             rows.append(tick_row(trial_id, outcome, RobotChoice(ACTIONS[0], decision_ms=3.0, info=None), 1.0,
                                  engine.controller.to_dict()))
@@ -89,7 +113,6 @@ def run(trials: int, ticks: int, seed: int, store: Store, timer: Callable[[], fl
             message.seq = tick + 1
             text = message.model_dump_json()
             t5 = timer()
-            spent["to_worker"] += t1 - t0
             spent["step"] += t2 - t1
             spent["record"] += t3 - t2
             spent["mask"] += t4 - t3
@@ -130,6 +153,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--repeat", type=int, default=5)
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--profile", type=int, default=0, metavar="N", help="print the N top functions instead")
+    p.add_argument("--robot", default=None, help="run this robot planner in-process (e.g. fov_aware)")
     args = p.parse_args(argv)
     results: list[dict[str, float]] = []
     with tempfile.TemporaryDirectory(prefix="steakhouse-share-") as tmp:
@@ -140,7 +164,7 @@ def main(argv: list[str] | None = None) -> int:
             profiler = cProfile.Profile() if args.profile else None
             if profiler is not None:
                 profiler.enable()
-            spent = run(args.trials, args.ticks, args.seed, store)
+            spent = run(args.trials, args.ticks, args.seed, store, robot=args.robot)
             if profiler is not None:
                 profiler.disable()
                 pstats.Stats(profiler).sort_stats("cumulative").print_stats(args.profile)
@@ -148,14 +172,20 @@ def main(argv: list[str] | None = None) -> int:
             store.dispose()
             results.append(spent)
     steps = args.trials * args.ticks
-    per_tick = {phase: statistics.median(r[phase] for r in results) / steps * 1e6 for phase in PHASES}
-    total = sum(per_tick.values())
-    print(f"# {args.trials} trials × {args.ticks} ticks, median of {args.repeat} runs; µs per trial tick")
+    per_tick = {phase: statistics.median(r[phase] for r in results) / steps * 1e6 for phase in results[0]}
+    total = sum(per_tick[phase] for phase in PHASES)
+    print(f"# {args.trials} trials × {args.ticks} ticks, median of {args.repeat} runs; CPU µs per trial tick")
     for phase in PHASES:
         print(f"{phase:<10}{per_tick[phase]:>9.1f}")
     print(f"{'total':<10}{total:>9.1f}")
     print(f"at 5 Hz: {args.trials} trials cost {total * args.trials * 5 / 1e4:.1f} % of one core "
           "(server process, before websockets and asyncio)")
+    if args.robot:
+        robot = per_tick["robot"] + per_tick["reply"]
+        for phase in ROBOT_PHASES:
+            print(f"{phase:<10}{per_tick[phase]:>9.1f}")
+        print(f"at 5 Hz: the {args.robot} robots of {args.trials} trials cost {robot * args.trials * 5 / 1e4:.1f} % "
+              "of one core (robot workers, with their pickling; the server pickles its side in to_worker)")
     return 0
 
 
