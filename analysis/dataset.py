@@ -4,7 +4,8 @@ Which trial enters the statistics: for each participant and main trial, the late
 ``finished`` (delivered or horizon). Practice trials, abandoned or running attempts and the trials of
 participants flagged as test runs or excluded are exported in ``ticks.csv`` / ``trials.csv`` with their flags,
 never in ``cells.csv``. Flagged participants, and participants missing a cell, are listed in
-``excluded.csv`` with the reason (nothing is dropped silently).
+``excluded.csv`` with the reason (nothing is dropped silently). Main trials the server marked invalid are
+left out of ``cells.csv`` unless ``include_invalid`` (their reason is in ``trials.csv`` and ``excluded.csv``).
 """
 
 from __future__ import annotations
@@ -52,8 +53,9 @@ class Dataset:
         return self.tables["excluded.csv"]
 
 
-def build_dataset(conn: Connection, study_id: str) -> Dataset:
-    """Read the study from the store and build every table of the export."""
+def build_dataset(conn: Connection, study_id: str, include_invalid: bool = False) -> Dataset:
+    """Read the study from the store and build every table of the export (invalid main trials in
+    ``cells.csv`` only with ``include_invalid``)."""
     data = read_study(conn, study_id)
     design = Design.from_config(data.config)
     events = read_events(conn, study_id)
@@ -66,7 +68,7 @@ def build_dataset(conn: Connection, study_id: str) -> Dataset:
         measures[trial.id] = trial_measures(trial, ticks, events.get(trial.id, []))
         stored[trial.id] = len(ticks)
         tick_rows += _tick_rows(people[trial.participant_id].public_id, trial, ticks)
-    used = used_trials(data.trials, people)
+    used = used_trials(data.trials, people, include_invalid)
     answers = _answers_by_participant(data.answers)
     cell_rows = [row for p in data.participants if p.id in used
                  for row in _cell_rows(p, used[p.id], measures, answers.get(p.id, {}), design)]
@@ -184,7 +186,11 @@ def _trial_row(p: StoredParticipant, trial: StoredTrial, measures: dict[str, Any
         "started_at": iso_time(trial.started_at), "ended_at": iso_time(trial.ended_at),
         "config_hash": trial.config_hash,
         "in_cells": int(in_cells), "participant_test_run": int(p.test_run), "participant_excluded": int(p.excluded),
-        **measures, "ticks_stored": stored,
+        **measures, "ticks_stored": stored, "decisions": trial.decisions,
+        "missed_decisions": trial.missed_decisions,
+        "missed_decisions_pct": (round(100.0 * trial.missed_decisions / trial.decisions, 2)
+                                 if trial.decisions and trial.missed_decisions is not None else None),
+        "invalid_reason": trial.invalid_reason,
     }
 
 
@@ -200,11 +206,12 @@ def _wide_rows(participants: Sequence[StoredParticipant], cell_rows: list[dict[s
         if not cells:
             continue
         row: dict[str, Any] = {"participant": p.public_id, "order_index": p.order_index}
-        present = {(c["robot"], c["kitchen"]) for c in cells}
+        present = {design.cell_of(c["robot"], c["kitchen"], c["view"]) for c in cells}
         row["complete"] = int(all(cond in present for cond in design.conditions))
         for cell in cells:
+            levels = design.cell_of(cell["robot"], cell["kitchen"], cell["view"])
             for name in values:
-                row[wide_column(name, cell["robot"], cell["kitchen"])] = cell[name]
+                row[wide_column(name, *levels)] = cell[name]
         row.update(answers.get(p.id, {}).get(None, {}))
         out.append(row)
     return out

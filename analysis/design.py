@@ -1,13 +1,15 @@
 """The study design as the export needs it, read from the resolved configuration stored with the study.
 
-Conditions are the robot × kitchen cross in study order (the first factor varies slowest, as in
-``server.study.conditions``; condition ids are ``robot@kitchen``). Questionnaire items are split into those
+Conditions are the robot × kitchen (× view, when the view is a factor) cross in study order (the first factor
+varies slowest, as in ``server.study.conditions``; condition ids are ``robot@kitchen`` or ``robot@kitchen@view``).
+A condition's cell is the tuple of its levels: ``(robot, kitchen)``, or ``(robot, kitchen, view)``. Questionnaire items are split into those
 answered after each main trial (one value per condition: measures of the cell) and those answered once at
 the end of the study (one value per participant).
 """
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 from typing import Any
 
@@ -18,8 +20,8 @@ from analysis.dictionary import Column, item_column, item_columns
 class Design:
     robots: tuple[str, ...]
     kitchens: tuple[str, ...]
-    conditions: tuple[tuple[str, str], ...]
-    """(robot, kitchen) pairs in study order."""
+    conditions: tuple[tuple[str, ...], ...]
+    """Cells in study order: (robot, kitchen), or (robot, kitchen, view) when the view is a factor."""
     trial_items: tuple[tuple[str, str, str], ...]
     """(questionnaire, item, text) answered after each main trial."""
     end_items: tuple[tuple[str, str, str], ...]
@@ -29,11 +31,15 @@ class Design:
     def from_config(cls, config: dict[str, Any]) -> Design:
         robots = tuple(str(r) for r in config.get("robots", ()))
         kitchens = tuple(str(k["name"] if isinstance(k, dict) else k) for k in config.get("kitchens", ()))
-        factors = tuple(config.get("factors", ("robot", "kitchen")))
-        if factors[:1] == ("kitchen",):
-            conditions = tuple((r, k) for k in kitchens for r in robots)
-        else:
-            conditions = tuple((r, k) for r in robots for k in kitchens)
+        factors = tuple(str(f) for f in config.get("factors", ("robot", "kitchen")))
+        levels = {"robot": robots, "kitchen": kitchens}
+        if "view" in factors:
+            levels["view"] = tuple(str(v) for v in config.get("views") or [config.get("view", "top_down")])
+        order = [f for f in factors if f in levels] + [f for f in levels if f not in factors]
+        fields = tuple(levels)  # robot, kitchen[, view]: the cell's field order
+        conditions = tuple(
+            tuple(dict(zip(order, combination))[f] for f in fields)
+            for combination in itertools.product(*(levels[f] for f in order)))
         trial_items: list[tuple[str, str, str]] = []
         end_items: list[tuple[str, str, str]] = []
         for questionnaire in config.get("questionnaires", ()):
@@ -49,6 +55,14 @@ class Design:
         a view factor), or ``None`` when the id is malformed."""
         robot, sep, rest = condition_id.partition("@")
         return (robot, rest.partition("@")[0]) if sep else None
+
+    @property
+    def view_is_factor(self) -> bool:
+        return bool(self.conditions) and len(self.conditions[0]) == 3
+
+    def cell_of(self, robot: str, kitchen: str, view: str) -> tuple[str, ...]:
+        """The cell (a member of ``conditions``) a trial with these levels belongs to."""
+        return (robot, kitchen, view) if self.view_is_factor else (robot, kitchen)
 
     @property
     def trial_item_columns(self) -> list[Column]:

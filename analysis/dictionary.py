@@ -125,12 +125,19 @@ TRIAL_COLUMNS: tuple[Column, ...] = (
     Column("ended_at", TIME, "end of the attempt"),
     Column("config_hash", TEXT, "hash of the resolved study configuration the trial ran under"),
     Column("in_cells", FLAG, "1 when this attempt is the one in cells.csv (main trial, finished, latest "
-                             "attempt, participant neither test run nor excluded)"),
+                             "attempt, not invalid unless exported with --include-invalid, participant neither "
+                             "test run nor excluded)"),
     Column("participant_test_run", FLAG, "1 when the participant is flagged as a test run"),
     Column("participant_excluded", FLAG, "1 when the participant is excluded by the experimenter"),
     *(MEASURES[m] for m in TRIAL_MEASURES),
     Column("ticks_stored", INT, "tick rows stored for the attempt (equals ticks unless data were lost)"),
     *(MEASURES[m] for m in CONDUCT_COUNTS),
+    Column("decisions", INT, "robot decisions the server asked for (one per world step; empty: not recorded)"),
+    Column("missed_decisions", INT, "of these, decisions that missed their deadline (the robot stood still)"),
+    Column("missed_decisions_pct", NUM, "% of the decisions that missed their deadline (missed_decisions / decisions × 100)"),
+    Column("invalid_reason", TEXT, "why the server marked the trial invalid (more missed decisions than the "
+                                   "study's validity.max_missed_decisions_pct); empty when valid. Invalid trials "
+                                   "are not in cells.csv unless exported with --include-invalid"),
 )
 
 CELL_COLUMNS: tuple[Column, ...] = (
@@ -183,14 +190,16 @@ PARTICIPANT_COLUMNS: tuple[Column, ...] = (
 
 EXCLUDED_COLUMNS: tuple[Column, ...] = (
     _PARTICIPANT,
-    Column("category", TEXT, "test_run, excluded (by the experimenter) or incomplete (missing cells)"),
+    Column("category", TEXT, "test_run, excluded (by the experimenter), invalid (a main trial the server marked "
+                             "invalid, left out of cells.csv) or incomplete (missing cells)"),
     Column("reason", TEXT, "why the participant is not in the complete-case analysis"),
     Column("in_cells", FLAG, "1 when the participant's available cells are still in cells.csv"),
 )
 
 
-def wide_column(measure: str, robot: str, kitchen: str) -> str:
-    return f"{measure}{WIDE_SEPARATOR}{robot}{WIDE_SEPARATOR}{kitchen}"
+def wide_column(measure: str, *levels: str) -> str:
+    """``measure__robot__kitchen`` (``…__view`` appended when the view is a factor)."""
+    return WIDE_SEPARATOR.join((measure, *levels))
 
 
 def item_columns(items: Iterable[tuple[str, str, str]]) -> list[Column]:
@@ -198,7 +207,7 @@ def item_columns(items: Iterable[tuple[str, str, str]]) -> list[Column]:
     return [Column(item_column(q, i), INT, f"answer to {q}.{i}: “{text}”") for q, i, text in items]
 
 
-def wide_columns(measures: Sequence[Column], conditions: Sequence[tuple[str, str]],
+def wide_columns(measures: Sequence[Column], conditions: Sequence[tuple[str, ...]],
                  end_items: Sequence[Column]) -> list[Column]:
     columns = [
         _PARTICIPANT,
@@ -206,9 +215,10 @@ def wide_columns(measures: Sequence[Column], conditions: Sequence[tuple[str, str
         Column("complete", FLAG, "1 when the participant has a cell in every condition"),
     ]
     for measure in measures:
-        for robot, kitchen in conditions:
-            columns.append(Column(wide_column(measure.name, robot, kitchen), measure.type,
-                                  f"{measure.description} — robot {robot}, kitchen {kitchen}"))
+        for cell in conditions:
+            named = ", ".join(f"{factor} {level}" for factor, level in zip(("robot", "kitchen", "view"), cell))
+            columns.append(Column(wide_column(measure.name, *cell), measure.type,
+                                  f"{measure.description} — {named}"))
     return columns + list(end_items)
 
 

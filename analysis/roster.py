@@ -4,7 +4,9 @@ excluded.csv rows.
 A cell uses, for each participant and main trial, the latest attempt that ``finished`` (all orders delivered
 or the horizon reached). Participants flagged as test runs or excluded by the experimenter have no cells; a
 participant without a cell in some condition is listed as ``incomplete`` with the reason for each missing
-cell (not played yet, abandoned, still running, not in their order).
+cell (not played yet, abandoned, still running, not in their order). A main trial the server marked invalid
+(robot decisions past their deadline, ``server.game.health``) has no cell unless the export includes invalid
+trials; its participant is listed as ``invalid`` with the trial's reason.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ from analysis.cells import cell_label
 from analysis.design import Design
 from analysis.store_reader import StoredParticipant, StoredTrial, iso_time
 
+INVALID_MARK = "invalid"
 Used = dict[int, dict[int, StoredTrial]]
 """Participant id → main trial index → the attempt in cells.csv."""
 
@@ -25,11 +28,15 @@ def flagged(p: StoredParticipant) -> bool:
     return p.test_run or p.excluded
 
 
-def used_trials(trials: Sequence[StoredTrial], people: dict[int, StoredParticipant]) -> Used:
-    """The attempt each cell uses (flagged participants have none)."""
+def used_trials(trials: Sequence[StoredTrial], people: dict[int, StoredParticipant],
+                include_invalid: bool = False) -> Used:
+    """The attempt each cell uses (flagged participants have none; invalid trials only with
+    ``include_invalid``)."""
     used: Used = {}
     for trial in trials:
         if trial.kind != "main" or trial.status != "finished" or flagged(people[trial.participant_id]):
+            continue
+        if trial.invalid and not include_invalid:
             continue
         mine = used.setdefault(trial.participant_id, {})
         if trial.index not in mine or trial.attempt > mine[trial.index].attempt:
@@ -65,18 +72,20 @@ def excluded_row(p: StoredParticipant, trials: Sequence[StoredTrial], used: Used
     missing = _missing_cells(p, trials, used, design)
     if not missing:
         return None
-    return {"participant": p.public_id, "category": "incomplete", "reason": "; ".join(missing),
+    invalid = any(f" {INVALID_MARK}: " in m for m in missing)
+    return {"participant": p.public_id, "category": "invalid" if invalid else "incomplete",
+            "reason": "; ".join(missing),
             "in_cells": int(bool(used.get(p.id)))}
 
 
 def _missing_cells(p: StoredParticipant, trials: Sequence[StoredTrial], used: Used, design: Design) -> list[str]:
     """``missing cell robot=…, kitchen=… (why)`` for each condition without a cell."""
-    present = {(t.robot, t.kitchen) for t in used.get(p.id, {}).values()}
+    present = {design.cell_of(t.robot, t.kitchen, t.view) for t in used.get(p.id, {}).values()}
     out = []
-    for robot, kitchen in design.conditions:
-        if (robot, kitchen) not in present:
-            label = cell_label(("robot", "kitchen"), (robot, kitchen))
-            out.append(f"missing cell {label} ({_why_missing(p, trials, f'{robot}@{kitchen}')})")
+    for cell in design.conditions:
+        if cell not in present:
+            label = cell_label(("robot", "kitchen", "view")[:len(cell)], cell)
+            out.append(f"missing cell {label} ({_why_missing(p, trials, '@'.join(cell))})")
     return out
 
 
@@ -88,6 +97,8 @@ def _why_missing(p: StoredParticipant, trials: Sequence[StoredTrial], condition:
     if not attempts:
         return f"main trial {index + 1} not played; participant {p.status}"
     last = max(attempts, key=lambda t: t.attempt)
+    if last.status == "finished" and last.invalid:
+        return f"main trial {index + 1} {INVALID_MARK}: {last.invalid_reason}"
     if last.status == "running":
         return f"main trial {index + 1} still running"
     return f"main trial {index + 1} {last.status} ({last.end_reason or 'no reason'})"

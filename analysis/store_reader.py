@@ -74,6 +74,15 @@ class StoredTrial:
     delivered: int
     score: int
     initial_state: dict[str, Any]
+    decisions: int | None = None
+    """Robot decisions the trial made; ``None`` for trials stored before the server counted them."""
+    missed_decisions: int | None = None
+    invalid_reason: str | None = None
+    """Why the server marked the trial invalid (robot decisions past their deadline); ``None`` when valid."""
+
+    @property
+    def invalid(self) -> bool:
+        return bool(self.invalid_reason)
 
 
 @dataclass(frozen=True, slots=True)
@@ -228,7 +237,7 @@ def _trials(conn: Connection, study_id: str) -> tuple[StoredTrial, ...]:
     rows = conn.execute(
         select(t.id, t.participant_id, t.kind, t.index, t.attempt, t.condition_id.label("condition"), t.kitchen,
                t.robot, t.view, t.seed, t.config_hash, t.status, t.end_reason, t.started_at, t.ended_at, t.ticks,
-               t.delivered, t.score, t.initial_state)
+               t.delivered, t.score, t.initial_state, t.decisions, t.missed_decisions, t.invalid_reason)
         .where(t.study_id == study_id)
         .order_by(t.id))
     return tuple(StoredTrial(**row._asdict()) for row in rows)

@@ -48,9 +48,11 @@ class StudyAnalysis:
 def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, measures: Sequence[str] | None = None,
                   include: Collection[str] = (), seed: int = 0, plots: bool = True) -> StudyAnalysis:
     """Export ``study_id`` into ``<out_dir>/data`` and analyse ``measures`` (default: :data:`DEFAULT_MEASURES`
-    and the study's scales) into ``out_dir``; ``include`` names exclusion rules whose rows are kept."""
+    and the study's scales) into ``out_dir``; ``include`` names exclusion rules whose rows are kept (with
+    ``invalid`` the export itself keeps invalid trials in ``cells.csv``: ``export_study(include_invalid=True)``;
+    without it they are left out there and listed in ``excluded.csv``)."""
     out = Path(out_dir)
-    export = export_study(source, study_id, out / DATA_DIR)
+    export = export_study(source, study_id, out / DATA_DIR, include_invalid=INVALID.name in include)
     cells = pd.read_csv(out / DATA_DIR / "cells.csv", dtype={SUBJECT: str})
     trials = pd.read_csv(out / DATA_DIR / "trials.csv", dtype={SUBJECT: str})
     if cells.empty:

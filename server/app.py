@@ -20,7 +20,9 @@ from fastapi import FastAPI
 
 from server import errors, security
 from server.catalog import Catalog, load_catalog
+from server.game.admission import Admission
 from server.game.live import GameDeps
+from server.game.lobby import Lobby
 from server.game.registry import GameRegistry
 from server.robots import make_pool
 from server.routes import admin, admin_exports, health, participant, play
@@ -54,11 +56,13 @@ def create_app(settings: Settings | None = None, *, robot_factory: Callable[...,
         await pool.start()
         deps = GameDeps(store, writer, pool, settings.decision_deadline_fraction, settings.max_message_bytes,
                         on_end=lambda game: None)
-        registry = GameRegistry(catalog, deps, settings.sweep_interval_s)
+        lobby = Lobby(catalog, store, writer, Admission(settings.live_trial_capacity),
+                      settings.admission_max_wait_s)
+        registry = GameRegistry(catalog, deps, settings.sweep_interval_s, lobby)
         await registry.start()
         app.state.services = Services(settings, catalog, store, writer, pool, registry, admin_token)
-        log.info("serving %s on %s with %s robot worker(s)", ", ".join(catalog.studies), store.dialect,
-                 settings.workers or "in-process")
+        log.info("serving %s on %s with %s robot worker(s), at most %d live trial(s)", ", ".join(catalog.studies),
+                 store.dialect, settings.workers or "in-process", settings.live_trial_capacity)
         try:
             yield
         finally:

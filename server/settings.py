@@ -14,6 +14,7 @@ from typing import Literal
 from pydantic import AliasChoices, Field, SecretStr, field_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
+from server.game.admission import DEFAULT_MAX_WAIT_S, default_capacity
 from study_config import STUDY_DIR
 
 DEFAULT_DATABASE_URL = "sqlite:///./data/steakhouse.sqlite3"
@@ -57,6 +58,11 @@ class Settings(BaseSettings):
     """How often trials left running by a vanished participant or a crashed server are checked."""
     join_rate_per_minute: int = Field(default=60, ge=0)
     """Joins allowed per client address and minute (bursts up to the same number; 0 = no limit)."""
+    max_live_trials: int | None = Field(default=None, ge=1, le=10_000)
+    """Live trials this process runs at once; more participants wait for a slot (default: derived from the
+    CPU count, ``server.game.admission.default_capacity``; docs/operations.md, "Admission control")."""
+    admission_max_wait_s: float = Field(default=DEFAULT_MAX_WAIT_S, gt=0, le=86_400)
+    """A participant who waited this long for a slot is screened out (reason ``server_full``)."""
     log_level: Literal["debug", "info", "warning", "error"] = "info"
 
     @field_validator("database_url")
@@ -89,6 +95,11 @@ class Settings(BaseSettings):
     def workers(self) -> int:
         """The number of robot worker processes actually used."""
         return self.robot_workers if self.robot_workers is not None else (os.cpu_count() or 1)
+
+    @property
+    def live_trial_capacity(self) -> int:
+        """The number of live trials this process admits at once."""
+        return self.max_live_trials if self.max_live_trials is not None else default_capacity()
 
     def static_root(self) -> Path | None:
         """The client folder to serve, or ``None`` when there is no client with files."""

@@ -11,7 +11,9 @@ trials, questionnaires, completion), then stops the clients, stops the server an
 Reports the server's own tick lateness p50 / p99, missed ticks and robot deadline misses (from the stored
 ticks and events), the heartbeat round trip p99 (clients), server and robot-worker CPU and memory, rows
 written and errors (client errors, ``error`` events in the store, ERROR lines in the server log). With
-``--json`` it prints one JSON object. Bounded: the clients stop at ``--seconds``, everything else has
+``--json`` it prints one JSON object. With ``--max-live-trials C`` the server admits at most C live trials
+(``server.game.admission``; the others wait for a slot) and the report adds the waits and the trials the
+server marked invalid (``admission_metrics``). Bounded: the clients stop at ``--seconds``, everything else has
 timeouts.
 """
 
@@ -35,6 +37,7 @@ sys.path[:0] = [str(HERE), str(HERE.parents[1])]
 
 from bench_server import DEFAULT_POSTGRES, BenchServer, ResourceSampler, temporary_database  # noqa: E402
 from simulated_participant import run_load  # noqa: E402
+from admission_metrics import admission_metrics  # noqa: E402
 from store_metrics import percentile, store_metrics  # noqa: E402
 
 STUDY_ID = "load"
@@ -68,7 +71,11 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
                             horizon=args.horizon, orders=args.orders)
         before = loadavg()
         with temporary_database(args.database, folder, args.postgres_url) as url:
-            server = BenchServer(study=study, database_url=url, workers=args.workers, log=folder / "server.log")
+            env = {"STEAKHOUSE_ADMISSION_MAX_WAIT_S": str(args.max_wait)}
+            if args.max_live_trials is not None:
+                env["STEAKHOUSE_MAX_LIVE_TRIALS"] = str(args.max_live_trials)
+            server = BenchServer(study=study, database_url=url, workers=args.workers, log=folder / "server.log",
+                                 env=env)
             with server:
                 started = time.monotonic()
                 measure_from = datetime.now(UTC) + timedelta(seconds=args.warmup)
@@ -78,6 +85,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
                 wall = time.monotonic() - started
             log_errors = server.log_errors()
             measured = store_metrics(url, 1000.0 / args.tick_rate, measure_from)
+            admitted = admission_metrics(url)
         after = loadavg()
     client_errors = stats.errors
     errors = len(client_errors) + measured["server_error_events"] + len(log_errors)
@@ -107,6 +115,8 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         "error_samples": (client_errors[:5] + [str(p) for p in measured["server_error_samples"][:5]]
                           + log_errors[:5]),
         "loadavg_before": before, "loadavg_after": after,
+        "max_live_trials": args.max_live_trials, "waiting_messages": stats.waiting_messages,
+        "turned_away": stats.turned_away, **admitted,
     }
 
 
@@ -128,6 +138,10 @@ def parser() -> argparse.ArgumentParser:
                    help="server on which the run's PostgreSQL database is created and dropped")
     p.add_argument("--ramp", type=float, default=2.0, help="seconds over which the seats start")
     p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--max-live-trials", type=int, default=None,
+                   help="the server's live-trial cap (default: the server's own, derived from the CPU count)")
+    p.add_argument("--max-wait", type=float, default=600.0,
+                   help="seconds a participant may wait for a slot before being screened out")
     p.add_argument("--keep", metavar="DIR", help="keep the study, SQLite store and server log in DIR")
     return p
 
@@ -137,7 +151,9 @@ def print_report(result: dict[str, Any]) -> None:
             "max_tick_lateness_ms", "missed_ticks", "deadline_misses", "warmup_deadline_misses", "p99_decision_ms", "p99_rtt_ms",
             "server_cpu_percent", "workers_cpu_percent", "clients_cpu_percent", "other_cpu_percent",
             "server_rss_mb_peak", "workers_rss_mb_peak",
-            "rows_written", "joined", "trials_ended", "errors", "loadavg_before", "loadavg_after"]
+            "rows_written", "joined", "trials_ended", "errors", "loadavg_before", "loadavg_after",
+            "max_live_trials", "waits", "wait_outcomes", "p50_wait_s", "p95_wait_s", "max_wait_s", "turned_away",
+            "trials_invalid", "max_missed_decisions_pct"]
     for key in keys:
         print(f"{key:<24}{result[key]}")
     for sample in result["error_samples"]:

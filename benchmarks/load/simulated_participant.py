@@ -46,6 +46,10 @@ class ClientStats:
     pong_rtt_ms: list[float] = field(default_factory=list)
     ack_rtt_ms: list[float] = field(default_factory=list)
     errors: list[str] = field(default_factory=list)
+    waiting_messages: int = 0
+    """``waiting`` messages: the server was full and the participant waited for a slot."""
+    turned_away: int = 0
+    """``server_full``: waited past the server's limit and screened out."""
     transcripts: list[Transcript] = field(default_factory=list)
 
 
@@ -160,8 +164,13 @@ class Game:
         elif kind == "pong":
             self.sent_at.pop(message["ack"], None)
             self.stats.pong_rtt_ms.append(time.monotonic() * 1000 - message["client_time"])
+        elif kind == "waiting":
+            self.stats.waiting_messages += 1
         elif kind == "error" and message["code"] == "not_playing":
             self.stats.late_messages += 1
+        elif kind == "error" and message["code"] == "server_full":
+            self.stats.turned_away += 1
+            return True
         elif kind == "error":
             self.stats.errors.append(f"{self.p.name}: error {message['code']}: {message['message'][:120]}")
         elif kind == "trial_end":

@@ -32,6 +32,7 @@ from sqlalchemy.orm import Session
 from server.admin.live import scene_view
 from server.catalog import Catalog
 from server.game import snapshot
+from server.game.health import RobotHealth
 from server.game.restore import trial_engine, trial_meta
 from server.store import trials
 from server.store.tables import EventRow, ParticipantRow, TickRow, TrialRow
@@ -61,7 +62,10 @@ def _extras(session: Session, row: TrialRow, catalog: Catalog) -> dict[str, Any]
                                     .order_by(TickRow.tick.desc()).limit(LATENESS_TICKS)))[::-1]
     loaded = catalog.get(row.study_id)
     timing = loaded.study.timing if loaded is not None else None
-    return {"connected": link is not None and link.kind == "connect", "deadline_misses": misses,
+    decisions, missed = trials.decision_counts(session, row.id)
+    health = (RobotHealth(loaded.study.validity.max_missed_decisions_pct, loaded.rules.horizon, decisions, missed,
+                          row.invalid_reason).to_dict() if loaded is not None else None)
+    return {"connected": link is not None and link.kind == "connect", "deadline_misses": misses, "health": health,
             "lateness_ms": snapshot.percentiles(lateness), "mode": timing.mode if timing else None,
             "tick_rate_hz": timing.tick_rate_hz if timing else None,
             "process": start.payload.get("process") if start is not None else None, "source": "store"}
@@ -74,8 +78,8 @@ def stored_summary(session: Session, row: TrialRow, catalog: Catalog) -> dict[st
         return None
     extras = _extras(session, row, catalog)
     return {**trial_meta(loaded, participant, row).to_dict(), "recruit_id": participant.recruit_id,
-            "tick": row.ticks, **{k: extras[k] for k in ("connected", "deadline_misses", "lateness_ms", "process",
-                                                         "source")}}
+            "tick": row.ticks, **{k: extras[k] for k in ("connected", "deadline_misses", "health", "lateness_ms",
+                                                         "process", "source")}}
 
 
 def stored_live_view(session: Session, catalog: Catalog, trial_id: int) -> dict[str, Any] | None:

@@ -1,6 +1,10 @@
 """``steakhouse export``: a stored study's tidy CSV files and data dictionary (see :mod:`analysis.export`).
 
-    steakhouse export --study paper_study --out exports/paper_study [--database-url URL]
+    steakhouse export --study paper_study --out exports/paper_study [--database-url URL] [--include-invalid]
+
+Main trials the server marked invalid (robot decisions past their deadline; docs/operations.md, "Robot
+health") are listed in ``excluded.csv`` with the reason and left out of ``cells.csv``; ``--include-invalid``
+keeps them there.
 
 Without ``--database-url`` the store is the one ``steakhouse serve`` uses by default (``DATABASE_URL`` /
 ``STEAKHOUSE_DATABASE_URL``, else ``sqlite:///./data/steakhouse.sqlite3``). The store is only read.
@@ -29,6 +33,9 @@ def register(subparsers: Any) -> None:
     p.add_argument("--out", metavar="DIR", type=Path, required=True, help="output folder (created if needed)")
     p.add_argument("--database-url", metavar="URL",
                    help="SQLAlchemy URL of the store (default: the one steakhouse serve uses)")
+    p.add_argument("--include-invalid", action="store_true",
+                   help="keep main trials the server marked invalid (too many missed robot decisions) in "
+                        "cells.csv; by default they are only listed in excluded.csv")
     p.set_defaults(handler=handle, subparser=p)
 
 
@@ -52,7 +59,7 @@ def handle(args: argparse.Namespace) -> int:
 
     url = database_url(args.database_url)
     try:
-        result = export_study(url, args.study, args.out)
+        result = export_study(url, args.study, args.out, include_invalid=args.include_invalid)
     except AnalysisInputError as exc:
         raise UsageError(str(exc)) from exc
     tables = result.dataset.tables

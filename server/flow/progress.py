@@ -13,6 +13,7 @@ finish_instructions instructions                 the next step
 pass_quiz          quiz                          the next step
 fail_quiz          quiz                          screened_out (the last allowed attempt failed)
 end_trial          practice / trial (same trial) the next step (finished or abandoned)
+server_full        practice / trial              screened_out (waited too long for a free slot)
 submit_questionnaire questionnaire (same id)     the next step
 =================  ============================  ====================================
 
@@ -46,14 +47,15 @@ class Move(str, Enum):
     FAIL_QUIZ = "fail_quiz"
     END_TRIAL = "end_trial"
     SUBMIT_QUESTIONNAIRE = "submit_questionnaire"
+    SERVER_FULL = "server_full"
 
 
 _LEGAL: dict[Phase, frozenset[Move]] = {
     Phase.CONSENT: frozenset({Move.ACCEPT_CONSENT, Move.DECLINE_CONSENT}),
     Phase.INSTRUCTIONS: frozenset({Move.FINISH_INSTRUCTIONS}),
     Phase.QUIZ: frozenset({Move.PASS_QUIZ, Move.FAIL_QUIZ}),
-    Phase.PRACTICE: frozenset({Move.END_TRIAL}),
-    Phase.TRIAL: frozenset({Move.END_TRIAL}),
+    Phase.PRACTICE: frozenset({Move.END_TRIAL, Move.SERVER_FULL}),
+    Phase.TRIAL: frozenset({Move.END_TRIAL, Move.SERVER_FULL}),
     Phase.QUESTIONNAIRE: frozenset({Move.SUBMIT_QUESTIONNAIRE}),
     Phase.DONE: frozenset(),
     Phase.SCREENED_OUT: frozenset(),
@@ -100,10 +102,12 @@ class Progress:
 
     @property
     def screen_out_reason(self) -> str | None:
-        """Why a screened-out participant ended: ``declined_consent`` or ``failed_quiz``."""
+        """Why a screened-out participant ended: ``declined_consent``, ``failed_quiz`` or ``server_full`` (no
+        slot for their round in time, ``server.game.admission``)."""
         if not self.screened_out:
             return None
-        return {"consent": "declined_consent", "quiz": "failed_quiz"}.get(self.current.kind, "screened_out")
+        return {"consent": "declined_consent", "quiz": "failed_quiz", "trial": "server_full"}.get(
+            self.current.kind, "screened_out")
 
     @property
     def status(self) -> str:
@@ -123,6 +127,6 @@ class Progress:
             raise IllegalTransition(phase, move, f"the current trial is {step.trial_kind} {step.index}")
         if move is Move.SUBMIT_QUESTIONNAIRE and questionnaire != step.questionnaire:
             raise IllegalTransition(phase, move, f"the current questionnaire is {step.questionnaire!r}")
-        if move in (Move.DECLINE_CONSENT, Move.FAIL_QUIZ):
+        if move in (Move.DECLINE_CONSENT, Move.FAIL_QUIZ, Move.SERVER_FULL):
             return Progress(self.plan, self.step, screened_out=True)
         return Progress(self.plan, self.step + 1)

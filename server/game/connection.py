@@ -1,7 +1,9 @@
 """One participant's websocket, as an explicit state machine with an outbound queue.
 
-States: ``connecting`` → ``open`` (after ``hello``) → ``closing`` → ``closed``; any state may go to
-``closed`` when the socket breaks. Other transitions raise. Messages are numbered (``seq`` 1, 2, …) when
+States: ``connecting`` → ``open`` (after ``hello``) → ``closing`` → ``closed``, with ``waiting`` between
+``connecting`` and ``open`` while the participant waits for a free slot (``server.game.admission``: only
+``waiting`` messages are sent then); any state may go to ``closed`` when the socket breaks. Other
+transitions raise. Messages are numbered (``seq`` 1, 2, …) when
 queued and sent by one sender task, so a slow client never delays the game loop; a client that falls
 ``MAX_QUEUE`` messages behind is disconnected (it can reconnect and resume).
 
@@ -28,13 +30,15 @@ CLOSE_TIMEOUT_S = 2.0
 
 class ConnState(str, Enum):
     CONNECTING = "connecting"
+    WAITING = "waiting"
     OPEN = "open"
     CLOSING = "closing"
     CLOSED = "closed"
 
 
 _NEXT: dict[ConnState, frozenset[ConnState]] = {
-    ConnState.CONNECTING: frozenset({ConnState.OPEN, ConnState.CLOSING, ConnState.CLOSED}),
+    ConnState.CONNECTING: frozenset({ConnState.WAITING, ConnState.OPEN, ConnState.CLOSING, ConnState.CLOSED}),
+    ConnState.WAITING: frozenset({ConnState.OPEN, ConnState.CLOSING, ConnState.CLOSED}),
     ConnState.OPEN: frozenset({ConnState.CLOSING, ConnState.CLOSED}),
     ConnState.CLOSING: frozenset({ConnState.CLOSED}),
     ConnState.CLOSED: frozenset(),
@@ -66,9 +70,16 @@ class Connection:
         if target is ConnState.CLOSED:
             self.closed.set()
 
-    def open(self) -> None:
-        self._move(ConnState.OPEN)
+    def wait(self) -> None:
+        """Start sending (``waiting`` messages) before the game opens the connection."""
+        self._move(ConnState.WAITING)
         self._sender = asyncio.create_task(self._send_loop(), name="ws-sender")
+
+    def open(self) -> None:
+        was_waiting = self.state is ConnState.WAITING
+        self._move(ConnState.OPEN)
+        if not was_waiting:
+            self._sender = asyncio.create_task(self._send_loop(), name="ws-sender")
 
     @property
     def is_open(self) -> bool:
@@ -76,7 +87,7 @@ class Connection:
 
     def send(self, message: ServerMessage) -> bool:
         """Number and queue ``message``; ``False`` if the connection is not open (nothing is sent)."""
-        if self.state is not ConnState.OPEN:
+        if self.state not in (ConnState.OPEN, ConnState.WAITING):
             return False
         self.sent += 1
         message.seq = self.sent

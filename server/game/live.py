@@ -11,6 +11,9 @@ The clock:
 - The robot's decision for a state is requested as soon as the state exists, with a deadline of
   ``decision_deadline_fraction`` of the period; a missed deadline makes the robot stay that tick and is
   logged as a ``deadline_miss`` event.
+- Robot health (``server.game.health``): every decision counts toward the trial's share of missed
+  deadlines; past the study's ``validity.max_missed_decisions_pct`` the trial is marked invalid as it
+  happens (a warning in the server log, a ``trial_invalid`` event, the trial row's ``invalid_reason``).
 
 Client messages are applied between ticks (the loop and the handlers share one event loop thread), so an
 interrupt acts at the next tick. Every accepted message is answered by ``ack`` (``pong`` for heartbeats),
@@ -34,12 +37,14 @@ from server.game import snapshot
 from server.game.blocked import Blocked
 from server.game.connection import Connection
 from server.game.engine import TickOutcome, TrialEngine
+from server.game.health import RobotHealth
 from server.game.meta import TrialMeta
 from server.game.records import tick_row
 from server.protocol.client import Blur, Focus, Heartbeat, Idle, InterruptMessage, SelectSubtask
 from server.protocol.inbound import Inbound, ProtocolError
 from server.protocol.server import Ack, Error, Pong, State, TrialEnd
 from server.robots import RobotChoice, RobotPool
+from server.store import trials
 from server.store.engine import Store
 from server.store.types import utcnow
 from server.store.writer import BatchWriter
@@ -60,8 +65,10 @@ class GameDeps:
 
 class LiveGame:
     def __init__(self, meta: TrialMeta, loaded: LoadedStudy, engine: TrialEngine, deps: GameDeps,
-                 resumed: bool) -> None:
+                 resumed: bool, health: RobotHealth | None = None) -> None:
         self.meta, self.loaded, self.engine, self.deps, self.resumed = meta, loaded, engine, deps, resumed
+        self.health = health or RobotHealth(loaded.study.validity.max_missed_decisions_pct, engine.rules.horizon)
+        self._health_writes: set[asyncio.Task[None]] = set()
         timing = loaded.study.timing
         self.mode, self.rate, self.period = timing.mode, timing.tick_rate_hz, 1.0 / timing.tick_rate_hz
         self.connection: Connection | None = None
@@ -223,6 +230,7 @@ class LiveGame:
         choice = await self._decision
         self._decision = None
         self.last_choice = choice
+        self._judge(choice.missed)
         if choice.missed:
             self.misses += 1
             self.event("deadline_miss", {"budget_ms": round(self.deps.deadline_fraction * self.period * 1000, 1),
@@ -230,6 +238,24 @@ class LiveGame:
         elif choice.error is not None:
             self.event("error", {"code": "robot", "message": choice.error[:300]})
         return choice
+
+    def _judge(self, missed: bool) -> None:
+        """Count the decision; the moment the trial becomes invalid, say so in the log, the events and the
+        trial row (docs/operations.md, "Robot health")."""
+        was_invalid = self.health.invalid
+        self.health = self.health.record(missed)
+        if self.health.invalid and not was_invalid:
+            log.warning("trial %d (participant %s) is invalid: %s", self.meta.trial_id, self.meta.participant,
+                        self.health.invalid_reason)
+            self.event("trial_invalid", self.health.to_dict())
+            task = asyncio.create_task(asyncio.to_thread(self._store_health, self.health))
+            self._health_writes.add(task)
+            task.add_done_callback(self._health_writes.discard)
+
+    def _store_health(self, health: RobotHealth) -> None:
+        with self.deps.store.transaction() as session:
+            trials.record_health(session, self.meta.trial_id, decisions=health.decisions, missed=health.missed,
+                                 invalid_reason=health.invalid_reason)
 
     async def _reopen_planner(self) -> None:
         try:
@@ -269,9 +295,18 @@ class LiveGame:
         if self._decision is not None:
             self._decision.cancel()
         world = self.engine.world
+        was_invalid = self.health.invalid
+        self.health = self.health.final()
+        if self.health.invalid and not was_invalid:
+            log.warning("trial %d (participant %s) ended invalid: %s", self.meta.trial_id, self.meta.participant,
+                        self.health.invalid_reason)
+            self.event("trial_invalid", self.health.to_dict())
         self.event("trial_end", {"status": status, "reason": reason, "ticks": world.tick})
         await self.deps.writer.flush()
         delivered = self.engine.rules.orders - world.orders_left
+        if self._health_writes:
+            await asyncio.gather(*self._health_writes, return_exceptions=True)
+        await asyncio.to_thread(self._store_health, self.health)
         progress = await asyncio.to_thread(
             service.end_trial, self.deps.store, self.meta.participant_id, self.meta.trial_id, self.meta.kind,
             self.meta.index, status=status, reason=reason, ticks=world.tick, delivered=delivered, score=world.score)
@@ -292,6 +327,8 @@ class LiveGame:
                     await task
         if self.connection is not None:
             self.connection.begin_close(1012)
+        with contextlib.suppress(Exception):  # the counts are recomputed from the ticks on resume anyway
+            await asyncio.to_thread(self._store_health, self.health)
         await self.deps.pool.close_trial(self.meta.trial_id)
 
     def spectator(self) -> dict[str, Any]:
@@ -299,5 +336,6 @@ class LiveGame:
             "connected": self.connection is not None, "mode": self.mode, "tick_rate_hz": self.rate,
             "decision": self.last_choice.info if self.last_choice else None,
             "decision_ms": self.last_choice.decision_ms if self.last_choice else None,
-            "deadline_misses": self.misses, "lateness_ms": snapshot.percentiles(list(self.lateness)),
+            "deadline_misses": self.misses, "health": self.health.to_dict(),
+            "lateness_ms": snapshot.percentiles(list(self.lateness)),
         })

@@ -6,6 +6,9 @@
 - :meth:`GameRegistry.detach` pauses the trial and starts the reconnect grace timer. When it fires with
   nobody back: ``abandon`` ends the trial as abandoned and moves the participant on; ``resume`` and
   ``restart`` unload the trial, which stays ``running`` in the store until the participant returns.
+- :meth:`GameRegistry.claim` comes first: a trial that is not live here yet needs a slot; when none is
+  free the participant waits in the :class:`~server.game.lobby.Lobby` (docs/operations.md, "Admission
+  control"). A slot is freed when its trial leaves this process (ended, suspended or unloaded).
 - A periodic sweep keeps connected trials' ``last_active_at`` fresh (other server processes judge
   staleness by it) and abandons trials left running by a crash (``abandon`` studies only) once they have
   been idle longer than both the grace window and three sweep intervals.
@@ -22,8 +25,11 @@ from typing import Any
 from server.catalog import Catalog, LoadedStudy
 from server.flow.progress import Phase
 from server.flow.service import progress_of
+from server.game.admission import Admission, Ticket
 from server.game.connection import Connection
+from server.game.health import RobotHealth
 from server.game.live import GameDeps, LiveGame
+from server.game.lobby import Lobby
 from server.game.restore import trial_engine, trial_meta
 from server.game.resume import Prepared, abandon_stale, prepare_trial
 from server.store import trials
@@ -55,9 +61,14 @@ class TrialAbandoned(Exception):
         self.prepared = prepared
 
 
+UNLIMITED = 1_000_000
+
+
 class GameRegistry:
-    def __init__(self, catalog: Catalog, deps: GameDeps, sweep_interval: float) -> None:
+    def __init__(self, catalog: Catalog, deps: GameDeps, sweep_interval: float, lobby: Lobby | None = None) -> None:
         self.catalog = catalog
+        self.lobby = lobby or Lobby(catalog, deps.store, deps.writer, Admission(UNLIMITED))
+        """Tests and tools that build a registry themselves get no cap (``UNLIMITED`` slots)."""
         self.deps = GameDeps(deps.store, deps.writer, deps.pool, deps.deadline_fraction, deps.max_message_bytes,
                              on_end=self._ended)
         self.sweep_interval = sweep_interval
@@ -94,6 +105,26 @@ class GameRegistry:
         with self.deps.store.transaction() as session:
             trials.touch_many(session, trial_ids, utcnow())
 
+    # -- admission ------------------------------------------------------------------------------------
+
+    async def claim(self, participant: ParticipantRow) -> Ticket | None:
+        """``None`` when the participant may start now (their trial is live here, or the lobby let them in);
+        else their place in line (:class:`~server.game.lobby.Lobby`)."""
+        progress = progress_of(participant)
+        if progress.phase not in (Phase.PRACTICE, Phase.TRIAL):
+            return None
+        step = progress.current
+        game = self._by_participant.get(participant.id)
+        if game is not None and not game.finished and (game.meta.kind, game.meta.index) == (
+                step.trial_kind, step.index):
+            return None
+        return await self.lobby.claim(participant.id, step)
+
+    def release(self, participant_id: int) -> None:
+        """Free the participant's slot unless their trial is live here (a failed start, a refusal)."""
+        if participant_id not in self._by_participant:
+            self.lobby.admission.release(participant_id)
+
     # -- participants ---------------------------------------------------------------------------------
 
     async def attach(self, participant: ParticipantRow, conn: Connection) -> LiveGame:
@@ -126,9 +157,11 @@ class GameRegistry:
             return game
 
     def _build(self, loaded: LoadedStudy, participant: ParticipantRow, prepared: Prepared) -> LiveGame:
-        row = prepared.trial
+        row, study = prepared.trial, loaded.study
+        health = RobotHealth(study.validity.max_missed_decisions_pct, loaded.rules.horizon, prepared.decisions,
+                             prepared.missed, row.invalid_reason)
         return LiveGame(trial_meta(loaded, participant, row), loaded, trial_engine(loaded, row, prepared.last_tick),
-                        self.deps, resumed=prepared.outcome == "resume")
+                        self.deps, resumed=prepared.outcome == "resume", health=health)
 
     def detach(self, game: LiveGame, conn: Connection) -> None:
         if not game.detach(conn) or game.finished:
@@ -174,6 +207,7 @@ class GameRegistry:
             del self.games[game.meta.trial_id]
         if self._by_participant.get(game.meta.participant_id) is game:
             del self._by_participant[game.meta.participant_id]
+            self.lobby.admission.release(game.meta.participant_id)
 
     def live(self) -> list[LiveGame]:
         return sorted(self.games.values(), key=lambda g: g.meta.trial_id)

@@ -41,6 +41,9 @@ class Prepared:
     last_tick: TickRow | None = None
     progress: Progress | None = None
     """The participant's progress after an abandonment."""
+    decisions: int = 0
+    missed: int = 0
+    """Robot decisions made and missed so far (from the stored ticks of a resumed trial)."""
 
 
 def prepare_trial(store: Store, loaded: LoadedStudy, participant_id: int, step: Step) -> Prepared:
@@ -53,7 +56,8 @@ def prepare_trial(store: Store, loaded: LoadedStudy, participant_id: int, step: 
             return Prepared("new", _create(session, loaded, participant_id, step))
         outcome = on_return(row.last_active_at, utcnow(), study.reconnect)
         if outcome == "resume":
-            return Prepared("resume", row, trials.last_tick(session, row.id))
+            decisions, missed = trials.decision_counts(session, row.id)
+            return Prepared("resume", row, trials.last_tick(session, row.id), decisions=decisions, missed=missed)
         if outcome == "restart":
             trials.end(session, row.id, status=trials.ABANDONED, reason="restarted")
             return Prepared("new", _create(session, loaded, participant_id, step))

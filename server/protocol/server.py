@@ -166,7 +166,7 @@ class Pong(ServerMessage):
 
 ErrorCode = Literal["bad_frame", "too_large", "bad_json", "invalid_message", "unknown_type",
                     "unsupported_version", "bad_seq", "queue_full", "not_playing", "replaced", "no_trial",
-                    "unauthorized", "internal"]
+                    "unauthorized", "internal", "server_full"]
 
 
 class Error(ServerMessage):
@@ -177,6 +177,17 @@ class Error(ServerMessage):
     message: str
     ref: int | None = None
     """The ``seq`` of the rejected message when it could be read."""
+
+
+class Waiting(ServerMessage):
+    """The server runs as many rounds as it can hold on time; this participant's round starts when a slot is
+    free (sent before ``hello``, again whenever the line moves, and every 2 s). Nothing about the round."""
+
+    type: Literal["waiting"] = "waiting"
+    position: int
+    """1 for the next to start."""
+    eta_s: int
+    """Expected wait in seconds (rounded up to 5 s)."""
 
 
 class TrialEnd(ServerMessage):
@@ -192,5 +203,6 @@ class TrialEnd(ServerMessage):
     next: str
 
 
-AnyServerMessage = Annotated[Hello | State | Ack | Blocked | Pong | Error | TrialEnd, Field(discriminator="type")]
+AnyServerMessage = Annotated[Hello | State | Ack | Blocked | Pong | Error | Waiting | TrialEnd,
+                             Field(discriminator="type")]
 server_adapter: TypeAdapter[AnyServerMessage] = TypeAdapter(AnyServerMessage)

@@ -24,7 +24,9 @@ from server.deps import ServicesDep, path_study, require_admin
 from server.services import Services
 from server.errors import ApiError
 from server.store import participants, trials
-from server.store.overview import order_breakdown, participant_names, participant_public, trial_public
+from server.store.overview import (
+    invalid_trial_counts, order_breakdown, participant_names, participant_public, trial_public,
+)
 from server.study.warnings import study_warnings
 from server.store.tables import TrialRow
 from server.store.types import utcnow
@@ -71,7 +73,9 @@ def links(request: Request, loaded: Annotated[LoadedStudy, Depends(path_study)])
 def list_participants(services: ServicesDep, study_id: Annotated[str | None, Query(max_length=64)] = None,
                       ) -> list[dict[str, Any]]:
     with services.store.transaction() as session:
-        return [participant_public(p, a) for p, a in participants.list_participants(session, study_id)]
+        rows = participants.list_participants(session, study_id)
+        invalid = invalid_trial_counts(session, {p.id for p, _ in rows})
+        return [{**participant_public(p, a), "invalid_trials": invalid.get(p.id, 0)} for p, a in rows]
 
 
 @router.post("/participants/{participant_id}/flags")
@@ -113,7 +117,7 @@ def live(services: ServicesDep) -> list[dict[str, Any]]:
     recruit = _recruit_ids(services, {g.meta.participant_id for g in games})
     here = process_name()
     out = [{**g.meta.to_dict(), "recruit_id": recruit.get(g.meta.participant_id), "tick": g.engine.tick,
-            "connected": g.connection is not None, "deadline_misses": g.misses,
+            "connected": g.connection is not None, "deadline_misses": g.misses, "health": g.health.to_dict(),
             "lateness_ms": g.spectator()["lateness_ms"], "process": here, "source": "process"}
            for g in games]
     with services.store.transaction() as session:

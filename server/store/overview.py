@@ -5,7 +5,7 @@ from __future__ import annotations
 from datetime import datetime, timedelta
 from typing import Any
 
-from sqlalchemy import select
+from sqlalchemy import func, select
 from sqlalchemy.orm import Session
 
 from server.store.tables import AssignmentRow, ParticipantRow, TrialRow
@@ -57,7 +57,27 @@ def trial_public(row: TrialRow, participant: str | None = None, recruit_id: str 
         "robot": row.robot, "view": row.view, "seed": row.seed, "config_hash": row.config_hash, "status": row.status,
         "end_reason": row.end_reason, "ticks": row.ticks, "delivered": row.delivered, "score": row.score,
         "started_at": row.started_at.isoformat(), "ended_at": row.ended_at.isoformat() if row.ended_at else None,
+        "decisions": row.decisions, "missed_decisions": row.missed_decisions,
+        "missed_decisions_pct": missed_pct(row.decisions, row.missed_decisions),
+        "invalid": row.invalid_reason is not None, "invalid_reason": row.invalid_reason,
     }
+
+
+def missed_pct(decisions: int | None, missed: int | None) -> float | None:
+    """The share of the robot's decisions that missed their deadline, in % (``None`` when not recorded)."""
+    if not decisions or missed is None:
+        return None
+    return round(100.0 * missed / decisions, 2)
+
+
+def invalid_trial_counts(session: Session, participant_ids: set[int]) -> dict[int, int]:
+    """Participant store id → how many of their trials are marked invalid (only those with any)."""
+    if not participant_ids:
+        return {}
+    rows = session.execute(select(TrialRow.participant_id, func.count())
+                           .where(TrialRow.participant_id.in_(participant_ids), TrialRow.invalid_reason.is_not(None))
+                           .group_by(TrialRow.participant_id))
+    return {pid: int(count) for pid, count in rows}
 
 
 def participant_names(session: Session, participant_ids: set[int]) -> dict[int, tuple[str, str | None]]:

@@ -118,6 +118,12 @@ class TrialRow(Base):
     delivered: Mapped[int] = mapped_column(Integer, default=0)
     score: Mapped[int] = mapped_column(Integer, default=0)
     initial_state: Mapped[dict[str, Any]] = mapped_column(JsonType)
+    decisions: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """Robot decisions the loop asked for (one per world step); NULL for trials stored before revision 0005."""
+    missed_decisions: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """Of these, the ones that missed their deadline (the robot stood still)."""
+    invalid_reason: Mapped[str | None] = mapped_column(String(200), nullable=True)
+    """Why the trial is not valid data (``server.game.health``); NULL when it is valid."""
 
 
 class TickRow(Base):

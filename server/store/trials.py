@@ -59,6 +59,22 @@ def end(session: Session, trial_id: int, *, status: str, reason: str, ticks: int
     return bool(result.rowcount)  # type: ignore[attr-defined]
 
 
+def record_health(session: Session, trial_id: int, *, decisions: int, missed: int,
+                  invalid_reason: str | None) -> None:
+    """Store the robot's decision counts and, once set, why the trial is invalid (it is never cleared)."""
+    values: dict[str, Any] = {"decisions": decisions, "missed_decisions": missed}
+    if invalid_reason is not None:
+        values["invalid_reason"] = invalid_reason[:200]
+    session.execute(update(TrialRow).where(TrialRow.id == trial_id).values(**values))
+
+
+def decision_counts(session: Session, trial_id: int) -> tuple[int, int]:
+    """``(decisions, missed)`` over the stored ticks of a trial (one robot decision per tick)."""
+    row = session.execute(select(func.count(), func.sum(case((TickRow.robot_missed, 1), else_=0)))
+                          .where(TickRow.trial_id == trial_id)).one()
+    return int(row[0] or 0), int(row[1] or 0)
+
+
 def touch(session: Session, trial_id: int, when: datetime, ticks: int | None = None) -> None:
     """Record activity (a flushed tick, a disconnect) used to judge the reconnect grace window; the time
     only moves forward."""

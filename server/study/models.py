@@ -24,6 +24,7 @@ from server.study.questionnaire import Questionnaire
 from server.study.quiz import Quiz
 from server.study.sections import Assignment, Counterbalancing, Practice, Reconnect, Recruiting, Timing, World
 from server.study.texts import DEFAULT_CONSENT, DEFAULT_INSTRUCTIONS
+from server.study.validity import Validity
 from server.study.views import DEFAULT_VIEW, ViewName
 
 _FACTOR_LEVELS = {"robot": "robots", "kitchen": "kitchens", "view": "views"}
@@ -76,6 +77,8 @@ class Study(StudyModel):
     """What a dropped connection does to the running trial."""
     assignment: Assignment = Assignment()
     """How in-progress participants count when balancing condition orders."""
+    validity: Validity = Validity()
+    """When a trial is invalid (too many missed robot decisions); invalid trials are flagged and excluded."""
     test_run: bool = False
     """Mark every participant as a test run: not counted for assignment, excluded from exports by default."""
     notes: str = ""

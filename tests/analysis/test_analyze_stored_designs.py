@@ -100,6 +100,15 @@ def test_robot_kitchen_view_gets_the_three_factor_analysis(stored, tmp_path) -> 
     assert "Within factors: robot, kitchen, view." in (tmp_path / "report.md").read_text()
 
 
+def test_the_export_of_a_view_study_has_a_wide_column_per_view_and_counts_every_view_for_completeness(
+        stored, tmp_path) -> None:
+    assert main(["export", "--study", "views", "--out", str(tmp_path), "--database-url", stored]) == 0
+    wide = pd.read_csv(tmp_path / "wide.csv")
+    ticks = [c for c in wide.columns if c.startswith("ticks__")]
+    assert len(ticks) == 8 and {c.rsplit("__", 1)[1] for c in ticks} == {"top_down", "first_person"}
+    assert wide["complete"].tolist() == [1, 1, 1] and not wide[ticks].isna().any().any()
+
+
 def test_cells_carry_their_trials_validity_when_the_export_records_it() -> None:
     cells = pd.DataFrame({"participant": ["a", "a"], "trial_id": [1, 2], "ticks": [10, 12]})
     trials = pd.DataFrame({"trial_id": [1, 2, 3], "invalid_reason": [None, "missed 20%", None],

@@ -17,7 +17,9 @@ from planner.geometry import Direction
 from planner.layout import Layout, parse_layout
 from study_config import STUDY_DIR
 
-TIMEOUT_MS = 15_000
+TIMEOUT_MS = 60_000
+"""How long a browser test waits for a state before failing: generous, for a machine kept busy by other work
+(a passing wait returns as soon as the state is reached)."""
 SCREENSHOTS = Path(os.environ.get("STEAKHOUSE_SCREENSHOTS") or
                    Path(__file__).resolve().parents[2] / "test-output" / "screenshots")
 """Where screenshots go: ``test-output/screenshots/`` (git-ignored), or ``$STEAKHOUSE_SCREENSHOTS``."""

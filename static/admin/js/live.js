@@ -32,6 +32,7 @@ export function liveListPage(root, { api }) {
         ["Connected", (g) => (g.connected ? "yes" : badge("away", "warn"))],
         ["Lateness p99", (g) => ms(g.lateness_ms.p99), "num"],
         ["Deadline misses", (g) => String(g.deadline_misses), "num"],
+        ["Robot health", (g) => healthBadge(g.health)],
         ["", (g) => h("a", { href: `#/live/${g.trial_id}` }, "Watch")],
       ], games, { id: "live-table", empty: "No trial is running.",
                   rowAttrs: (g) => ({ dataset: { trial: String(g.trial_id) } }) }));
@@ -39,6 +40,19 @@ export function liveListPage(root, { api }) {
       frame.status.textContent = errorText(exc);
     }
   }, LIST_MS);
+}
+
+/** The trial's share of missed robot decisions; "invalid" once past the study's threshold. */
+function healthBadge(health) {
+  const share = `${health.missed_pct.toFixed(1)} % missed`;
+  return health.invalid ? badge(`invalid: ${share}`, "excluded") : h("span", {}, share);
+}
+
+function invalidWarning(health) {
+  if (!health.invalid) return null;
+  return h("p", { class: "notice warn", id: "live-invalid", role: "alert" },
+    `This trial is invalid and will be left out of the analysis: ${health.invalid_reason}. ` +
+    "The server is overloaded; see the operations guide (docs/operations.md, robot health).");
 }
 
 function header(view) {
@@ -79,7 +93,7 @@ export function liveTrialPage(root, { api, args }) {
       camera.node.hidden = view.trial.view !== "first_person";
       if (!camera.node.hidden) camera.show(view.grid, view.frame, view.fov_angle, VIEW_MS);
       world.node.dataset.tick = String(view.tick);
-      meta.replaceChildren(header(view));
+      meta.replaceChildren(header(view), invalidWarning(view.health) || "");
       caption.textContent = `Tick ${view.tick}. Dimmed cells are outside the participant's ${view.fov_angle}° field of view ` +
         "(yellow border); the participant sees only the bright cells. A dashed ring marks the robot when it is out of view.";
       const lateness = view.lateness_ms;
@@ -103,6 +117,7 @@ export function liveTrialPage(root, { api, args }) {
           ["Max", ms(lateness.max)],
           ["Ticks measured", String(lateness.count)],
           ["Deadline misses", String(view.deadline_misses)],
+          ["Missed share", `${view.health.missed_pct.toFixed(1)} % (limit ${view.health.threshold_pct} %)`, "missed-share"],
         ]));
     } catch (exc) {
       if (exc.status === 404) {

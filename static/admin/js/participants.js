@@ -19,6 +19,10 @@ function flags(p) {
   const out = [];
   if (p.test_run) out.push(badge("test run", "test"));
   if (p.excluded) out.push(badge("excluded", "excluded"), h("span", { class: "reason" }, p.exclusion_reason || ""));
+  if (p.invalid_trials) {
+    out.push(h("a", { href: `#/trials?participant=${encodeURIComponent(p.participant_id)}`, class: "invalid-trials" },
+      badge(`${p.invalid_trials} invalid trial${p.invalid_trials > 1 ? "s" : ""}`, "excluded")));
+  }
   return out.length ? out : h("span", { class: "muted" }, "–");
 }
 

@@ -24,6 +24,8 @@ export function trialsPage(root, { api, params }) {
         ["Kind", (t) => `${t.kind} ${t.index + 1}${t.attempt > 1 ? ` (attempt ${t.attempt})` : ""}`],
         ["Condition", (t) => t.condition],
         ["Status", (t) => (t.status === "running" ? badge("running", "live") : `${t.status}${t.end_reason ? ` (${t.end_reason})` : ""}`)],
+        ["Valid", (t) => (t.invalid ? [badge("invalid", "excluded"), h("span", { class: "reason" }, t.invalid_reason)]
+          : h("span", { class: "muted" }, t.missed_decisions_pct === null ? "–" : `${t.missed_decisions_pct} % missed`))],
         ["Ticks", (t) => String(t.ticks), "num"],
         ["Delivered", (t) => String(t.delivered), "num"],
         ["Score", (t) => String(t.score), "num"],

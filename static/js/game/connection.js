@@ -4,6 +4,10 @@
  *   connecting ──hello──▶ open ──close──▶ reconnecting ──timer──▶ connecting …
  *   open ──trial_end──▶ ended        close 4000 / error "replaced" ──▶ replaced
  *   close 4401 ──▶ unauthorized      close 4409 (not at a trial) ──▶ no_trial      stop() ──▶ closed
+ *   connecting ──waiting──▶ queued ──hello──▶ open    error "server_full" / close 4503 ──▶ server_full
+ *
+ * `queued`: the server runs as many rounds as it can hold on time and this one starts when a slot is free;
+ * `waiting` messages (every 2 s at least) carry the place in line and the expected wait.
  *
  * Reconnects back off exponentially (0.25 s doubling to 8 s, ±20 % jitter) and retry at once when the
  * browser comes back online. A heartbeat every 2 s measures the round trip (pong echoes our clock); a
@@ -14,9 +18,10 @@
 export const Link = Object.freeze({
   CONNECTING: "connecting", OPEN: "open", RECONNECTING: "reconnecting", ENDED: "ended",
   REPLACED: "replaced", UNAUTHORIZED: "unauthorized", NO_TRIAL: "no_trial", CLOSED: "closed",
+  QUEUED: "queued", SERVER_FULL: "server_full",
 });
 
-const FINAL = new Set([Link.ENDED, Link.REPLACED, Link.UNAUTHORIZED, Link.NO_TRIAL, Link.CLOSED]);
+const FINAL = new Set([Link.ENDED, Link.REPLACED, Link.UNAUTHORIZED, Link.NO_TRIAL, Link.CLOSED, Link.SERVER_FULL]);
 const HEARTBEAT_MS = 2000;
 const SILENCE_MS = 6000;
 const BACKOFF_MIN_MS = 250;
@@ -125,13 +130,18 @@ export class GameConnection {
       case "pong":
         if (on.onLatency) on.onLatency(Math.max(0, performance.now() - message.client_time));
         break;
+      case "waiting":
+        this.attempt = 0;
+        this.setLink(Link.QUEUED, { position: message.position, eta_s: message.eta_s });
+        break;
       case "trial_end":
         this.flags.ended = true;
         this.setLink(Link.ENDED, message);
         if (on.onEnd) on.onEnd(message);
         break;
       case "error":
-        if (["replaced", "unauthorized", "no_trial"].includes(message.code)) this.flags[message.code] = true;
+        const final = ["replaced", "unauthorized", "no_trial", "server_full"];
+        if (final.includes(message.code)) this.flags[message.code] = true;
         else if (on.onError) on.onError(message);
         break;
       default:
@@ -148,6 +158,7 @@ export class GameConnection {
     if (this.flags.replaced || code === 4000) this.setLink(Link.REPLACED);
     else if (this.flags.unauthorized || code === 4401) this.setLink(Link.UNAUTHORIZED);
     else if (this.flags.no_trial || code === 4409) this.setLink(Link.NO_TRIAL);
+    else if (this.flags.server_full || code === 4503) this.setLink(Link.SERVER_FULL);
     else this.retry();
   }
 

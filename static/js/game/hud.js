@@ -88,6 +88,8 @@ export class Hud {
       replaced: "Open in another window",
       unauthorized: "Session not found",
       no_trial: "Not in a round",
+      queued: "Waiting for your round",
+      server_full: "Study busy",
       closed: "Disconnected",
     }[link] || link;
     this.setText(this.pill, text);

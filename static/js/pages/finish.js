@@ -10,6 +10,9 @@ export const REDIRECT_SECONDS = 5;
 
 const SCREENED_OUT = {
   declined_consent: "You chose not to take part, so the study ends here. No game data were recorded.",
+  server_full: "The study's server was too busy to start your round in time, so the study ends here. We are " +
+    "sorry: please return the study with the code below (or contact the researcher), and come back later if " +
+    "the study is still open.",
   failed_quiz: "The answers to the questions about the instructions were not all right after the attempts this " +
     "study allows, so the study ends here. No game data were recorded. Thank you for your time.",
 };

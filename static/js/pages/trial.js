@@ -63,6 +63,13 @@ function confirmLeaving(event) {
   event.returnValue = "";
 }
 
+/** The waiting cover: when the round starts and the place in line, nothing about the round itself. */
+export function waitingText({ position, eta_s: eta }) {
+  const when = eta > 0 ? `in about ${eta} s` : "shortly";
+  const place = position > 1 ? ` You are number ${position} in line.` : " You are next.";
+  return `The study is busy: your round starts ${when} — keep this tab open.${place}`;
+}
+
 function playRound(root, ctx, onFinished) {
   const hud = new Hud();
   const recipe = new RecipeStrip();
@@ -169,7 +176,8 @@ function playRound(root, ctx, onFinished) {
         here.focus();
       }
       if (link === Link.UNAUTHORIZED) setCover("Your session was not found. Please open your study link again.");
-      if (link === Link.NO_TRIAL) finish(null);
+      if (link === Link.QUEUED) setCover(waitingText(info));
+      if (link === Link.NO_TRIAL || link === Link.SERVER_FULL) finish(null);
     },
     onEnd(end) {
       finish(end);

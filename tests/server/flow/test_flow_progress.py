@@ -75,13 +75,13 @@ def test_only_legal_moves_change_the_state(plan, step, move):
         Phase.CONSENT: {Move.ACCEPT_CONSENT, Move.DECLINE_CONSENT},
         Phase.INSTRUCTIONS: {Move.FINISH_INSTRUCTIONS},
         Phase.QUIZ: {Move.PASS_QUIZ, Move.FAIL_QUIZ},
-        Phase.PRACTICE: {Move.END_TRIAL}, Phase.TRIAL: {Move.END_TRIAL},
+        Phase.PRACTICE: {Move.END_TRIAL, Move.SERVER_FULL}, Phase.TRIAL: {Move.END_TRIAL, Move.SERVER_FULL},
         Phase.QUESTIONNAIRE: {Move.SUBMIT_QUESTIONNAIRE}, Phase.DONE: set(),
     }[progress.phase]
     kwargs = {"trial": (current.trial_kind, current.index), "questionnaire": current.questionnaire}
     if move in legal:
         after = progress.apply(move, **kwargs)
-        assert after.step == step + (0 if move in (Move.DECLINE_CONSENT, Move.FAIL_QUIZ) else 1)
+        assert after.step == step + (0 if move in (Move.DECLINE_CONSENT, Move.FAIL_QUIZ, Move.SERVER_FULL) else 1)
     else:
         with pytest.raises(IllegalTransition):
             progress.apply(move, **kwargs)

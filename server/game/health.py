@@ -1,0 +1,60 @@
+"""Robot health of one trial: the share of robot decisions that missed their deadline, and when that makes
+the trial invalid (issue 13 part 3; docs/operations.md, "Robot health").
+
+A missed decision makes the robot stand still for that tick (``server.robots.choice``), so a trial with many
+of them did not test the robot its condition names. The study's ``validity.max_missed_decisions_pct`` (P)
+judges it:
+
+- **as it happens**: the trial is invalid as soon as ``missed > P % × horizon``. A trial makes at most
+  ``horizon`` decisions, so its final share is then certain to exceed P whatever happens next;
+- **at the end**: the trial is invalid when ``missed > P % × decisions`` (a trial that ended early, all orders
+  delivered, is judged on the decisions it made).
+
+Once invalid, a trial stays invalid. The state is an immutable value; :meth:`RobotHealth.record` returns the
+next one.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Any
+
+
+@dataclass(frozen=True, slots=True)
+class RobotHealth:
+    threshold_pct: float
+    """The study's ``validity.max_missed_decisions_pct``."""
+    horizon: int
+    """The most decisions a trial can make (one per world step)."""
+    decisions: int = 0
+    missed: int = 0
+    invalid_reason: str | None = None
+
+    @property
+    def missed_pct(self) -> float:
+        return 100.0 * self.missed / self.decisions if self.decisions else 0.0
+
+    @property
+    def invalid(self) -> bool:
+        return self.invalid_reason is not None
+
+    def record(self, missed: bool) -> RobotHealth:
+        """The health after one more decision (``missed``: it came after its deadline)."""
+        after = replace(self, decisions=self.decisions + 1, missed=self.missed + int(missed))
+        if not after.invalid and 100.0 * after.missed > after.threshold_pct * after.horizon:
+            return replace(after, invalid_reason=after.reason())
+        return after
+
+    def final(self) -> RobotHealth:
+        """The health judged over the decisions the trial made (at its end)."""
+        if self.invalid or 100.0 * self.missed > self.threshold_pct * self.decisions:
+            return replace(self, invalid_reason=self.reason())
+        return self
+
+    def reason(self) -> str:
+        return (f"robot decisions missed their deadline: {self.missed} of {self.decisions} "
+                f"({self.missed_pct:.1f} % > {self.threshold_pct:g} %)")
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"decisions": self.decisions, "missed": self.missed, "missed_pct": round(self.missed_pct, 2),
+                "threshold_pct": self.threshold_pct, "invalid": self.invalid, "invalid_reason": self.invalid_reason}
