@@ -24,4 +24,5 @@ postgres:
 	@bash tests/tools/ensure_postgres.sh
 
 test: setup browser postgres
+	@bash tests/tools/ensure_nginx.sh
 	$(PY) -m pytest $(PYTEST_ARGS)

@@ -18,27 +18,31 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import os
+import socket
 from typing import Any
 
-from planner.kb import KnowledgeBase, initial_kb
-from planner.state import WorldState
 from server.catalog import Catalog, LoadedStudy
 from server.flow.progress import Phase
 from server.flow.service import progress_of
 from server.game.admission import Admission, Ticket
 from server.game.connection import Connection
-from server.game.controller import ParticipantController
-from server.game.engine import TrialEngine
 from server.game.health import RobotHealth
 from server.game.live import GameDeps, LiveGame
 from server.game.lobby import Lobby
-from server.game.meta import TrialMeta
+from server.game.restore import trial_engine, trial_meta
 from server.game.resume import Prepared, abandon_stale, prepare_trial
 from server.store import trials
 from server.store.tables import ParticipantRow
 from server.store.types import utcnow
 
 log = logging.getLogger(__name__)
+
+
+def process_name() -> str:
+    """``host:pid`` of this server process, stored with each trial start and resume: which process ran a
+    trial, and which one took it over after another died (docs/operations.md §4)."""
+    return f"{socket.gethostname()}:{os.getpid()}"
 
 
 class NoTrial(Exception):
@@ -146,37 +150,18 @@ class GameRegistry:
             self.games[game.meta.trial_id] = game
             self._by_participant[participant.id] = game
             game.event("trial_start" if prepared.outcome == "new" else "resume",
-                       {"attempt": game.meta.attempt, "tick": game.engine.tick, "seed": game.meta.seed})
+                       {"attempt": game.meta.attempt, "tick": game.engine.tick, "seed": game.meta.seed,
+                        "process": process_name()})
             game.start()
             game.attach(conn)
             return game
 
     def _build(self, loaded: LoadedStudy, participant: ParticipantRow, prepared: Prepared) -> LiveGame:
         row, study = prepared.trial, loaded.study
-        progress = progress_of(participant)
-        step = progress.current
-        layout, rules = loaded.layout(row.kitchen), loaded.rules
-        angle, delay = study.world.fov_angle, study.world.kb_delay
-        blocked = study.timing.blocked_ticks()
-        last = prepared.last_tick
-        if last is not None:
-            engine = TrialEngine(layout, rules, angle=angle, kb_delay=delay, seed=row.seed,
-                                 world=WorldState.from_dict(last.world_state), kb=KnowledgeBase.from_dict(last.kb_state),
-                                 controller=ParticipantController.from_dict(last.controller, layout, rules, angle,
-                                                                            blocked))
-        else:
-            world = WorldState.from_dict(row.initial_state)
-            engine = TrialEngine(layout, rules, angle=angle, kb_delay=delay, seed=row.seed, world=world,
-                                 kb=initial_kb(world), blocked_ticks=blocked)
-        meta = TrialMeta(trial_id=row.id, attempt=row.attempt, participant_id=participant.id,
-                         participant=participant.public_id, study_id=loaded.id, kind=row.kind, index=row.index,
-                         number=step.number or 0, total=step.total or 0,
-                         kind_total=sum(1 for s in progress.plan if s.trial_kind == row.kind),
-                         condition=row.condition_id, robot=row.robot, kitchen=row.kitchen, view=row.view,
-                         seed=row.seed, test_run=participant.test_run)
-        health = RobotHealth(study.validity.max_missed_decisions_pct, rules.horizon, prepared.decisions,
+        health = RobotHealth(study.validity.max_missed_decisions_pct, loaded.rules.horizon, prepared.decisions,
                              prepared.missed, row.invalid_reason)
-        return LiveGame(meta, loaded, engine, self.deps, resumed=prepared.outcome == "resume", health=health)
+        return LiveGame(trial_meta(loaded, participant, row), loaded, trial_engine(loaded, row, prepared.last_tick),
+                        self.deps, resumed=prepared.outcome == "resume", health=health)
 
     def detach(self, game: LiveGame, conn: Connection) -> None:
         if not game.detach(conn) or game.finished:

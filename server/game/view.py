@@ -7,7 +7,10 @@ robot is sent only if its cell is in view. Everything else about the world never
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 from planner.fov import view
+from planner.geometry import Direction, Pos
 from planner.layout import Layout, Terrain
 from planner.rules import Rules
 from planner.state import AgentState, WorldState
@@ -18,6 +21,8 @@ TERRAIN_NAME: dict[Terrain, TerrainName] = {
     Terrain.PLATE: "plate", Terrain.GRILL: "grill", Terrain.BOARD: "board", Terrain.SINK: "sink",
     Terrain.SERVE: "serve",
 }
+
+_STATUS_KINDS = frozenset({Terrain.GRILL, Terrain.BOARD, Terrain.SINK})
 
 
 def agent_view(agent: AgentState) -> AgentView:
@@ -37,8 +42,14 @@ def station_view(layout: Layout, world: WorldState, rules: Rules, kind: Terrain,
     else:
         return None
     if value is None:
-        return StationView(state="empty", progress=0, total=total)
-    return StationView(state=done if value >= total else working, progress=min(value, total), total=total)
+        return _station("empty", 0, total)
+    return _station(done if value >= total else working, min(value, total), total)
+
+
+@lru_cache(maxsize=1024)
+def _station(state: StationState, progress: int, total: int) -> StationView:
+    """Station statuses take few values: one shared (never changed) message part for each."""
+    return StationView.model_construct(state=state, progress=progress, total=total)
 
 
 def drawn_bounds(layout: Layout) -> tuple[int, int, int, int]:
@@ -54,15 +65,45 @@ def drawn_bounds(layout: Layout) -> tuple[int, int, int, int]:
 
 def visible_world(layout: Layout, world: WorldState, rules: Rules,
                   angle: float) -> tuple[list[CellView], AgentView | None]:
-    """The visible cells (reading order) and the robot if it is in view."""
-    seen = view(layout, world.human.pos, world.human.facing, angle).cells
-    objects = dict(world.objects)
+    """The visible cells (reading order) and the robot if it is in view.
+
+    Runs for every tick of every trial, so the fixed part is cached: the cells in view of a pose in reading
+    order with their terrain (per layout and angle, like ``planner.fov.view``), and the message part of a
+    cell showing only its terrain (shared between messages; they are serialised, never changed). Only
+    objects on counters and station statuses are built per tick."""
+    human = world.human
+    table = _ordered_table(layout, float(angle))
+    key = (human.pos, human.facing)
+    ordered = table.get(key)
+    if ordered is None:
+        seen = view(layout, human.pos, human.facing, angle).cells
+        ordered = table[key] = tuple((pos, _station_entry(layout, pos), _bare_cell(layout, pos))
+                                     for pos in sorted(seen, key=lambda p: (p[1], p[0])))
+    objects = dict(world.objects) if world.objects else {}
     cells = []
-    for pos in sorted(seen, key=lambda p: (p[1], p[0])):
-        kind = layout.terrain(pos)
-        entry = layout.stations.get(pos)
-        station = station_view(layout, world, rules, kind, entry[1]) if entry is not None else None
-        cells.append(CellView(x=pos[0], y=pos[1], terrain=TERRAIN_NAME[kind], object=objects.get(pos),
-                              station=station))
-    robot = agent_view(world.robot) if world.robot.pos in seen else None
+    for pos, entry, bare in ordered:
+        thing = objects.get(pos)
+        station = station_view(layout, world, rules, entry[0], entry[1]) if entry is not None else None
+        if thing is None and station is None:
+            cells.append(bare)
+        else:
+            cells.append(CellView.model_construct(x=pos[0], y=pos[1], terrain=bare.terrain, object=thing,
+                                                  station=station))
+    robot = agent_view(world.robot) if world.robot.pos in view(layout, human.pos, human.facing, angle).cells else None
     return cells, robot
+
+
+@lru_cache(maxsize=256)
+def _ordered_table(layout: Layout, angle: float) -> dict[tuple[Pos, Direction], tuple[tuple[Pos, tuple[Terrain, int] | None,
+                                                                                          CellView], ...]]:
+    return {}
+
+
+def _station_entry(layout: Layout, pos: Pos) -> tuple[Terrain, int] | None:
+    entry = layout.stations.get(pos)
+    return entry if entry is not None and entry[0] in _STATUS_KINDS else None
+
+
+def _bare_cell(layout: Layout, pos: Pos) -> CellView:
+    return CellView.model_construct(x=pos[0], y=pos[1], terrain=TERRAIN_NAME[layout.terrain(pos)], object=None,
+                                    station=None)

@@ -10,7 +10,7 @@ and their frames for the replay viewer, and the robot worker pool. The logic liv
 from __future__ import annotations
 
 import time
-from datetime import UTC, datetime
+from datetime import UTC, datetime, timedelta
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, Path, Query, Request
@@ -19,6 +19,7 @@ from pydantic import BaseModel, ConfigDict, Field
 from server.admin.answers import participant_answers
 from server.admin.links import study_links
 from server.admin.live import live_view
+from server.admin.stored_live import running_elsewhere, stored_live_view, stored_summary
 from server.admin.replay import replay
 from server.admin.resume import link_secret, make_code, resume_path
 from server.catalog import LoadedStudy
@@ -32,6 +33,7 @@ from server.store.overview import (
 from server.study.warnings import study_warnings
 from server.store.tables import EventRow, TrialRow
 from server.store.types import utcnow
+from server.game.registry import process_name
 
 router = APIRouter(prefix="/api/admin", tags=["admin"], dependencies=[Depends(require_admin)])
 
@@ -66,7 +68,9 @@ def studies(services: ServicesDep) -> list[dict[str, Any]]:
                         "conditions": [c.id for c in study.conditions], "orders": fill,
                         "timing": study.timing.model_dump(), "notes": study.notes,
                         "warnings": [w.to_dict() for w in study_warnings(study)],
-                        "live_trials": sum(1 for g in services.registry.games.values() if g.meta.study_id == study.id)})
+                        "live_trials": sum(1 for g in services.registry.games.values() if g.meta.study_id == study.id)
+                        + len(running_elsewhere(session, [study.id], set(services.registry.games),
+                                                _live_since(services)))})
     return out
 
 
@@ -128,21 +132,40 @@ def _recruit_ids(services: Services, participant_ids: set[int]) -> dict[int, str
         return {pid: recruit for pid, (_, recruit) in participant_names(session, participant_ids).items()}
 
 
+def _live_since(services: Services) -> datetime:
+    """Running trials active since then count as live in another process (``server.admin.stored_live``)."""
+    return utcnow() - timedelta(seconds=2 * services.settings.sweep_interval_s + 5)
+
+
 @router.get("/live")
 def live(services: ServicesDep) -> list[dict[str, Any]]:
+    """The live trials of every server process: this one's from memory, the others' from the store."""
     games = services.registry.live()
     recruit = _recruit_ids(services, {g.meta.participant_id for g in games})
-    return [{**g.meta.to_dict(), "recruit_id": recruit.get(g.meta.participant_id), "tick": g.engine.tick,
-             "connected": g.connection is not None, "deadline_misses": g.misses, "health": g.health.to_dict(),
-             "lateness_ms": g.spectator()["lateness_ms"]}
-            for g in games]
+    here = process_name()
+    out = [{**g.meta.to_dict(), "recruit_id": recruit.get(g.meta.participant_id), "tick": g.engine.tick,
+            "connected": g.connection is not None, "deadline_misses": g.misses, "health": g.health.to_dict(),
+            "lateness_ms": g.spectator()["lateness_ms"], "process": here, "source": "process"}
+           for g in games]
+    with services.store.transaction() as session:
+        for row in running_elsewhere(session, services.catalog.studies, set(services.registry.games),
+                                     _live_since(services)):
+            entry = stored_summary(session, row, services.catalog)
+            if entry is not None:
+                out.append(entry)
+    return sorted(out, key=lambda t: t["trial_id"])
 
 
 @router.get("/live/{trial_id}")
 def live_trial(trial_id: TrialId, services: ServicesDep) -> dict[str, Any]:
+    """The spectator view of a running trial, whichever process runs it (another's lags by ≤ one flush)."""
     game = services.registry.games.get(trial_id)
     if game is None:
-        raise ApiError(404, "not_live", "no live trial with this id in this server process")
+        with services.store.transaction() as session:
+            stored = stored_live_view(session, services.catalog, trial_id)
+        if stored is None:
+            raise ApiError(404, "not_live", "no running trial with this id")
+        return stored
     view = live_view(game)
     view["trial"]["recruit_id"] = _recruit_ids(services, {game.meta.participant_id}).get(game.meta.participant_id)
     return view

@@ -7,10 +7,11 @@ Ending is guarded by ``WHERE status = 'running'``, so a trial ends exactly once.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from datetime import datetime
-from typing import Any
+from typing import Any, cast
 
-from sqlalchemy import case, func, select, update
+from sqlalchemy import Table, bindparam, case, func, select, update
 from sqlalchemy.orm import Session
 
 from server.store.tables import EventRow, TickRow, TrialRow
@@ -82,6 +83,20 @@ def touch(session: Session, trial_id: int, when: datetime, ticks: int | None = N
     if ticks is not None:
         values["ticks"] = case((TrialRow.ticks < ticks, ticks), else_=TrialRow.ticks)
     session.execute(update(TrialRow).where(TrialRow.id == trial_id).values(**values))
+
+
+def touch_ticks(session: Session, latest: Sequence[tuple[int, datetime, int]]) -> None:
+    """:func:`touch` with a tick count for many trials — ``(trial_id, when, ticks)`` — as one statement
+    executed for all of them (the writer calls it for every live trial at every flush)."""
+    if not latest:
+        return
+    table = cast(Table, TrialRow.__table__)
+    when = bindparam("when_", type_=table.c.last_active_at.type)
+    ticks = bindparam("ticks_", type_=table.c.ticks.type)
+    statement = update(table).where(table.c.id == bindparam("trial_id_")).values(
+        last_active_at=case((table.c.last_active_at < when, when), else_=table.c.last_active_at),
+        ticks=case((table.c.ticks < ticks, ticks), else_=table.c.ticks))
+    session.connection().execute(statement, [{"trial_id_": t, "when_": w, "ticks_": n} for t, w, n in latest])
 
 
 def touch_many(session: Session, trial_ids: list[int], when: datetime) -> None:

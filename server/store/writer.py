@@ -50,8 +50,13 @@ class BatchWriter:
         self._task = asyncio.create_task(self._run(), name="batch-writer")
 
     async def _run(self) -> None:
+        """Flush every ``interval`` from the start of the previous flush (a slow write does not stretch
+        the interval: the rows a crash can lose stay those of one interval plus one write)."""
+        loop = asyncio.get_running_loop()
+        next_at = loop.time() + self.interval
         while True:
-            await asyncio.sleep(self.interval)
+            await asyncio.sleep(max(next_at - loop.time(), 0.0))
+            next_at = max(next_at + self.interval, loop.time())
             try:
                 await self.flush()
             except Exception:  # noqa: BLE001 - keep writing; the rows stay buffered
@@ -114,5 +119,4 @@ def _touch_trials(session: Session, ticks: Sequence[Row]) -> None:
         seen = latest.get(row["trial_id"])
         if seen is None or row["tick"] > seen["tick"]:
             latest[row["trial_id"]] = row
-    for trial_id, row in latest.items():
-        trials.touch(session, trial_id, row["recorded_at"], ticks=row["tick"])
+    trials.touch_ticks(session, [(trial_id, row["recorded_at"], row["tick"]) for trial_id, row in latest.items()])

@@ -8,6 +8,7 @@ Importable from the test files because ``tests/server/conftest.py`` puts this fo
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import json
 import os
 import signal
@@ -24,6 +25,7 @@ import httpx
 import uvicorn
 import yaml
 from websockets.asyncio.client import ClientConnection, connect
+from websockets.exceptions import ConnectionClosedOK
 
 REPO = Path(__file__).resolve().parents[2]
 RECV_TIMEOUT = 10.0
@@ -269,7 +271,9 @@ async def play_to_end(sock: Socket, *, on_state: Callable[[dict[str, Any]], Any]
                 await on_state(message)
             choice = next_subtask(message)
             if choice is not None:
-                await sock.send("select_subtask", subtask=choice)
+                # The trial may have ended (trial_end and the close already received, unread) as we chose.
+                with contextlib.suppress(ConnectionClosedOK):
+                    await sock.send("select_subtask", subtask=choice)
 
 
 async def play_every_trial(player: Player, answers: dict[str, int] | None = None) -> list[tuple[dict[str, Any],

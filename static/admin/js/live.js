@@ -1,8 +1,8 @@
 /**
- * Live trials of this server process: a list (polled every 2 s) and the live view of one trial (polled
- * every 300 ms): the whole kitchen with the participant's field of view as a translucent mask, the kitchen
- * as the participant's modelled knowledge has it, the knowledge gap, the robot's belief over the
- * participant's subtask and its decision, and tick lateness.
+ * Live trials of every server process (another's from its last stored tick): a list (polled every 2 s) and
+ * the live view of one trial (polled every 300 ms): the whole kitchen with the participant's field of view
+ * as a translucent mask, the kitchen as the participant's modelled knowledge has it, the knowledge gap, the
+ * robot's belief over the participant's subtask and its decision, and tick lateness.
  */
 
 import { h, show } from "../../js/dom.js";
@@ -34,7 +34,7 @@ export function liveListPage(root, { api }) {
         ["Deadline misses", (g) => String(g.deadline_misses), "num"],
         ["Robot health", (g) => healthBadge(g.health)],
         ["", (g) => h("a", { href: `#/live/${g.trial_id}` }, "Watch")],
-      ], games, { id: "live-table", empty: "No trial is running in this server process.",
+      ], games, { id: "live-table", empty: "No trial is running.",
                   rowAttrs: (g) => ({ dataset: { trial: String(g.trial_id) } }) }));
     } catch (exc) {
       frame.status.textContent = errorText(exc);
@@ -123,7 +123,7 @@ export function liveTrialPage(root, { api, args }) {
       if (exc.status === 404) {
         stopped = true;
         frame.status.textContent = "";
-        meta.replaceChildren(h("p", { class: "notice", id: "live-ended" }, "This trial is not live in this server process any more " +
+        meta.replaceChildren(h("p", { class: "notice", id: "live-ended" }, "This trial is not live any more " +
           "(it ended, or the participant left for longer than the grace window). ",
           h("a", { href: `#/replay/${trialId}` }, "Replay it")));
         return;

@@ -1,0 +1,62 @@
+"""The live view rebuilt from the store (``server.admin.stored_live``) is the view the owning process shows:
+a trial paused at a known tick (its participant left) looks the same from memory and from its last stored
+tick — world, field of view, modelled KB, scene, subtask and robot decision — on SQLite and PostgreSQL."""
+
+from __future__ import annotations
+
+import asyncio
+from typing import Any
+
+import httpx
+import pytest
+from steakhouse_testing import Player, eventually, play_until
+
+from server.admin.stored_live import stored_live_view
+from server.store import trials
+
+ADMIN = {"Authorization": "Bearer admin-secret"}
+APPROXIMATE = {"source", "as_of", "lateness_ms", "decision_ms"}
+
+
+@pytest.mark.slow
+def test_a_paused_trial_looks_the_same_from_memory_and_from_the_store(live_server, study_file):
+    server = live_server([study_file(world={"orders": 1, "horizon": 300, "kb_delay": 1})])
+
+    async def play() -> int:
+        player = Player(server.url)
+        await player.ready(PROLIFIC_PID="watched")
+        sock = await player.socket()
+        hello = await sock.recv()
+        await play_until(sock, 12)
+        await sock.close()
+        await player.close()
+        return int(hello["trial"]["id"])
+
+    trial_id = asyncio.run(play())
+    services = server.services
+    game = eventually(lambda: services.registry.games.get(trial_id), lambda g: g is not None and g.connection is None)
+
+    def stored_tick() -> int | None:
+        with services.store.transaction() as session:
+            last = trials.last_tick(session, trial_id)
+            return last.tick if last else None
+
+    assert eventually(stored_tick, lambda t: t == game.engine.tick) == game.engine.tick, "the paused tick is stored"
+    local = httpx.get(f"{server.url}/api/admin/live/{trial_id}", headers=ADMIN, timeout=10).json()
+    with services.store.transaction() as session:
+        stored: dict[str, Any] = stored_live_view(session, services.catalog, trial_id)  # type: ignore[assignment]
+    assert local["source"] == "process" and stored["source"] == "store" and local["tick"] >= 12
+    assert set(stored) == set(local) | {"as_of"}
+    for key in set(local) - APPROXIMATE:
+        assert stored[key] == local[key], key
+    assert stored["lateness_ms"]["count"] == local["lateness_ms"]["count"] == local["tick"]
+    assert stored["decision_ms"] == pytest.approx(local["decision_ms"], abs=1e-3)
+    assert stored["connected"] is False and stored["subtask"] is not None
+
+
+def test_a_trial_that_is_not_running_has_no_stored_live_view(live_server, study_file):
+    server = live_server([study_file()])
+    with server.services.store.transaction() as session:
+        assert stored_live_view(session, server.services.catalog, 12345) is None
+    response = httpx.get(f"{server.url}/api/admin/live/12345", headers=ADMIN, timeout=10)
+    assert response.status_code == 404 and response.json()["detail"]["code"] == "not_live"
