@@ -52,9 +52,10 @@ class Dataset:
         return self.tables["excluded.csv"]
 
 
-def build_dataset(conn: Connection, study_id: str) -> Dataset:
-    """Read the study from the store and build every table of the export."""
-    data = read_study(conn, study_id)
+def build_dataset(conn: Connection, study_id: str, include_pilot: bool = False) -> Dataset:
+    """Read the study from the store and build every table of the export (simulated pilot participants only
+    with ``include_pilot``)."""
+    data = read_study(conn, study_id, include_pilot)
     design = Design.from_config(data.config)
     events = read_events(conn, study_id)
     people = {p.id: p for p in data.participants}

@@ -43,8 +43,9 @@ class ExportResult:
     files: tuple[Path, ...]
 
 
-def read_dataset(source: Engine | str, study_id: str) -> Dataset:
-    """Build the export's tables from the store at ``source`` (an engine or a database URL)."""
+def read_dataset(source: Engine | str, study_id: str, include_pilot: bool = False) -> Dataset:
+    """Build the export's tables from the store at ``source`` (an engine or a database URL); simulated pilot
+    participants are left out unless ``include_pilot``."""
     engine = source if isinstance(source, Engine) else open_engine(source)
     try:
         try:
@@ -52,15 +53,17 @@ def read_dataset(source: Engine | str, study_id: str) -> Dataset:
         except OperationalError as exc:
             raise StoreReadError(f"cannot connect to the store: {exc.orig}") from exc
         with conn:
-            return build_dataset(conn, study_id)
+            return build_dataset(conn, study_id, include_pilot)
     finally:
         if engine is not source:
             engine.dispose()
 
 
-def export_study(source: Engine | str, study_id: str, out_dir: Path | str) -> ExportResult:
-    """Write every file of the export of ``study_id`` into ``out_dir`` (created if needed)."""
-    dataset = read_dataset(source, study_id)
+def export_study(source: Engine | str, study_id: str, out_dir: Path | str,
+                 include_pilot: bool = False) -> ExportResult:
+    """Write every file of the export of ``study_id`` into ``out_dir`` (created if needed); simulated pilot
+    participants only with ``include_pilot``."""
+    dataset = read_dataset(source, study_id, include_pilot)
     return write_dataset(dataset, out_dir)
 
 

@@ -1,6 +1,6 @@
 """``steakhouse export``: a stored study's tidy CSV files and data dictionary (see :mod:`analysis.export`).
 
-    steakhouse export --study paper_study --out exports/paper_study [--database-url URL]
+    steakhouse export --study paper_study --out exports/paper_study [--database-url URL] [--include-pilot]
 
 Without ``--database-url`` the store is the one ``steakhouse serve`` uses by default (``DATABASE_URL`` /
 ``STEAKHOUSE_DATABASE_URL``, else ``sqlite:///./data/steakhouse.sqlite3``). The store is only read.
@@ -29,6 +29,8 @@ def register(subparsers: Any) -> None:
     p.add_argument("--out", metavar="DIR", type=Path, required=True, help="output folder (created if needed)")
     p.add_argument("--database-url", metavar="URL",
                    help="SQLAlchemy URL of the store (default: the one steakhouse serve uses)")
+    p.add_argument("--include-pilot", action="store_true",
+                   help="export simulated pilot participants too (steakhouse pilot; left out by default)")
     p.set_defaults(handler=handle, subparser=p)
 
 
@@ -52,7 +54,7 @@ def handle(args: argparse.Namespace) -> int:
 
     url = database_url(args.database_url)
     try:
-        result = export_study(url, args.study, args.out)
+        result = export_study(url, args.study, args.out, include_pilot=args.include_pilot)
     except AnalysisInputError as exc:
         raise UsageError(str(exc)) from exc
     tables = result.dataset.tables

@@ -47,7 +47,10 @@ def progress_of(row: ParticipantRow) -> Progress:
     return Progress(plan_from_json(row.plan), row.step, screened_out=row.status == "screened_out")
 
 
-def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run: bool) -> Joined:
+def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run: bool,
+         pilot_pace: str | None = None) -> Joined:
+    """A new participant (or the same one again, by recruiting id) with the least-filled order. A pilot
+    participant (``pilot_pace`` given; the route lets only the admin ask for it) is balanced among pilots."""
     study = loaded.study
     names = study.recruiting.url_parameters
     kept = {name: recruiting[name] for name in names if name in recruiting}
@@ -64,7 +67,7 @@ def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run
                     raise ApiError(500, "internal", "participant without assignment")
                 return Joined(token, existing, found, rejoined=True)
         counts = assignment.order_counts(session, study.id, len(loaded.orders), utcnow(),
-                                         study.assignment.in_progress_window_minutes)
+                                         study.assignment.in_progress_window_minutes, pilot=pilot_pace is not None)
         index = assignment.least_filled(counts)
         order = list(loaded.orders[index])
         plan = build_plan(study, order)
@@ -72,7 +75,7 @@ def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run
             session, study_id=study.id, public_id=uuid.uuid4().hex, token=token, recruit_id=recruit_id,
             recruiting=kept, config_hash=study.config_hash(), plan=plan_to_json(plan),
             state=Progress(plan, 0).phase.value, test_run=test_run or study.test_run, order_index=index,
-            condition_order=order)
+            condition_order=order, pilot_pace=pilot_pace)
         found = participants.assignment_of(session, row.id)
         if found is None:
             raise ApiError(500, "internal", "assignment not stored")

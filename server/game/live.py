@@ -8,6 +8,10 @@ The clock:
   connection must not cost the participant ticks); the next step comes one period after they return.
 - Tick lateness = actual start of a step − its scheduled start (logged per tick). A late step does not
   cause a burst of catch-up steps.
+- A pilot participant's trial at pace ``fast`` (``steakhouse pilot``; the pace is the store's pilot mark, so no
+  real participant can get it) steps as soon as the simulated participant has answered the last ``state``
+  with any message (it sends a heartbeat when it has nothing to do) and the robot has decided; it waits at most
+  one period for that answer. Real participants' trials keep the study's clock.
 - The robot's decision for a state is requested as soon as the state exists, with a deadline of
   ``decision_deadline_fraction`` of the period; a missed deadline makes the robot stay that tick and is
   logged as a ``deadline_miss`` event.
@@ -68,6 +72,9 @@ class LiveGame:
         self.inbound = Inbound(deps.max_message_bytes)
         self.connected = asyncio.Event()
         self.wake = asyncio.Event()
+        self.fast = meta.pilot_pace == "fast"
+        self.answered = asyncio.Event()
+        """Set by every accepted client message: a ``fast`` pilot trial steps once its participant answered."""
         self.finished = False
         self.task: asyncio.Task[None] | None = None
         self._decision: asyncio.Task[RobotChoice] | None = None
@@ -138,6 +145,7 @@ class LiveGame:
             elif isinstance(message, Heartbeat):
                 self.inbound.accept(message.seq)
                 conn.send(Pong(ack=message.seq, client_time=message.client_time, server_time=time.time() * 1000))
+                self.answered.set()
                 return
             elif isinstance(message, Focus | Blur):
                 self.event(message.type, {"seq": message.seq})
@@ -152,6 +160,7 @@ class LiveGame:
         self.inbound.accept(message.seq)
         conn.send(Ack(ack=message.seq, subtask=controller.subtask.value if controller.subtask else None,
                       queued=len(controller.queue)))
+        self.answered.set()
         self.wake.set()
 
     # -- the loop -------------------------------------------------------------------------------------
@@ -180,7 +189,10 @@ class LiveGame:
                 next_at = None
                 continue
             now = time.monotonic()
-            if self.mode == "wait_for_participant":
+            if self.fast:
+                await self._await_answer(period)
+                scheduled = now = time.monotonic()
+            elif self.mode == "wait_for_participant":
                 if not self.engine.controller.has_action():
                     self.wake.clear()
                     await self.wake.wait()
@@ -208,6 +220,13 @@ class LiveGame:
             next_at = max(scheduled + period, time.monotonic())
         world = self.engine.world
         await self.end("finished", "delivered" if world.orders_left == 0 else "horizon")
+
+    async def _await_answer(self, period: float) -> None:
+        """A ``fast`` pilot trial: wait (at most ``period``) for the participant's answer to the last state."""
+        if not self.answered.is_set():
+            with contextlib.suppress(TimeoutError):
+                await asyncio.wait_for(self.answered.wait(), period)
+        self.answered.clear()
 
     def _request_decision(self) -> None:
         world = self.engine.world

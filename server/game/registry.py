@@ -142,7 +142,8 @@ class GameRegistry:
                          number=step.number or 0, total=step.total or 0,
                          kind_total=sum(1 for s in progress.plan if s.trial_kind == row.kind),
                          condition=row.condition_id, robot=row.robot, kitchen=row.kitchen, view=row.view,
-                         seed=row.seed, test_run=participant.test_run)
+                         seed=row.seed, test_run=participant.test_run,
+                         pilot_pace=participant.pilot_pace if participant.pilot else None)
         return LiveGame(meta, loaded, engine, self.deps, resumed=prepared.outcome == "resume")
 
     def detach(self, game: LiveGame, conn: Connection) -> None:

@@ -10,10 +10,11 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Depends
+from fastapi import APIRouter, Depends, Request
 
 from server.catalog import LoadedStudy
-from server.deps import ParticipantDep, ServicesDep, participant_study, path_study
+from server.deps import ParticipantDep, ServicesDep, is_admin, participant_study, path_study
+from server.errors import ApiError
 from server.flow import service
 from server.flow.progress import Move
 from server.flow.schemas import (ConsentRequest, JoinRequest, JoinResponse, QuestionnaireRequest, QuizRequest,
@@ -34,9 +35,14 @@ def study_info(loaded: Annotated[LoadedStudy, Depends(path_study)]) -> StudyPubl
 
 
 @router.post("/studies/{study_id}/join", dependencies=[Depends(limit_joins)])
-def join(loaded: Annotated[LoadedStudy, Depends(path_study)], body: JoinRequest,
-         services: ServicesDep) -> JoinResponse:
-    joined = service.join(services.store, loaded, body.recruiting, body.test_run)
+def join(loaded: Annotated[LoadedStudy, Depends(path_study)], body: JoinRequest, services: ServicesDep,
+         request: Request) -> JoinResponse:
+    """A pilot join (``pilot``) needs the admin token as the bearer, so no participant can make themselves a pilot
+    (and get the pilot's pace); without it, 403 ``pilot_needs_admin``."""
+    if body.pilot is not None and not is_admin(request, services):
+        raise ApiError(403, "pilot_needs_admin", "pilot participants are joined with the admin token")
+    joined = service.join(services.store, loaded, body.recruiting, body.test_run,
+                          body.pilot.pace if body.pilot is not None else None)
     return JoinResponse(token=joined.token, participant_id=joined.participant.public_id, study_id=loaded.id,
                         order_index=joined.assignment.order_index,
                         condition_order=list(joined.assignment.condition_order),

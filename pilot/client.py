@@ -1,0 +1,161 @@
+"""One simulated participant over the participant flow a browser uses (docs/protocol.md): join with recruiting
+ids (as a pilot, with the admin token), consent, instructions, the quiz when the study has one, the practice,
+every round over the game websocket, every questionnaire, the end page.
+
+On the websocket it answers every ``state`` frame with exactly one message (a choice, an interrupt or a
+heartbeat; :mod:`pilot.mind`): at the pilot's ``fast`` pace the server steps as soon as that answer and the
+robot's decision are in. It reads nothing but the frames (``hello``, ``state``, ``blocked``, ``trial_end``).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import httpx
+import numpy as np
+from websockets.asyncio.client import connect
+
+from pilot.answers import answer
+from pilot.config import ParticipantConfig
+from pilot.mind import Mind, decide
+from pilot.perception import Perception
+from server.catalog import LoadedStudy
+
+
+class PilotFlowError(RuntimeError):
+    """The server answered the simulated participant with an error it cannot go on from."""
+
+
+@dataclass
+class Outcome:
+    """What one simulated participant did (the store holds the rest)."""
+
+    name: str
+    participant_id: str = ""
+    trials: int = 0
+    interrupts: int = 0
+    selections: int = 0
+    questionnaires: int = 0
+    completed: bool = False
+    frames: list[dict[str, Any]] = field(default_factory=list)
+    """Every websocket message received, when kept (``keep_frames``): what a test checks it acted on."""
+
+
+@dataclass(frozen=True)
+class Seat:
+    """Where and how a simulated participant plays."""
+
+    base_url: str
+    admin_token: str
+    loaded: LoadedStudy
+    config: ParticipantConfig
+    pace: str = "fast"
+    keep_frames: bool = False
+
+
+class SimulatedParticipant:
+    def __init__(self, seat: Seat, name: str, rng: np.random.Generator,
+                 on_trial: Callable[[int], None] = lambda delta: None) -> None:
+        self.seat, self.rng, self.on_trial = seat, rng, on_trial
+        self.outcome = Outcome(name)
+        self.token = ""
+        self.gap_mean = 0.0
+        study = seat.loaded.study
+        self.reversed = {i.id for q in study.questionnaires for i in q.items if getattr(i, "reverse", False)}
+
+    async def call(self, http: httpx.AsyncClient, method: str, path: str, body: Any = None,
+                   token: str | None = None) -> dict[str, Any]:
+        headers = {"Authorization": f"Bearer {token or self.token}"}
+        response = await http.request(method, path, json=body, headers=headers)
+        if response.status_code >= 400:
+            raise PilotFlowError(f"{method} {path}: {response.status_code} {response.text[:300]}")
+        out: dict[str, Any] = response.json()
+        return out
+
+    async def run(self) -> Outcome:
+        study = self.seat.loaded.study
+        first = study.recruiting.url_parameters[0] if study.recruiting.url_parameters else "PROLIFIC_PID"
+        async with httpx.AsyncClient(base_url=self.seat.base_url, timeout=60) as http:
+            joined = await self.call(http, "POST", f"/api/studies/{study.id}/join",
+                                     {"recruiting": {first: self.outcome.name}, "pilot": {"pace": self.seat.pace}},
+                                     token=self.seat.admin_token)
+            self.token = joined["token"]
+            self.outcome.participant_id = joined["participant_id"]
+            view = await self.call(http, "GET", "/api/session")
+            while True:
+                state = view["state"]
+                if state == "consent":
+                    view = await self.call(http, "POST", "/api/session/consent", {"accept": True})
+                elif state == "instructions":
+                    view = await self.call(http, "POST", "/api/session/instructions_done")
+                elif state == "quiz":
+                    view = await self.call(http, "POST", "/api/session/quiz", {"answers": self.quiz_answers()})
+                elif state in ("practice", "trial"):
+                    await self.play()
+                    view = await self.call(http, "GET", "/api/session")
+                elif state == "questionnaire":
+                    answers = answer(view["questionnaire"], self.gap_mean, self.seat.config, self.reversed, self.rng)
+                    view = await self.call(http, "POST", "/api/session/questionnaire",
+                                           {"questionnaire_id": view["questionnaire"]["id"], "answers": answers})
+                    self.outcome.questionnaires += 1
+                elif state in ("done", "screened_out"):
+                    await self.call(http, "GET", "/api/session/completion")
+                    self.outcome.completed = state == "done"
+                    return self.outcome
+                else:
+                    raise PilotFlowError(f"unexpected session state {state!r}")
+
+    def quiz_answers(self) -> dict[str, int]:
+        quiz = self.seat.loaded.study.quiz
+        if quiz is None:
+            return {}
+        out = {}
+        for q in quiz.questions:
+            wrong = [i for i in range(len(q.options)) if i != q.correct]
+            slip = wrong and self.rng.random() < self.seat.config.quiz_error_rate
+            out[q.id] = int(self.rng.choice(wrong)) if slip else q.correct
+        return out
+
+    async def play(self) -> None:
+        """One trial: answer every ``state`` until ``trial_end``."""
+        loaded, config = self.seat.loaded, self.seat.config
+        world = loaded.study.world
+        url = self.seat.base_url.replace("http", "ws", 1) + "/ws/play"
+        seq = 0
+        mind = Mind()
+        seen: Perception | None = None
+        needs: dict[str, str] = {}
+        self.on_trial(1)
+        try:
+            async with connect(url, subprotocols=["steakhouse.v1", f"token.{self.token}"],  # type: ignore[list-item]
+                               max_size=1 << 22) as ws:
+                async for raw in ws:
+                    message: dict[str, Any] = json.loads(raw)
+                    if self.seat.keep_frames:
+                        self.outcome.frames.append(message)
+                    kind = message["type"]
+                    if kind == "hello":
+                        needs = dict(message["needs"])
+                        seen = Perception(message["width"], message["height"],
+                                          tuple(loaded.layouts.values()))
+                    elif kind == "state" and seen is not None:
+                        seen = seen.observe(message, world.fov_angle, world.kb_delay)
+                        reply, mind = decide(mind, seen, message, needs, loaded.rules, config, self.rng)
+                        seq += 1
+                        body = reply.body()
+                        if body["type"] == "heartbeat":
+                            body["client_time"] = 0
+                        self.outcome.interrupts += body["type"] == "interrupt"
+                        self.outcome.selections += body["type"] == "select_subtask"
+                        await ws.send(json.dumps({"v": 1, "seq": seq, **body}))
+                    elif kind == "error" and message["code"] not in ("not_playing",):
+                        raise PilotFlowError(f"websocket error {message['code']}: {message['message']}")
+                    elif kind == "trial_end":
+                        self.outcome.trials += 1
+                        break
+        finally:
+            self.on_trial(-1)
+        self.gap_mean = seen.gap_mean if seen is not None else 0.0
