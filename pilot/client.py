@@ -25,6 +25,28 @@ from pilot.perception import Perception
 from server.catalog import LoadedStudy
 
 
+ANSWERS_STREAM = 2**31
+"""The generator stream of a participant's questionnaire and quiz answers (trials use 0, 1, 2, …)."""
+
+
+def trial_rng(seed: tuple[int, ...], trial: int) -> np.random.Generator:
+    """The generator of a participant's ``trial``-th trial (0-based, practice included)."""
+    return np.random.default_rng([*seed, trial])
+
+
+def respond(mind: Mind, seen: Perception, message: dict[str, Any], needs: dict[str, str], loaded: LoadedStudy,
+            config: ParticipantConfig, rng: np.random.Generator) -> tuple[Perception, Mind, dict[str, Any]]:
+    """One ``state`` frame in, the knowledge, mind and message body (without ``v`` / ``seq``) out: everything
+    the simulated participant does with a frame, and all it uses (besides the study file and its config)."""
+    world = loaded.study.world
+    seen = seen.observe(message, world.fov_angle, world.kb_delay)
+    reply, mind = decide(mind, seen, message, needs, loaded.rules, config, rng)
+    body = reply.body()
+    if body["type"] == "heartbeat":
+        body["client_time"] = 0
+    return seen, mind, body
+
+
 class PilotFlowError(RuntimeError):
     """The server answered the simulated participant with an error it cannot go on from."""
 
@@ -40,8 +62,10 @@ class Outcome:
     selections: int = 0
     questionnaires: int = 0
     completed: bool = False
-    frames: list[dict[str, Any]] = field(default_factory=list)
-    """Every websocket message received, when kept (``keep_frames``): what a test checks it acted on."""
+    frames: list[list[dict[str, Any]]] = field(default_factory=list)
+    """Per trial, every websocket message received, when kept (``keep_frames``)."""
+    sent: list[list[dict[str, Any]]] = field(default_factory=list)
+    """Per trial, every message sent, when kept (``keep_frames``)."""
 
 
 @dataclass(frozen=True)
@@ -57,9 +81,13 @@ class Seat:
 
 
 class SimulatedParticipant:
-    def __init__(self, seat: Seat, name: str, rng: np.random.Generator,
+    def __init__(self, seat: Seat, name: str, seed: tuple[int, ...],
                  on_trial: Callable[[int], None] = lambda delta: None) -> None:
-        self.seat, self.rng, self.on_trial = seat, rng, on_trial
+        """``seed``: the participant's seed key; trial k plays with ``default_rng([*seed, k])`` (see
+        :func:`trial_rng`), its answers and quiz come from ``default_rng([*seed, -1])``."""
+        self.seat, self.seed, self.on_trial = seat, seed, on_trial
+        self.rng = np.random.default_rng([*seed, ANSWERS_STREAM])
+        self.played = 0
         self.outcome = Outcome(name)
         self.token = ""
         self.gap_mean = 0.0
@@ -122,7 +150,13 @@ class SimulatedParticipant:
     async def play(self) -> None:
         """One trial: answer every ``state`` until ``trial_end``."""
         loaded, config = self.seat.loaded, self.seat.config
-        world = loaded.study.world
+        rng = trial_rng(self.seed, self.played)
+        self.played += 1
+        received: list[dict[str, Any]] = []
+        sent: list[dict[str, Any]] = []
+        if self.seat.keep_frames:
+            self.outcome.frames.append(received)
+            self.outcome.sent.append(sent)
         url = self.seat.base_url.replace("http", "ws", 1) + "/ws/play"
         seq = 0
         mind = Mind()
@@ -135,19 +169,17 @@ class SimulatedParticipant:
                 async for raw in ws:
                     message: dict[str, Any] = json.loads(raw)
                     if self.seat.keep_frames:
-                        self.outcome.frames.append(message)
+                        received.append(message)
                     kind = message["type"]
                     if kind == "hello":
                         needs = dict(message["needs"])
                         seen = Perception(message["width"], message["height"],
                                           tuple(loaded.layouts.values()))
                     elif kind == "state" and seen is not None:
-                        seen = seen.observe(message, world.fov_angle, world.kb_delay)
-                        reply, mind = decide(mind, seen, message, needs, loaded.rules, config, self.rng)
+                        seen, mind, body = respond(mind, seen, message, needs, loaded, config, rng)
                         seq += 1
-                        body = reply.body()
-                        if body["type"] == "heartbeat":
-                            body["client_time"] = 0
+                        if self.seat.keep_frames:
+                            sent.append(body)
                         self.outcome.interrupts += body["type"] == "interrupt"
                         self.outcome.selections += body["type"] == "select_subtask"
                         await ws.send(json.dumps({"v": 1, "seq": seq, **body}))

@@ -1,5 +1,5 @@
 """Run N simulated participants against a server, at most ``jobs`` at a time, each with its own seeded
-generator (``numpy.random.default_rng([seed, index])``): the same seed gives the same participants' choices
+generator (``numpy.random.default_rng([seed, index, trial])`` per trial; ``pilot.client.trial_rng``): the same seed gives the same participants' choices
 (the server's trial seeds come from the store, and thread timing can still reorder joins)."""
 
 from __future__ import annotations
@@ -7,8 +7,6 @@ from __future__ import annotations
 import asyncio
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-
-import numpy as np
 
 from pilot.client import Outcome, Seat, SimulatedParticipant
 from pilot.progress import Progress
@@ -31,8 +29,8 @@ async def run_pilot(seat: Seat, participants: int, jobs: int, seed: int, progres
 
     async def one(index: int) -> None:
         async with gate:
-            rng = np.random.default_rng([seed, index])
-            who = SimulatedParticipant(seat, names[index], rng, progress.rounds if progress else lambda d: None)
+            who = SimulatedParticipant(seat, names[index], (seed, index),
+                                       progress.rounds if progress else lambda d: None)
             try:
                 result.outcomes.append(await who.run())
                 if progress:

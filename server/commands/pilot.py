@@ -35,7 +35,9 @@ def register(subparsers: Any) -> None:
     p.add_argument("--participants", metavar="N", type=int, required=True, help="simulated participants to run")
     p.add_argument("--database-url", metavar="URL",
                    help="store of the started server (default: the one steakhouse serve uses)")
-    p.add_argument("--jobs", metavar="J", type=int, default=6, help="participants at a time (default 6)")
+    p.add_argument("--jobs", metavar="J", type=int,
+                   help="participants at a time (default: the CPU count, one per robot worker of a started "
+                        "server: more only queue robot decisions behind each other)")
     p.add_argument("--realtime", action="store_true", help="trials at the study's tick rate (default: as fast "
                    "as the robot decides and the simulated participant acts)")
     p.add_argument("--seed", metavar="S", type=int, default=0, help="seed of the simulated participants (default 0)")
@@ -59,6 +61,8 @@ def handle(args: argparse.Namespace) -> int:
 
     if args.participants < 1:
         raise UsageError("--participants must be at least 1")
+    if args.jobs is None:
+        args.jobs = os.cpu_count() or 1
     if args.jobs < 1:
         raise UsageError("--jobs must be at least 1")
     if args.url is None and args.admin_token is not None:
