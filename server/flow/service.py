@@ -60,6 +60,9 @@ def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run
         assignment.lock_study(session, study.id)
         if recruit_id:
             existing = participants.by_recruit_id(session, study.id, recruit_id)
+            if existing is not None and existing.pilot != (pilot_pace is not None):
+                raise ApiError(409, "recruit_id_taken", "this recruiting id belongs to a pilot participant"
+                               if existing.pilot else "this recruiting id belongs to a real participant")
             if existing is not None:
                 participants.rotate_token(session, existing.id, token)
                 found = participants.assignment_of(session, existing.id)

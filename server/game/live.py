@@ -11,7 +11,9 @@ The clock:
 - A pilot participant's trial at pace ``fast`` (``steakhouse pilot``; the pace is the store's pilot mark, so no
   real participant can get it) steps as soon as the simulated participant has answered the last ``state``
   with any message (it sends a heartbeat when it has nothing to do) and the robot has decided; it waits at most
-  one period for that answer. Real participants' trials keep the study's clock.
+  one period for that answer, and its robot decides without the real-time deadline (at most
+  ``PILOT_DECISION_S``): the planner's decisions are then those of an unloaded machine, not cut short because
+  the pilot runs many trials at once on a busy one. Real participants' trials keep the study's clock and deadline.
 - The robot's decision for a state is requested as soon as the state exists, with a deadline of
   ``decision_deadline_fraction`` of the period; a missed deadline makes the robot stay that tick and is
   logged as a ``deadline_miss`` event.
@@ -50,6 +52,8 @@ from server.store.writer import BatchWriter
 
 log = logging.getLogger(__name__)
 MAX_LOGGED_ERRORS = 50
+PILOT_DECISION_S = 10.0
+"""A ``fast`` pilot trial's robot decision deadline (seconds after the request)."""
 
 
 @dataclass(frozen=True)
@@ -221,6 +225,11 @@ class LiveGame:
         world = self.engine.world
         await self.end("finished", "delivered" if world.orders_left == 0 else "horizon")
 
+    def decision_budget(self) -> float:
+        """Seconds the robot has for a decision: a share of the tick period, or ``PILOT_DECISION_S`` for a
+        ``fast`` pilot trial."""
+        return PILOT_DECISION_S if self.fast else self.deps.deadline_fraction * self.period
+
     async def _await_answer(self, period: float) -> None:
         """A ``fast`` pilot trial: wait (at most ``period``) for the participant's answer to the last state."""
         if not self.answered.is_set():
@@ -230,7 +239,7 @@ class LiveGame:
 
     def _request_decision(self) -> None:
         world = self.engine.world
-        deadline = time.monotonic() + self.deps.deadline_fraction * self.period
+        deadline = time.monotonic() + self.decision_budget()
         self._decision = asyncio.create_task(self.deps.pool.decide(
             self.meta.trial_id, world, self.engine.last_events, self.meta.seed, world.tick, deadline))
         self._decision_tick = world.tick
@@ -244,7 +253,7 @@ class LiveGame:
         self.last_choice = choice
         if choice.missed:
             self.misses += 1
-            self.event("deadline_miss", {"budget_ms": round(self.deps.deadline_fraction * self.period * 1000, 1),
+            self.event("deadline_miss", {"budget_ms": round(self.decision_budget() * 1000, 1),
                                          "waited_ms": round(choice.decision_ms or 0.0, 1)})
         elif choice.error is not None:
             self.event("error", {"code": "robot", "message": choice.error[:300]})
