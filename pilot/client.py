@@ -9,6 +9,7 @@ robot's decision are in. It reads nothing but the frames (``hello``, ``state``, 
 
 from __future__ import annotations
 
+import asyncio
 import json
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -49,6 +50,14 @@ def respond(mind: Mind, seen: Perception, message: dict[str, Any], needs: dict[s
 
 class PilotFlowError(RuntimeError):
     """The server answered the simulated participant with an error it cannot go on from."""
+
+
+class TrialNotStarted(PilotFlowError):
+    """The server could not start the trial (it says to try again later)."""
+
+
+RETRIES = 3
+RETRY_WAIT_S = 2.0
 
 
 @dataclass
@@ -122,7 +131,7 @@ class SimulatedParticipant:
                 elif state == "quiz":
                     view = await self.call(http, "POST", "/api/session/quiz", {"answers": self.quiz_answers()})
                 elif state in ("practice", "trial"):
-                    await self.play()
+                    await self.play_with_retries()
                     view = await self.call(http, "GET", "/api/session")
                 elif state == "questionnaire":
                     answers = answer(view["questionnaire"], self.gap_mean, self.seat.config, self.reversed, self.rng)
@@ -146,6 +155,18 @@ class SimulatedParticipant:
             slip = wrong and self.rng.random() < self.seat.config.quiz_error_rate
             out[q.id] = int(self.rng.choice(wrong)) if slip else q.correct
         return out
+
+    async def play_with_retries(self) -> None:
+        """Play the current trial; a trial the server could not start (``internal``: e.g. its robot planner did
+        not open in time on a busy machine) is tried again, as a browser reconnects."""
+        for attempt in range(RETRIES + 1):
+            try:
+                await self.play()
+                return
+            except TrialNotStarted:
+                if attempt == RETRIES:
+                    raise
+                await asyncio.sleep(RETRY_WAIT_S * (attempt + 1))
 
     async def play(self) -> None:
         """One trial: answer every ``state`` until ``trial_end``."""
@@ -183,6 +204,8 @@ class SimulatedParticipant:
                         self.outcome.interrupts += body["type"] == "interrupt"
                         self.outcome.selections += body["type"] == "select_subtask"
                         await ws.send(json.dumps({"v": 1, "seq": seq, **body}))
+                    elif kind == "error" and message["code"] == "internal" and seen is None:
+                        raise TrialNotStarted(message["message"])
                     elif kind == "error" and message["code"] not in ("not_playing",):
                         raise PilotFlowError(f"websocket error {message['code']}: {message['message']}")
                     elif kind == "trial_end":
