@@ -36,6 +36,8 @@ from analysis.study import DATA_DIR, DEFAULT_MEASURES, SUBJECT, attach_trial_col
 from analysis.study_design import StudyDesign
 
 TARGETS = (0.8, 0.9)
+SMALL_PILOT = 10
+"""Below this many pilot participants the report warns that the resampled population is too small."""
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -77,7 +79,8 @@ def _one(args: tuple[MeasureData, tuple[int, ...], int, float, int, int]) -> pd.
 def power_study(source: Engine | str, study_id: str, out_dir: Path | str, ns: Sequence[int], *,
                 simulations: int = 1000, alpha: float = 0.05, jobs: int = 1, seed: int = 0,
                 measures: Sequence[str] | None = None, include: frozenset[str] = frozenset(),
-                on_measure: Callable[[str], None] = lambda name: None, plots: bool = True) -> PowerResult:
+                on_measure: Callable[[str], None] = lambda name: None, plots: bool = True,
+                on_start: Callable[[int], None] = lambda measures: None) -> PowerResult:
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     kept, within, design, n_pilots = pilot_table(source, study_id, out, include)
@@ -86,6 +89,7 @@ def power_study(source: Engine | str, study_id: str, out_dir: Path | str, ns: Se
     if missing:
         raise AnalysisInputError(f"no column {', '.join(missing)} in the pilot's cells")
     datas = [measure_data(kept, m, within, SUBJECT) for m in chosen]
+    on_start(len(datas))
     tasks = [(d, tuple(ns), simulations, alpha, seed, i) for i, d in enumerate(datas)]
     frames: list[pd.DataFrame] = []
     if jobs > 1 and len(tasks) > 1:
@@ -160,6 +164,10 @@ def _report(table: pd.DataFrame, needed: pd.DataFrame, path: Path, study_id: str
         pilot = first.loc[(row.measure, row.test)]
         lines.append(f"| {row.measure} | {row.test} | {pilot['pilot_F']:.2f} | {pilot['pilot_partial_eta2']:.3f} | "
                      f"{_n(row.n_80)} | {_n(row.n_90)} |")
+    if n_pilots < SMALL_PILOT:
+        lines += ["", f"**Only {n_pilots} pilot participants**: resampling so few people under-represents the "
+                      "spread of a population, and the power estimates are too optimistic. Run more "
+                      f"(`steakhouse pilot --participants {SMALL_PILOT * 2}` or more)."]
     lines += ["", "Power at each n: `power.csv`; plot: `power.png`."]
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
     return path

@@ -68,12 +68,13 @@ def handle(args: argparse.Namespace) -> int:
     if measures is not None and not all(measures):
         raise UsageError(f"--dv {args.dv!r} has an empty column name")
     include = frozenset({"invalid"} if args.include_invalid else ())
-    progress = Progress(len(measures) if measures else 7, "power")
+    progress = Progress(len(measures) if measures else 0, "power")
     try:
         result = power_study(database_url(args.database_url), args.study, args.out, ns,
                              simulations=args.simulations, alpha=args.alpha, jobs=args.jobs, seed=args.seed,
                              measures=measures, include=include, plots=not args.no_plots,
-                             on_measure=lambda name: progress.finished(name, True))
+                             on_measure=lambda name: progress.finished(name, True),
+                             on_start=lambda total: setattr(progress, "total", total))
     except AnalysisInputError as exc:
         raise UsageError(f"study {args.study}: {exc}") from exc
     progress.close()
