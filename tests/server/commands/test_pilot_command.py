@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import asyncio
 
+import pandas as pd
 import pytest
 from sqlalchemy import create_engine, select
 
@@ -90,3 +91,9 @@ def _exports_leave_pilots_out_unless_asked(study_id: str, db_url: str, tmp_path)
     assert main(["analyze", "--study", study_id, "--database-url", db_url, "--out", str(out), "--no-plots",
                  "--dv", "ticks,interrupts", "--include-pilot"]) == 0
     assert (out / "anova.csv").is_file()
+    power = tmp_path / "power"
+    assert main(["power", "--study", study_id, "--database-url", db_url, "--n", "4,8", "--simulations", "50",
+                 "--dv", "ticks,interrupts", "--no-plots", "--out", str(power)]) == 0
+    table = pd.read_csv(power / "power.csv")
+    assert set(table["n"]) == {4, 8} and set(table["measure"]) == {"ticks", "interrupts"}
+    assert table["power"].between(0, 1).all() and (table["pilot_n"] == 3).all()
