@@ -18,6 +18,7 @@ from typing import Any
 import httpx
 import numpy as np
 from websockets.asyncio.client import connect
+from websockets.exceptions import ConnectionClosed
 
 from pilot.answers import answer
 from pilot.config import ParticipantConfig
@@ -203,7 +204,10 @@ class SimulatedParticipant:
                             sent.append(body)
                         self.outcome.interrupts += body["type"] == "interrupt"
                         self.outcome.selections += body["type"] == "select_subtask"
-                        await ws.send(json.dumps({"v": 1, "seq": seq, **body}))
+                        try:
+                            await ws.send(json.dumps({"v": 1, "seq": seq, **body}))
+                        except ConnectionClosed:
+                            continue  # the trial ended meanwhile: its trial_end is still to be read
                     elif kind == "error" and message["code"] == "internal" and seen is None:
                         raise TrialNotStarted(message["message"])
                     elif kind == "error" and message["code"] not in ("not_playing",):

@@ -7,7 +7,8 @@ Without ``--url`` the server is started on 127.0.0.1 (a free port) for the study
 stopped at the end. Pilot participants are joined with the admin token, so they are marked as pilots in the
 store (balanced among themselves, never counted for real participants, left out of ``export`` / ``analyze``
 unless ``--include-pilot``). By default their trials step as soon as the robot decided and the simulated
-participant acted; ``--realtime`` keeps the study's tick rate. The simulated participant: ``pilot``
+participant acted; ``--realtime`` keeps the study's tick rate. Running the same command again (same ``--seed``)
+rejoins the same simulated participants: unfinished ones go on where they stopped. The simulated participant: ``pilot``
 (docs/pilot.md); its parameters: ``pilot.config``.
 """
 
