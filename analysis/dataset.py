@@ -53,10 +53,11 @@ class Dataset:
         return self.tables["excluded.csv"]
 
 
-def build_dataset(conn: Connection, study_id: str, include_invalid: bool = False) -> Dataset:
+def build_dataset(conn: Connection, study_id: str, include_invalid: bool = False,
+                  include_pilot: bool = False) -> Dataset:
     """Read the study from the store and build every table of the export (invalid main trials in
-    ``cells.csv`` only with ``include_invalid``)."""
-    data = read_study(conn, study_id)
+    ``cells.csv`` only with ``include_invalid``; simulated pilot participants only with ``include_pilot``)."""
+    data = read_study(conn, study_id, include_pilot)
     design = Design.from_config(data.config)
     events = read_events(conn, study_id)
     people = {p.id: p for p in data.participants}

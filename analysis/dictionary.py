@@ -178,6 +178,8 @@ PARTICIPANT_COLUMNS: tuple[Column, ...] = (
     Column("step", INT, "current step number"),
     Column("steps", INT, "number of steps in the participant's plan"),
     Column("test_run", FLAG, "1 when flagged as a test run"),
+    Column("pilot", FLAG, "1 for a simulated pilot participant (steakhouse pilot; its answers are simulated); "
+                          "pilots are exported only with --include-pilot"),
     Column("excluded", FLAG, "1 when excluded by the experimenter"),
     Column("exclusion_reason", TEXT, "the experimenter's reason"),
     Column("created_at", TIME, "when the participant joined"),

@@ -43,9 +43,11 @@ class ExportResult:
     files: tuple[Path, ...]
 
 
-def read_dataset(source: Engine | str, study_id: str, include_invalid: bool = False) -> Dataset:
+def read_dataset(source: Engine | str, study_id: str, include_invalid: bool = False,
+                 include_pilot: bool = False) -> Dataset:
     """Build the export's tables from the store at ``source`` (an engine or a database URL); invalid main
-    trials enter ``cells.csv`` only with ``include_invalid``."""
+    trials enter ``cells.csv`` only with ``include_invalid``; simulated pilot participants are left out unless
+    ``include_pilot``."""
     engine = source if isinstance(source, Engine) else open_engine(source)
     try:
         try:
@@ -53,17 +55,18 @@ def read_dataset(source: Engine | str, study_id: str, include_invalid: bool = Fa
         except OperationalError as exc:
             raise StoreReadError(f"cannot connect to the store: {exc.orig}") from exc
         with conn:
-            return build_dataset(conn, study_id, include_invalid)
+            return build_dataset(conn, study_id, include_invalid, include_pilot)
     finally:
         if engine is not source:
             engine.dispose()
 
 
 def export_study(source: Engine | str, study_id: str, out_dir: Path | str,
-                 include_invalid: bool = False) -> ExportResult:
+                 include_invalid: bool = False, include_pilot: bool = False) -> ExportResult:
     """Write every file of the export of ``study_id`` into ``out_dir`` (created if needed); invalid main trials
-    are listed in ``excluded.csv``, and in ``cells.csv`` only with ``include_invalid``."""
-    dataset = read_dataset(source, study_id, include_invalid)
+    are listed in ``excluded.csv``, and in ``cells.csv`` only with ``include_invalid``; simulated pilot
+    participants only with ``include_pilot``."""
+    dataset = read_dataset(source, study_id, include_invalid, include_pilot)
     return write_dataset(dataset, out_dir)
 
 

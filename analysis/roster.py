@@ -51,7 +51,8 @@ def participant_row(p: StoredParticipant, trials: Sequence[StoredTrial], used: U
     return {
         "participant": p.public_id, "recruit_id": p.recruit_id, "recruiting": json.dumps(p.recruiting, sort_keys=True),
         "order_index": p.order_index, "condition_order": ";".join(p.condition_order), "status": p.status,
-        "state": p.state, "step": p.step, "steps": p.steps, "test_run": int(p.test_run), "excluded": int(p.excluded),
+        "state": p.state, "step": p.step, "steps": p.steps, "test_run": int(p.test_run), "pilot": int(p.pilot),
+        "excluded": int(p.excluded),
         "exclusion_reason": p.exclusion_reason, "created_at": iso_time(p.created_at),
         "finished_at": iso_time(p.finished_at),
         "practice_trials_finished": len({t.index for t in mine if t.kind == "practice"}),

@@ -51,6 +51,8 @@ class StoredParticipant:
     finished_at: datetime | None
     order_index: int | None
     condition_order: tuple[str, ...]
+    pilot: bool = False
+    """A simulated pilot participant (``steakhouse pilot``); read only when pilots are asked for."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -173,8 +175,9 @@ def study_ids(conn: Connection) -> list[str]:
     return list(conn.scalars(select(StudyRow.id).order_by(StudyRow.id)))
 
 
-def read_study(conn: Connection, study_id: str) -> StudyData:
-    """Everything stored about ``study_id`` except ticks and events (read per trial, see below)."""
+def read_study(conn: Connection, study_id: str, include_pilot: bool = False) -> StudyData:
+    """Everything stored about ``study_id`` except ticks and events (read per trial, see below). Simulated pilot
+    participants, their trials and answers are left out unless ``include_pilot``."""
     try:
         missing = {"studies", "participants", "trials", "ticks", "events"} - set(inspect(conn).get_table_names())
     except SQLAlchemyError as exc:
@@ -187,8 +190,8 @@ def read_study(conn: Connection, study_id: str) -> StudyData:
         known = ", ".join(study_ids(conn)) or "none"
         raise UnknownStudyError(f"no study {study_id!r} in the store; studies stored: {known}")
     return StudyData(id=study_id, title=study.title, config_hash=study.config_hash, config=dict(study.config),
-                     participants=_participants(conn, study_id), trials=_trials(conn, study_id),
-                     answers=_answers(conn, study_id))
+                     participants=_participants(conn, study_id, include_pilot),
+                     trials=_trials(conn, study_id, include_pilot), answers=_answers(conn, study_id, include_pilot))
 
 
 def read_ticks(conn: Connection, trial_id: int) -> list[StoredTick]:
@@ -200,6 +203,11 @@ def read_ticks(conn: Connection, trial_id: int) -> list[StoredTick]:
         TickRow.recorded_at, TickRow.world_events,
     ).where(TickRow.trial_id == trial_id).order_by(TickRow.tick))
     return [StoredTick(**row._asdict()) for row in rows]
+
+
+def _real(query: Any, include_pilot: bool) -> Any:
+    """``query`` (joined with participants) without pilot participants unless ``include_pilot``."""
+    return query if include_pilot else query.where(ParticipantRow.pilot.is_(False))
 
 
 def read_events(conn: Connection, study_id: str) -> dict[int, list[StoredEvent]]:
@@ -215,40 +223,42 @@ def read_events(conn: Connection, study_id: str) -> dict[int, list[StoredEvent]]
     return out
 
 
-def _participants(conn: Connection, study_id: str) -> tuple[StoredParticipant, ...]:
+def _participants(conn: Connection, study_id: str, include_pilot: bool) -> tuple[StoredParticipant, ...]:
     p = ParticipantRow
-    rows = conn.execute(
+    rows = conn.execute(_real(
         select(p.id, p.public_id, p.recruit_id, p.recruiting, p.status, p.state, p.step, p.plan, p.test_run,
                p.excluded, p.exclusion_reason, p.created_at, p.finished_at, AssignmentRow.order_index,
-               AssignmentRow.condition_order)
+               AssignmentRow.condition_order, p.pilot)
         .outerjoin(AssignmentRow, AssignmentRow.participant_id == p.id)
-        .where(p.study_id == study_id)
+        .where(p.study_id == study_id), include_pilot)
         .order_by(p.id))
     return tuple(StoredParticipant(
         id=r.id, public_id=r.public_id, recruit_id=r.recruit_id, recruiting=dict(r.recruiting or {}),
         status=r.status, state=r.state, step=r.step, steps=len(r.plan or ()), test_run=bool(r.test_run),
         excluded=bool(r.excluded), exclusion_reason=r.exclusion_reason, created_at=r.created_at,
-        finished_at=r.finished_at, order_index=r.order_index, condition_order=tuple(r.condition_order or ()))
+        finished_at=r.finished_at, order_index=r.order_index, condition_order=tuple(r.condition_order or ()),
+        pilot=bool(r.pilot))
         for r in rows)
 
 
-def _trials(conn: Connection, study_id: str) -> tuple[StoredTrial, ...]:
+def _trials(conn: Connection, study_id: str, include_pilot: bool) -> tuple[StoredTrial, ...]:
     t = TrialRow
-    rows = conn.execute(
+    rows = conn.execute(_real(
         select(t.id, t.participant_id, t.kind, t.index, t.attempt, t.condition_id.label("condition"), t.kitchen,
                t.robot, t.view, t.seed, t.config_hash, t.status, t.end_reason, t.started_at, t.ended_at, t.ticks,
                t.delivered, t.score, t.initial_state, t.decisions, t.missed_decisions, t.invalid_reason)
-        .where(t.study_id == study_id)
+        .join(ParticipantRow, ParticipantRow.id == t.participant_id)
+        .where(t.study_id == study_id), include_pilot)
         .order_by(t.id))
     return tuple(StoredTrial(**row._asdict()) for row in rows)
 
 
-def _answers(conn: Connection, study_id: str) -> tuple[StoredAnswer, ...]:
-    rows = conn.execute(
+def _answers(conn: Connection, study_id: str, include_pilot: bool) -> tuple[StoredAnswer, ...]:
+    rows = conn.execute(_real(
         select(AnswerRow.participant_id, AnswerRow.questionnaire_id, AnswerRow.step, AnswerRow.after_trial,
                AnswerRow.trial_id, AnswerRow.item_id, AnswerRow.value, AnswerRow.created_at, AnswerRow.text)
         .join(ParticipantRow, ParticipantRow.id == AnswerRow.participant_id)
-        .where(ParticipantRow.study_id == study_id)
+        .where(ParticipantRow.study_id == study_id), include_pilot)
         .order_by(AnswerRow.participant_id, AnswerRow.step, AnswerRow.id))
     return tuple(StoredAnswer(**row._asdict()) for row in rows)
 

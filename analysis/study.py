@@ -31,6 +31,8 @@ from analysis.study_design import StudyDesign
 DEFAULT_MEASURES: tuple[str, ...] = (
     "kb_gap_mean", "kb_gap_ticks_pct", "interrupts", "interrupts_per_selection", "ticks", "robot_in_fov_pct")
 SUBJECT = "participant"
+PILOT = "pilot"
+"""The ``include`` name that keeps simulated pilot participants (``--include-pilot``)."""
 DATA_DIR = "data"
 TRIAL_COLUMNS = (INVALID.column, INVALID.detail_column)
 """Columns of ``trials.csv`` the exclusion rules read, joined onto the cells by ``trial_id``."""
@@ -50,9 +52,11 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
     """Export ``study_id`` into ``<out_dir>/data`` and analyse ``measures`` (default: :data:`DEFAULT_MEASURES`
     and the study's scales) into ``out_dir``; ``include`` names exclusion rules whose rows are kept (with
     ``invalid`` the export itself keeps invalid trials in ``cells.csv``: ``export_study(include_invalid=True)``;
-    without it they are left out there and listed in ``excluded.csv``)."""
+    without it they are left out there and listed in ``excluded.csv``), and ``"pilot"`` in it keeps simulated
+    pilot participants (left out of the export otherwise)."""
     out = Path(out_dir)
-    export = export_study(source, study_id, out / DATA_DIR, include_invalid=INVALID.name in include)
+    export = export_study(source, study_id, out / DATA_DIR, include_invalid=INVALID.name in include,
+                          include_pilot=PILOT in include)
     cells = pd.read_csv(out / DATA_DIR / "cells.csv", dtype={SUBJECT: str})
     trials = pd.read_csv(out / DATA_DIR / "trials.csv", dtype={SUBJECT: str})
     if cells.empty:

@@ -21,6 +21,8 @@ COMMAND_MODULES = (
     "server.commands.serve",
     "server.commands.export",
     "server.commands.analyze",
+    "server.commands.pilot",
+    "server.commands.power",
 )
 
 

@@ -92,7 +92,11 @@ def path_study(study_id: Annotated[str, Path(max_length=64)], services: Services
     return loaded
 
 
-def require_admin(conn: HTTPConnection, services: ServicesDep) -> None:
+def is_admin(conn: HTTPConnection, services: Services) -> bool:
     token = bearer(conn)
-    if token is None or not secrets.compare_digest(token.encode(), services.admin_token.encode()):
+    return token is not None and secrets.compare_digest(token.encode(), services.admin_token.encode())
+
+
+def require_admin(conn: HTTPConnection, services: ServicesDep) -> None:
+    if not is_admin(conn, services):
         raise unauthorized()

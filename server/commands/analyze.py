@@ -3,7 +3,7 @@
     steakhouse analyze --csv cells.csv --dv ticks,interrupts --within robot,kitchen \\
         --subject participant --out results/ [--levels robot=fov_aware,baseline] [--ratings q.trust=1..7]
     steakhouse analyze --study paper_study --out results/ [--dv kb_gap_mean,ticks] [--include-invalid]
-        [--database-url URL]
+        [--database-url URL] [--include-pilot]
 
 The CSV has one row per subject and within cell, with one to three within factors. Levels are taken in the order
 they first appear unless ``--levels`` gives it. A stored study is first exported to ``<out>/data/``
@@ -56,6 +56,9 @@ def register(subparsers: Any) -> None:
                    help="with --csv: columns that are ratings (rank tests beside the ANOVA), with their scale")
     p.add_argument("--include-invalid", action="store_true",
                    help="keep trials the server marked invalid (listed either way)")
+    p.add_argument("--include-pilot", action="store_true",
+                   help="with --study: analyse simulated pilot participants too (steakhouse pilot; left out by "
+                        "default)")
     p.add_argument("--no-plots", action="store_true", help="skip the plots (the slowest part of a run)")
     p.add_argument("--seed", metavar="N", type=int, default=0,
                    help="seed of the bootstrap CI of generalized eta squared and of the plots' jitter (default 0)")
@@ -66,11 +69,14 @@ def register(subparsers: Any) -> None:
 
 def handle(args: argparse.Namespace) -> int:
     """Run the analysis; usage problems raise ``UsageError`` (exit code 2)."""
-    include = frozenset({"invalid"} if args.include_invalid else ())
+    include = frozenset(({"invalid"} if args.include_invalid else set())
+                        | ({"pilot"} if args.include_pilot else set()))
     if args.study is not None:
         return _handle_study(args, include)
     if args.database_url is not None:
         raise UsageError("--database-url goes with --study")
+    if args.include_pilot:
+        raise UsageError("--include-pilot goes with --study")
     missing = [flag for flag in ("dv", "within", "subject", "out") if getattr(args, flag) is None]
     if missing:
         raise UsageError(f"--csv needs {', '.join('--' + m for m in missing)}")

@@ -1,10 +1,11 @@
 """``steakhouse export``: a stored study's tidy CSV files and data dictionary (see :mod:`analysis.export`).
 
     steakhouse export --study paper_study --out exports/paper_study [--database-url URL] [--include-invalid]
+                      [--include-pilot]
 
 Main trials the server marked invalid (robot decisions past their deadline; docs/operations.md, "Robot
 health") are listed in ``excluded.csv`` with the reason and left out of ``cells.csv``; ``--include-invalid``
-keeps them there.
+keeps them there. Simulated pilot participants (``steakhouse pilot``) are left out unless ``--include-pilot``.
 
 Without ``--database-url`` the store is the one ``steakhouse serve`` uses by default (``DATABASE_URL`` /
 ``STEAKHOUSE_DATABASE_URL``, else ``sqlite:///./data/steakhouse.sqlite3``). The store is only read.
@@ -36,6 +37,8 @@ def register(subparsers: Any) -> None:
     p.add_argument("--include-invalid", action="store_true",
                    help="keep main trials the server marked invalid (too many missed robot decisions) in "
                         "cells.csv; by default they are only listed in excluded.csv")
+    p.add_argument("--include-pilot", action="store_true",
+                   help="export simulated pilot participants too (steakhouse pilot; left out by default)")
     p.set_defaults(handler=handle, subparser=p)
 
 
@@ -59,7 +62,8 @@ def handle(args: argparse.Namespace) -> int:
 
     url = database_url(args.database_url)
     try:
-        result = export_study(url, args.study, args.out, include_invalid=args.include_invalid)
+        result = export_study(url, args.study, args.out, include_invalid=args.include_invalid,
+                              include_pilot=args.include_pilot)
     except AnalysisInputError as exc:
         raise UsageError(str(exc)) from exc
     tables = result.dataset.tables

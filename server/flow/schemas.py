@@ -2,11 +2,19 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Any
+from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 
 ParamValue = Annotated[str, StringConstraints(max_length=200)]
+
+
+class PilotRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    pace: Literal["fast", "realtime"] = "fast"
+    """``fast``: each step as soon as the robot decided and the simulated participant answered the last state;
+    ``realtime``: the study's tick rate."""
 
 
 class JoinRequest(BaseModel):
@@ -17,6 +25,8 @@ class JoinRequest(BaseModel):
     """The landing URL's query parameters; only the study's ``recruiting.url_parameters`` are kept."""
     test_run: bool = False
     """Mark this participant as a test run (not counted for assignment, excluded from exports)."""
+    pilot: PilotRequest | None = None
+    """Join as a simulated pilot participant (``steakhouse pilot``); only with the admin token as the bearer."""
 
 
 class JoinResponse(BaseModel):

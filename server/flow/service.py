@@ -66,16 +66,18 @@ def progress_of(row: ParticipantRow) -> Progress:
 
 
 def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run: bool,
-         presented_token: str | None = None) -> Joined:
+         presented_token: str | None = None, pilot_pace: str | None = None) -> Joined:
     """Join ``loaded``'s study, or come back to it: ``presented_token`` is the token the browser already holds
-    (its ``Authorization`` header), which alone resumes a participant whose recruiting id is known."""
+    (its ``Authorization`` header), which alone resumes a participant whose recruiting id is known. A pilot
+    participant (``pilot_pace`` given; the route lets only the admin ask for it) is balanced among pilots, and
+    the admin's pilot driver resumes its own pilot by recruiting id (with a new token)."""
     study = loaded.study
     names = study.recruiting.url_parameters
     kept = {name: recruiting[name] for name in names if name in recruiting}
     recruit_id = kept.get(names[0]) if names else None
     with store.transaction() as session:
         assignment.lock_study(session, study.id)
-        outcome = _join_in(session, loaded, kept, recruit_id, test_run, presented_token)
+        outcome = _join_in(session, loaded, kept, recruit_id, test_run, presented_token, pilot_pace)
     if isinstance(outcome, Refused):
         log.warning("join refused: the recruiting id of participant %s already started in another browser",
                     outcome.participant.public_id)
@@ -84,10 +86,21 @@ def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run
 
 
 def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recruit_id: str | None, test_run: bool,
-             presented_token: str | None) -> Joined | Refused:
+             presented_token: str | None, pilot_pace: str | None) -> Joined | Refused:
     study = loaded.study
+    pilot = pilot_pace is not None
     if recruit_id:
         existing = participants.by_recruit_id(session, study.id, recruit_id)
+        if existing is not None and existing.pilot != pilot:
+            raise ApiError(409, "recruit_id_taken", "this recruiting id belongs to a pilot participant"
+                           if existing.pilot else "this recruiting id belongs to a real participant")
+        if existing is not None and pilot:
+            token = secrets.token_urlsafe(32)
+            participants.rotate_token(session, existing.id, token)
+            found = participants.assignment_of(session, existing.id)
+            if found is None:
+                raise ApiError(500, "internal", "participant without assignment")
+            return Joined(token, existing, found, rejoined=True)
         if existing is not None:
             holder = participants.by_token(session, presented_token) if presented_token else None
             if presented_token is None or holder is None or holder.id != existing.id:
@@ -101,7 +114,7 @@ def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recrui
             return Joined(presented_token, existing, found, rejoined=True)
     token = secrets.token_urlsafe(32)
     counts = assignment.order_counts(session, study.id, len(loaded.orders), utcnow(),
-                                     study.assignment.in_progress_window_minutes)
+                                     study.assignment.in_progress_window_minutes, pilot=pilot)
     index = assignment.least_filled(counts)
     order = list(loaded.orders[index])
     plan = build_plan(study, order)
@@ -109,7 +122,7 @@ def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recrui
         session, study_id=study.id, public_id=uuid.uuid4().hex, token=token, recruit_id=recruit_id,
         recruiting=kept, config_hash=study.config_hash(), plan=plan_to_json(plan),
         state=Progress(plan, 0).phase.value, test_run=test_run or study.test_run, order_index=index,
-        condition_order=order)
+        condition_order=order, pilot_pace=pilot_pace)
     found = participants.assignment_of(session, row.id)
     if found is None:
         raise ApiError(500, "internal", "assignment not stored")

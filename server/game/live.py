@@ -8,6 +8,12 @@ The clock:
   connection must not cost the participant ticks); the next step comes one period after they return.
 - Tick lateness = actual start of a step − its scheduled start (logged per tick). A late step does not
   cause a burst of catch-up steps.
+- A pilot participant's trial at pace ``fast`` (``steakhouse pilot``; the pace is the store's pilot mark, so no
+  real participant can get it) steps as soon as the simulated participant has answered the last ``state``
+  with any message (it sends a heartbeat when it has nothing to do) and the robot has decided; it waits at most
+  one period for that answer, and its robot decides without the real-time deadline (at most
+  ``PILOT_DECISION_S``): the planner's decisions are then those of an unloaded machine, not cut short because
+  the pilot runs many trials at once on a busy one. Real participants' trials keep the study's clock and deadline.
 - The robot's decision for a state is requested as soon as the state exists, with a deadline of
   ``decision_deadline_fraction`` of the period; a missed deadline makes the robot stay that tick and is
   logged as a ``deadline_miss`` event.
@@ -51,6 +57,8 @@ from server.store.writer import BatchWriter
 
 log = logging.getLogger(__name__)
 MAX_LOGGED_ERRORS = 50
+PILOT_DECISION_S = 10.0
+"""A ``fast`` pilot trial's robot decision deadline (seconds after the request)."""
 
 
 @dataclass(frozen=True)
@@ -75,6 +83,9 @@ class LiveGame:
         self.inbound = Inbound(deps.max_message_bytes)
         self.connected = asyncio.Event()
         self.wake = asyncio.Event()
+        self.fast = meta.pilot_pace == "fast"
+        self.answered = asyncio.Event()
+        """Set by every accepted client message: a ``fast`` pilot trial steps once its participant answered."""
         self.finished = False
         self.task: asyncio.Task[None] | None = None
         self._decision: asyncio.Task[RobotChoice] | None = None
@@ -145,6 +156,7 @@ class LiveGame:
             elif isinstance(message, Heartbeat):
                 self.inbound.accept(message.seq)
                 conn.send(Pong(ack=message.seq, client_time=message.client_time, server_time=time.time() * 1000))
+                self.answered.set()
                 return
             elif isinstance(message, Focus | Blur):
                 self.event(message.type, {"seq": message.seq})
@@ -159,6 +171,7 @@ class LiveGame:
         self.inbound.accept(message.seq)
         conn.send(Ack(ack=message.seq, subtask=controller.subtask.value if controller.subtask else None,
                       queued=len(controller.queue)))
+        self.answered.set()
         self.wake.set()
 
     # -- the loop -------------------------------------------------------------------------------------
@@ -187,7 +200,10 @@ class LiveGame:
                 next_at = None
                 continue
             now = time.monotonic()
-            if self.mode == "wait_for_participant":
+            if self.fast:
+                await self._await_answer(period)
+                scheduled = now = time.monotonic()
+            elif self.mode == "wait_for_participant":
                 if not self.engine.controller.has_action():
                     self.wake.clear()
                     await self.wake.wait()
@@ -216,9 +232,21 @@ class LiveGame:
         world = self.engine.world
         await self.end("finished", "delivered" if world.orders_left == 0 else "horizon")
 
+    def decision_budget(self) -> float:
+        """Seconds the robot has for a decision: a share of the tick period, or ``PILOT_DECISION_S`` for a
+        ``fast`` pilot trial."""
+        return PILOT_DECISION_S if self.fast else self.deps.deadline_fraction * self.period
+
+    async def _await_answer(self, period: float) -> None:
+        """A ``fast`` pilot trial: wait (at most ``period``) for the participant's answer to the last state."""
+        if not self.answered.is_set():
+            with contextlib.suppress(TimeoutError):
+                await asyncio.wait_for(self.answered.wait(), period)
+        self.answered.clear()
+
     def _request_decision(self) -> None:
         world = self.engine.world
-        deadline = time.monotonic() + self.deps.deadline_fraction * self.period
+        deadline = time.monotonic() + self.decision_budget()
         self._decision = asyncio.create_task(self.deps.pool.decide(
             self.meta.trial_id, world, self.engine.last_events, self.meta.seed, world.tick, deadline))
         self._decision_tick = world.tick
@@ -233,7 +261,7 @@ class LiveGame:
         self._judge(choice.missed)
         if choice.missed:
             self.misses += 1
-            self.event("deadline_miss", {"budget_ms": round(self.deps.deadline_fraction * self.period * 1000, 1),
+            self.event("deadline_miss", {"budget_ms": round(self.decision_budget() * 1000, 1),
                                          "waited_ms": round(choice.decision_ms or 0.0, 1)})
         elif choice.error is not None:
             self.event("error", {"code": "robot", "message": choice.error[:300]})

@@ -27,6 +27,9 @@ class TrialMeta:
     """How the participant sees the kitchen (``server.study.views``); the one condition fact they may be told."""
     seed: int
     test_run: bool
+    pilot_pace: str | None = None
+    """``fast`` or ``realtime`` for a simulated pilot participant (from the store's pilot mark, never from a
+    client message); ``None`` for a real participant."""
 
     def to_dict(self) -> dict[str, Any]:
         return asdict(self)

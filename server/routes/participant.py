@@ -17,7 +17,7 @@ from fastapi import APIRouter, Depends, Request
 
 from server.admin.resume import link_secret, read_code, verify
 from server.catalog import LoadedStudy
-from server.deps import ParticipantDep, ServicesDep, bearer, participant_study, path_study
+from server.deps import ParticipantDep, ServicesDep, bearer, is_admin, participant_study, path_study
 from server.errors import ApiError
 from server.flow import service
 from server.flow.progress import Move
@@ -43,8 +43,15 @@ def study_info(loaded: Annotated[LoadedStudy, Depends(path_study)]) -> StudyPubl
 def join(loaded: Annotated[LoadedStudy, Depends(path_study)], body: JoinRequest, request: Request,
          services: ServicesDep) -> JoinResponse:
     """Join, or come back with the token this browser holds (``Authorization``); a known recruiting id from
-    a browser without its token answers ``409 already_started`` (:func:`server.flow.service.join`)."""
-    joined = service.join(services.store, loaded, body.recruiting, body.test_run, bearer(request))
+    a browser without its token answers ``409 already_started`` (:func:`server.flow.service.join`). A pilot join
+    (``pilot``) needs the admin token as the bearer, so no participant can make themselves a pilot (and get the
+    pilot's pace); without it, 403 ``pilot_needs_admin``."""
+    if body.pilot is not None:
+        if not is_admin(request, services):
+            raise ApiError(403, "pilot_needs_admin", "pilot participants are joined with the admin token")
+        joined = service.join(services.store, loaded, body.recruiting, body.test_run, pilot_pace=body.pilot.pace)
+    else:
+        joined = service.join(services.store, loaded, body.recruiting, body.test_run, bearer(request))
     return _joined(loaded, joined)
 
 

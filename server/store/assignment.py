@@ -2,7 +2,8 @@
 
 An order's fill is the number of its participants that count: not test runs, not excluded, and either
 completed, or still in progress and joined within the study's ``in_progress_window_minutes``. Screened-out
-participants never count. Ties go to the lowest order index.
+participants never count. Ties go to the lowest order index. Pilot (simulated) participants are balanced among
+themselves: they never count for real participants, and real ones never count for pilots.
 
 Atomicity: the count and the insert happen in one transaction that first serialises with every other
 join of the same study — on PostgreSQL by locking the study's row (``SELECT ... FOR UPDATE``), on SQLite by
@@ -31,8 +32,9 @@ def lock_study(session: Session, study_id: str) -> None:
 
 
 def order_counts(session: Session, study_id: str, n_orders: int, now: datetime,
-                 window_minutes: float) -> list[int]:
-    """How many counting participants each order has (see the module docstring)."""
+                 window_minutes: float, pilot: bool = False) -> list[int]:
+    """How many counting participants each order has (see the module docstring); with ``pilot``, how many
+    counting pilot participants."""
     since = now - timedelta(minutes=window_minutes)
     query = (
         select(AssignmentRow.order_index, func.count())
@@ -40,6 +42,7 @@ def order_counts(session: Session, study_id: str, n_orders: int, now: datetime,
         .where(
             AssignmentRow.study_id == study_id,
             ParticipantRow.test_run.is_(False),
+            ParticipantRow.pilot.is_(pilot),
             ParticipantRow.excluded.is_(False),
             or_(ParticipantRow.status == "completed",
                 and_(ParticipantRow.status == "in_progress", ParticipantRow.created_at >= since)),

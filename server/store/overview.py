@@ -13,19 +13,23 @@ from server.store.tables import AssignmentRow, ParticipantRow, TrialRow
 
 def order_breakdown(session: Session, study_id: str, n_orders: int, now: datetime,
                     window_minutes: float) -> list[dict[str, int]]:
-    """Per order: participants that count for assignment (``counted``), and all assigned by status/flag."""
+    """Per order: participants that count for assignment (``counted``), and all assigned by status/flag; pilot
+    (simulated) participants only in ``pilots``, apart from every other number."""
     since = now - timedelta(minutes=window_minutes)
     rows = session.execute(
         select(AssignmentRow.order_index, ParticipantRow.status, ParticipantRow.test_run, ParticipantRow.excluded,
-               ParticipantRow.created_at)
+               ParticipantRow.created_at, ParticipantRow.pilot)
         .join(ParticipantRow, ParticipantRow.id == AssignmentRow.participant_id)
         .where(AssignmentRow.study_id == study_id))
     table = [{"index": i, "counted": 0, "completed": 0, "in_progress": 0, "screened_out": 0, "test_runs": 0,
-              "excluded": 0, "assigned": 0} for i in range(n_orders)]
-    for index, status, test_run, excluded, created in rows:
+              "excluded": 0, "assigned": 0, "pilots": 0} for i in range(n_orders)]
+    for index, status, test_run, excluded, created, pilot in rows:
         if not 0 <= index < n_orders:
             continue
         cell = table[index]
+        if pilot:
+            cell["pilots"] += 1
+            continue
         cell["assigned"] += 1
         cell["test_runs"] += int(test_run)
         cell["excluded"] += int(excluded)
@@ -42,7 +46,7 @@ def participant_public(row: ParticipantRow, order: AssignmentRow | None) -> dict
         "participant_id": row.public_id, "study_id": row.study_id, "state": row.state, "status": row.status,
         "step": row.step, "steps": len(row.plan), "order_index": order.order_index if order else None,
         "condition_order": list(order.condition_order) if order else [], "recruiting": row.recruiting,
-        "test_run": row.test_run, "excluded": row.excluded, "exclusion_reason": row.exclusion_reason,
+        "test_run": row.test_run, "pilot": row.pilot, "excluded": row.excluded, "exclusion_reason": row.exclusion_reason,
         "created_at": row.created_at.isoformat(),
         "finished_at": row.finished_at.isoformat() if row.finished_at else None,
         "device": row.device,

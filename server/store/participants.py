@@ -40,12 +40,15 @@ def assignment_of(session: Session, participant_id: int) -> AssignmentRow | None
 
 def create(session: Session, *, study_id: str, public_id: str, token: str, recruit_id: str | None,
            recruiting: dict[str, str], config_hash: str, plan: list[dict[str, Any]], state: str,
-           test_run: bool, order_index: int, condition_order: list[str]) -> ParticipantRow:
-    """A new participant at step 0 with their assignment (call inside the assignment's transaction)."""
+           test_run: bool, order_index: int, condition_order: list[str],
+           pilot_pace: str | None = None) -> ParticipantRow:
+    """A new participant at step 0 with their assignment (call inside the assignment's transaction); a pilot
+    (simulated) participant when ``pilot_pace`` is given."""
     now = utcnow()
     row = ParticipantRow(study_id=study_id, public_id=public_id, token_hash=hash_token(token),
                          recruit_id=recruit_id, recruiting=recruiting, config_hash=config_hash, plan=plan,
                          step=0, state=state, status="in_progress", test_run=test_run, excluded=False,
+                         pilot=pilot_pace is not None, pilot_pace=pilot_pace,
                          created_at=now, updated_at=now)
     session.add(row)
     session.flush()

@@ -21,7 +21,8 @@ from __future__ import annotations
 from datetime import datetime
 from typing import Any
 
-from sqlalchemy import BigInteger, Boolean, Float, ForeignKey, Index, Integer, MetaData, String, Text, UniqueConstraint
+from sqlalchemy import (BigInteger, Boolean, Float, ForeignKey, Index, Integer, MetaData, String, Text, UniqueConstraint,
+                        false)
 from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column
 
 from server.store.types import JsonType, UTCDateTime, utcnow
@@ -67,6 +68,12 @@ class ParticipantRow(Base):
     state: Mapped[str] = mapped_column(String(32))
     status: Mapped[str] = mapped_column(String(16), default="in_progress")
     test_run: Mapped[bool] = mapped_column(Boolean, default=False)
+    pilot: Mapped[bool] = mapped_column(Boolean, default=False, server_default=false())
+    """A simulated participant of ``steakhouse pilot``: never counted for assignment or as a real participant,
+    left out of exports and analyses unless asked (``--include-pilot``)."""
+    pilot_pace: Mapped[str | None] = mapped_column(String(16), nullable=True)
+    """A pilot's trial pace (``fast``: a step as soon as the robot decided and the simulated participant
+    answered; ``realtime``: the study's rate); NULL for real participants, whose pace is always the study's."""
     excluded: Mapped[bool] = mapped_column(Boolean, default=False)
     exclusion_reason: Mapped[str | None] = mapped_column(Text)
     created_at: Mapped[datetime] = mapped_column(UTCDateTime, default=utcnow)

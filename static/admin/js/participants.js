@@ -1,7 +1,8 @@
 /**
  * Participants: who joined which study, their order and progress, their flags, and their questionnaire
  * answers. Flags go through the admin API: mark / unmark as a test run, exclude with a reason (required),
- * include again. The list refreshes every 10 s unless an exclusion form is open.
+ * include again. The list refreshes every 10 s unless an exclusion form is open. Simulated pilot participants
+ * (`steakhouse pilot`) are listed apart, below the real ones, in a table of their own.
  */
 
 import { h, show } from "../../js/dom.js";
@@ -17,6 +18,7 @@ function progress(p) {
 
 function flags(p) {
   const out = [];
+  if (p.pilot) out.push(badge("simulated pilot", "test"));
   if (p.test_run) out.push(badge("test run", "test"));
   if (p.excluded) out.push(badge("excluded", "excluded"), h("span", { class: "reason" }, p.exclusion_reason || ""));
   if (p.invalid_trials) {
@@ -163,19 +165,31 @@ export function participantsPage(root, { api, params, go }) {
       ["Flags", flags],
       ["", actions],
     ];
+    const real = people.filter((p) => !p.pilot);
+    const pilots = people.filter((p) => p.pilot);
+    const parts = [real.length ? peopleTable(real, columns, "participants-table")
+      : h("p", { class: "muted" }, "No participant has joined yet.")];
+    if (pilots.length) {
+      parts.push(h("h3", { id: "pilot-heading" }, `Simulated pilot participants (${pilots.length})`),
+        h("p", { class: "muted" }, "Run by steakhouse pilot: never counted for assignment, left out of exports and analyses unless asked (--include-pilot); their answers are simulated."),
+        peopleTable(pilots, columns, "pilot-participants-table"));
+    }
+    frame.body.replaceChildren(...parts);
+  }
+
+  function peopleTable(people, columns, id) {
     const rows = [];
     for (const p of people) {
       rows.push(p);
       if (open.has(p.participant_id)) rows.push({ answersOf: p.participant_id });
     }
-    const node = h("div", { class: "table-wrap" }, h("table", { class: "data", id: "participants-table" },
+    return h("div", { class: "table-wrap" }, h("table", { class: "data", id },
       h("thead", {}, h("tr", {}, columns.map(([head]) => h("th", { scope: "col" }, head)))),
       h("tbody", {}, rows.map((row) => (row.answersOf
         ? h("tr", { class: "answers-row", id: `answers-${row.answersOf}` },
           h("td", { colspan: String(columns.length) }, answersBlock(open.get(row.answersOf))))
         : h("tr", { dataset: { participant: row.participant_id, excluded: String(row.excluded), testRun: String(row.test_run) } },
           columns.map(([, cell]) => h("td", {}, cell(row)))))))));
-    frame.body.replaceChildren(people.length ? node : h("p", { class: "muted" }, "No participant has joined yet."));
   }
 
   async function load() {

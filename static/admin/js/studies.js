@@ -55,6 +55,7 @@ function ordersTable(study, plannedN) {
       ["Screened out", (o) => String(o.screened_out), "num"],
       ["Test runs", (o) => String(o.test_runs), "num"],
       ["Excluded", (o) => String(o.excluded), "num"],
+      ["Simulated pilots", (o) => String(o.pilots ?? 0), "num"],
     ], rows, { id: `orders-${study.id}`,
                rowAttrs: (o) => ({ dataset: { order: String(o.index), counted: String(o.counted), target: String(o.target) } }) }),
     h("p", { class: "muted" }, `Balance: max − min of achieved = ${spread}. The next participant gets order ${next + 1} ` +

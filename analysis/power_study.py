@@ -1,0 +1,177 @@
+"""``power_study``: the simulation power analysis (:mod:`analysis.power`) of a stored study's pilot participants.
+
+Steps: export the study with its pilot participants (``<out>/data/``, as ``analyze --include-pilot`` does);
+keep the cells of pilot participants only (the people whose behaviour the pilot simulated); prepare the
+table exactly as ``analyze`` does (the study's level order, scale scores, exclusion rules; then each measure's
+complete cases); then, per measure, resample at each n. Measures run in parallel over ``jobs`` processes, each
+with its own generator from ``[seed, measure index]`` (same seed, same result, whatever ``jobs``).
+
+Files written to ``out``:
+
+    power.csv      one row per measure × test × n (``analysis.power.POWER_COLUMNS``; ``power`` the share of
+                   simulations with p < α, ``ci_low`` / ``ci_high`` its Wilson 95 % Monte-Carlo interval)
+    n_needed.csv   per measure and test, the smallest n of the grid reaching 80 % and 90 % power (empty: none)
+    power.png      power against n, one panel per measure, one line per test
+    power.md       a short report
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+from sqlalchemy import Engine
+
+from analysis.errors import AnalysisInputError
+from analysis.exclusions import apply_exclusions
+from analysis.export import export_study
+from analysis.levels import apply_level_order
+from analysis.power import POWER_COLUMNS, MeasureData, measure_data, measure_power, n_reaching
+from analysis.scales import score_scales
+from analysis.study import DATA_DIR, DEFAULT_MEASURES, SUBJECT, attach_trial_columns
+from analysis.study_design import StudyDesign
+
+TARGETS = (0.8, 0.9)
+SMALL_PILOT = 10
+"""Below this many pilot participants the report warns that the resampled population is too small."""
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class PowerResult:
+    table: pd.DataFrame
+    needed: pd.DataFrame
+    pilot_participants: int
+    files: tuple[Path, ...]
+
+
+def pilot_table(source: Engine | str, study_id: str, out: Path,
+                include: frozenset[str] = frozenset()) -> tuple[pd.DataFrame, list[str], StudyDesign, int]:
+    """The analysis table of the pilot participants (exclusions applied), the within factors, the design and
+    the number of pilot participants."""
+    export = export_study(source, study_id, out / DATA_DIR, include_pilot=True)
+    cells = pd.read_csv(out / DATA_DIR / "cells.csv", dtype={SUBJECT: str})
+    people = export.dataset.tables["participants.csv"]
+    pilots = set(people.loc[people["pilot"].astype(int) == 1, "participant"].astype(str))
+    trials = pd.read_csv(out / DATA_DIR / "trials.csv", dtype={SUBJECT: str})
+    cells = attach_trial_columns(cells[cells[SUBJECT].isin(pilots)], trials)
+    if cells.empty:
+        raise AnalysisInputError(f"study {study_id!r} has no pilot participant with a finished main trial; run "
+                                 f"steakhouse pilot first")
+    design = StudyDesign.from_config(export.dataset.config)
+    within = [f for f in design.factors if f in cells.columns and cells[f].nunique() > 1]
+    if not within:
+        raise AnalysisInputError(f"study {study_id!r}: no within factor with two levels in the pilot's cells")
+    table = apply_level_order(cells, within, design.levels, strict=False)
+    table = score_scales(table, design.items, design.scales) if design.scales else table
+    kept, _ = apply_exclusions(table, within, SUBJECT, include)
+    return kept, within, design, len(pilots)
+
+
+def _one(args: tuple[MeasureData, tuple[int, ...], int, float, int, int]) -> pd.DataFrame:
+    data, ns, simulations, alpha, seed, index = args
+    return measure_power(data, ns, simulations, alpha, np.random.default_rng([seed, index]))
+
+
+def power_study(source: Engine | str, study_id: str, out_dir: Path | str, ns: Sequence[int], *,
+                simulations: int = 1000, alpha: float = 0.05, jobs: int = 1, seed: int = 0,
+                measures: Sequence[str] | None = None, include: frozenset[str] = frozenset(),
+                on_measure: Callable[[str], None] = lambda name: None, plots: bool = True,
+                on_start: Callable[[int], None] = lambda measures: None) -> PowerResult:
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    kept, within, design, n_pilots = pilot_table(source, study_id, out, include)
+    chosen = list(measures) if measures is not None else [*DEFAULT_MEASURES, *(s.column for s in design.scales)]
+    missing = [m for m in chosen if m not in kept.columns]
+    if missing:
+        raise AnalysisInputError(f"no column {', '.join(missing)} in the pilot's cells")
+    datas = [measure_data(kept, m, within, SUBJECT) for m in chosen]
+    on_start(len(datas))
+    tasks = [(d, tuple(ns), simulations, alpha, seed, i) for i, d in enumerate(datas)]
+    frames: list[pd.DataFrame] = []
+    if jobs > 1 and len(tasks) > 1:
+        with ProcessPoolExecutor(max_workers=jobs) as pool:
+            for data, frame in zip(datas, pool.map(_one, tasks), strict=True):
+                frames.append(frame)
+                on_measure(data.measure)
+    else:
+        for task in tasks:
+            frames.append(_one(task))
+            on_measure(task[0].measure)
+    table = pd.concat([f for f in frames if not f.empty] or [pd.DataFrame(columns=POWER_COLUMNS)],
+                      ignore_index=True)
+    needed = _needed(table)
+    files = [out / "power.csv", out / "n_needed.csv"]
+    table.to_csv(files[0], index=False)
+    needed.to_csv(files[1], index=False)
+    if plots and not table.empty:
+        files.append(_plot(table, out / "power.png", alpha))
+    files.append(_report(table, needed, out / "power.md", study_id, n_pilots, simulations, alpha))
+    return PowerResult(table, needed, n_pilots, tuple(files))
+
+
+def _needed(table: pd.DataFrame) -> pd.DataFrame:
+    if table.empty:
+        return pd.DataFrame(columns=["measure", "test", "n_80", "n_90"])
+    a, b = (n_reaching(table, t) for t in TARGETS)
+    return a.merge(b, on=["measure", "test"])
+
+
+def _plot(table: pd.DataFrame, path: Path, alpha: float) -> Path:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    measures = list(dict.fromkeys(table["measure"]))
+    cols = min(3, len(measures))
+    rows = -(-len(measures) // cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(5 * cols, 3.6 * rows), squeeze=False)
+    for ax, measure in zip(axes.flat, measures, strict=False):
+        part = table[table["measure"] == measure]
+        for test, line in part.groupby("test", sort=False):
+            ax.plot(line["n"], line["power"], marker="o", label=test)
+            ax.fill_between(line["n"], line["ci_low"], line["ci_high"], alpha=0.15)
+        for target in TARGETS:
+            ax.axhline(target, color="grey", linewidth=0.7, linestyle="--")
+        ax.set_title(measure)
+        ax.set_xlabel("participants (n)")
+        ax.set_ylabel(f"power (α = {alpha:g})")
+        ax.set_ylim(0, 1)
+        ax.legend(fontsize=6)
+    for ax in list(axes.flat)[len(measures):]:
+        ax.set_visible(False)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def _report(table: pd.DataFrame, needed: pd.DataFrame, path: Path, study_id: str, n_pilots: int,
+            simulations: int, alpha: float) -> Path:
+    lines = [f"# Power analysis: study {study_id}", "",
+             f"Simulated from {n_pilots} pilot participants (steakhouse pilot: simulated participants, not people): "
+             f"{simulations} resamples with replacement at each n, α = {alpha:g}, the tests `analyze` runs "
+             "(simple effects Holm-adjusted). Power is the share of resamples with p < α; the interval is its "
+             "Wilson 95 % Monte-Carlo interval. A pilot of simulated participants estimates power for people who "
+             "behave like the simulation; treat the numbers as a rehearsal.", "",
+             "| measure | test | pilot F | pilot partial η² | n for 80 % | n for 90 % |", "|---|---|---|---|---|---|"]
+    first = table.drop_duplicates(["measure", "test"]).set_index(["measure", "test"])
+    for row in needed.itertuples(index=False):
+        pilot = first.loc[(row.measure, row.test)]
+        lines.append(f"| {row.measure} | {row.test} | {pilot['pilot_F']:.2f} | {pilot['pilot_partial_eta2']:.3f} | "
+                     f"{_n(row.n_80)} | {_n(row.n_90)} |")
+    if n_pilots < SMALL_PILOT:
+        lines += ["", f"**Only {n_pilots} pilot participants**: resampling so few people under-represents the "
+                      "spread of a population, and the power estimates are too optimistic. Run more "
+                      f"(`steakhouse pilot --participants {SMALL_PILOT * 2}` or more)."]
+    lines += ["", "Power at each n: `power.csv`; plot: `power.png`."]
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+def _n(value: object) -> str:
+    return "beyond the grid" if value is None or pd.isna(value) else str(int(value))  # type: ignore[call-overload]

@@ -1,0 +1,220 @@
+"""One simulated participant over the participant flow a browser uses (docs/protocol.md): join with recruiting
+ids (as a pilot, with the admin token), consent, instructions, the quiz when the study has one, the practice,
+every round over the game websocket, every questionnaire, the end page.
+
+On the websocket it answers every ``state`` frame with exactly one message (a choice, an interrupt or a
+heartbeat; :mod:`pilot.mind`): at the pilot's ``fast`` pace the server steps as soon as that answer and the
+robot's decision are in. It reads nothing but the frames (``hello``, ``state``, ``blocked``, ``trial_end``).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import httpx
+import numpy as np
+from websockets.asyncio.client import connect
+from websockets.exceptions import ConnectionClosed
+
+from pilot.answers import answer
+from pilot.config import ParticipantConfig
+from pilot.mind import Mind, decide
+from pilot.perception import Perception
+from server.catalog import LoadedStudy
+
+
+ANSWERS_STREAM = 2**31
+"""The generator stream of a participant's questionnaire and quiz answers (trials use 0, 1, 2, …)."""
+
+
+def trial_rng(seed: tuple[int, ...], trial: int) -> np.random.Generator:
+    """The generator of a participant's ``trial``-th trial (0-based, practice included)."""
+    return np.random.default_rng([*seed, trial])
+
+
+def respond(mind: Mind, seen: Perception, message: dict[str, Any], needs: dict[str, str], loaded: LoadedStudy,
+            config: ParticipantConfig, rng: np.random.Generator) -> tuple[Perception, Mind, dict[str, Any]]:
+    """One ``state`` frame in, the knowledge, mind and message body (without ``v`` / ``seq``) out: everything
+    the simulated participant does with a frame, and all it uses (besides the study file and its config)."""
+    world = loaded.study.world
+    seen = seen.observe(message, world.fov_angle, world.kb_delay)
+    reply, mind = decide(mind, seen, message, needs, loaded.rules, config, rng)
+    body = reply.body()
+    if body["type"] == "heartbeat":
+        body["client_time"] = 0
+    return seen, mind, body
+
+
+class PilotFlowError(RuntimeError):
+    """The server answered the simulated participant with an error it cannot go on from."""
+
+
+class TrialNotStarted(PilotFlowError):
+    """The server could not start the trial (it says to try again later)."""
+
+
+RETRIES = 3
+RETRY_WAIT_S = 2.0
+
+
+@dataclass
+class Outcome:
+    """What one simulated participant did (the store holds the rest)."""
+
+    name: str
+    participant_id: str = ""
+    trials: int = 0
+    interrupts: int = 0
+    selections: int = 0
+    questionnaires: int = 0
+    completed: bool = False
+    frames: list[list[dict[str, Any]]] = field(default_factory=list)
+    """Per trial, every websocket message received, when kept (``keep_frames``)."""
+    sent: list[list[dict[str, Any]]] = field(default_factory=list)
+    """Per trial, every message sent, when kept (``keep_frames``)."""
+
+
+@dataclass(frozen=True)
+class Seat:
+    """Where and how a simulated participant plays."""
+
+    base_url: str
+    admin_token: str
+    loaded: LoadedStudy
+    config: ParticipantConfig
+    pace: str = "fast"
+    keep_frames: bool = False
+
+
+class SimulatedParticipant:
+    def __init__(self, seat: Seat, name: str, seed: tuple[int, ...],
+                 on_trial: Callable[[int], None] = lambda delta: None) -> None:
+        """``seed``: the participant's seed key; trial k plays with ``default_rng([*seed, k])`` (see
+        :func:`trial_rng`), its answers and quiz come from ``default_rng([*seed, -1])``."""
+        self.seat, self.seed, self.on_trial = seat, seed, on_trial
+        self.rng = np.random.default_rng([*seed, ANSWERS_STREAM])
+        self.played = 0
+        self.outcome = Outcome(name)
+        self.token = ""
+        self.gap_mean = 0.0
+        study = seat.loaded.study
+        self.reversed = {i.id for q in study.questionnaires for i in q.items if getattr(i, "reverse", False)}
+
+    async def call(self, http: httpx.AsyncClient, method: str, path: str, body: Any = None,
+                   token: str | None = None) -> dict[str, Any]:
+        headers = {"Authorization": f"Bearer {token or self.token}"}
+        response = await http.request(method, path, json=body, headers=headers)
+        if response.status_code >= 400:
+            raise PilotFlowError(f"{method} {path}: {response.status_code} {response.text[:300]}")
+        out: dict[str, Any] = response.json()
+        return out
+
+    async def run(self) -> Outcome:
+        study = self.seat.loaded.study
+        first = study.recruiting.url_parameters[0] if study.recruiting.url_parameters else "PROLIFIC_PID"
+        async with httpx.AsyncClient(base_url=self.seat.base_url, timeout=60) as http:
+            joined = await self.call(http, "POST", f"/api/studies/{study.id}/join",
+                                     {"recruiting": {first: self.outcome.name}, "pilot": {"pace": self.seat.pace}},
+                                     token=self.seat.admin_token)
+            self.token = joined["token"]
+            self.outcome.participant_id = joined["participant_id"]
+            view = await self.call(http, "GET", "/api/session")
+            while True:
+                state = view["state"]
+                if state == "consent":
+                    view = await self.call(http, "POST", "/api/session/consent", {"accept": True})
+                elif state == "instructions":
+                    view = await self.call(http, "POST", "/api/session/instructions_done")
+                elif state == "quiz":
+                    view = await self.call(http, "POST", "/api/session/quiz", {"answers": self.quiz_answers()})
+                elif state in ("practice", "trial"):
+                    await self.play_with_retries()
+                    view = await self.call(http, "GET", "/api/session")
+                elif state == "questionnaire":
+                    answers = answer(view["questionnaire"], self.gap_mean, self.seat.config, self.reversed, self.rng)
+                    view = await self.call(http, "POST", "/api/session/questionnaire",
+                                           {"questionnaire_id": view["questionnaire"]["id"], "answers": answers})
+                    self.outcome.questionnaires += 1
+                elif state in ("done", "screened_out"):
+                    await self.call(http, "GET", "/api/session/completion")
+                    self.outcome.completed = state == "done"
+                    return self.outcome
+                else:
+                    raise PilotFlowError(f"unexpected session state {state!r}")
+
+    def quiz_answers(self) -> dict[str, int]:
+        quiz = self.seat.loaded.study.quiz
+        if quiz is None:
+            return {}
+        out = {}
+        for q in quiz.questions:
+            wrong = [i for i in range(len(q.options)) if i != q.correct]
+            slip = wrong and self.rng.random() < self.seat.config.quiz_error_rate
+            out[q.id] = int(self.rng.choice(wrong)) if slip else q.correct
+        return out
+
+    async def play_with_retries(self) -> None:
+        """Play the current trial; a trial the server could not start (``internal``: e.g. its robot planner did
+        not open in time on a busy machine) is tried again, as a browser reconnects."""
+        for attempt in range(RETRIES + 1):
+            try:
+                await self.play()
+                return
+            except TrialNotStarted:
+                if attempt == RETRIES:
+                    raise
+                await asyncio.sleep(RETRY_WAIT_S * (attempt + 1))
+
+    async def play(self) -> None:
+        """One trial: answer every ``state`` until ``trial_end``."""
+        loaded, config = self.seat.loaded, self.seat.config
+        rng = trial_rng(self.seed, self.played)
+        self.played += 1
+        received: list[dict[str, Any]] = []
+        sent: list[dict[str, Any]] = []
+        if self.seat.keep_frames:
+            self.outcome.frames.append(received)
+            self.outcome.sent.append(sent)
+        url = self.seat.base_url.replace("http", "ws", 1) + "/ws/play"
+        seq = 0
+        mind = Mind()
+        seen: Perception | None = None
+        needs: dict[str, str] = {}
+        self.on_trial(1)
+        try:
+            async with connect(url, subprotocols=["steakhouse.v1", f"token.{self.token}"],  # type: ignore[list-item]
+                               max_size=1 << 22) as ws:
+                async for raw in ws:
+                    message: dict[str, Any] = json.loads(raw)
+                    if self.seat.keep_frames:
+                        received.append(message)
+                    kind = message["type"]
+                    if kind == "hello":
+                        needs = dict(message["needs"])
+                        seen = Perception(message["width"], message["height"],
+                                          tuple(loaded.layouts.values()))
+                    elif kind == "state" and seen is not None:
+                        seen, mind, body = respond(mind, seen, message, needs, loaded, config, rng)
+                        seq += 1
+                        if self.seat.keep_frames:
+                            sent.append(body)
+                        self.outcome.interrupts += body["type"] == "interrupt"
+                        self.outcome.selections += body["type"] == "select_subtask"
+                        try:
+                            await ws.send(json.dumps({"v": 1, "seq": seq, **body}))
+                        except ConnectionClosed:
+                            continue  # the trial ended meanwhile: its trial_end is still to be read
+                    elif kind == "error" and message["code"] == "internal" and seen is None:
+                        raise TrialNotStarted(message["message"])
+                    elif kind == "error" and message["code"] not in ("not_playing",):
+                        raise PilotFlowError(f"websocket error {message['code']}: {message['message']}")
+                    elif kind == "trial_end":
+                        self.outcome.trials += 1
+                        break
+        finally:
+            self.on_trial(-1)
+        self.gap_mean = seen.gap_mean if seen is not None else 0.0

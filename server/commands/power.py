@@ -1,0 +1,91 @@
+"""``steakhouse power``: how many participants a study needs, simulated from its pilot participants.
+
+    steakhouse power --study paper_study --n 8,16,28,40,64 --out power/ [--alpha 0.05] [--simulations 1000]
+        [--jobs J] [--seed S] [--dv kb_gap_mean,interrupts] [--include-invalid] [--database-url URL]
+
+For each measure and planned test (main effects, interaction, each factor's simple effects) the pilot
+participants (``steakhouse pilot``) are resampled with replacement at each n and the test ``analyze`` runs is
+run on each sample (:mod:`analysis.power`, :mod:`analysis.power_study`). Writes power.csv, n_needed.csv,
+power.png and power.md to ``--out``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any
+
+from server.cli import UsageError
+
+
+def register(subparsers: Any) -> None:
+    p = subparsers.add_parser(
+        "power", help="simulation power analysis from a study's pilot participants",
+        description="Resample the study's pilot participants with replacement at each --n, run the planned tests "
+                    "analyze runs, and report power with a Monte-Carlo interval, the n reaching 80 %% and 90 %%, "
+                    "and a plot of power against n.",
+        epilog="example: steakhouse power --study paper_study --n 8,16,28,40,64 --out power/")
+    p.add_argument("--study", metavar="ID", required=True, help="study id in the store")
+    p.add_argument("--n", metavar="N[,N...]", required=True, help="sample sizes, e.g. 8,16,28,40,64")
+    p.add_argument("--out", metavar="DIR", type=Path, required=True, help="output folder (created if needed)")
+    p.add_argument("--alpha", type=float, default=0.05, help="significance level (default 0.05)")
+    p.add_argument("--simulations", metavar="K", type=int, default=1000, help="resamples per n (default 1000)")
+    p.add_argument("--jobs", metavar="J", type=int, default=1, help="processes (default 1)")
+    p.add_argument("--seed", metavar="S", type=int, default=0, help="seed of the resampling (default 0)")
+    p.add_argument("--dv", metavar="COL[,COL...]", help="measures (default: those analyze runs by default)")
+    p.add_argument("--include-invalid", action="store_true", help="keep trials the server marked invalid")
+    p.add_argument("--no-plots", action="store_true", help="skip power.png")
+    p.add_argument("--database-url", metavar="URL",
+                   help="SQLAlchemy URL of the store (default: the one steakhouse serve uses)")
+    p.set_defaults(handler=handle, subparser=p)
+
+
+def parse_ns(text: str) -> list[int]:
+    try:
+        ns = [int(part) for part in text.split(",") if part.strip()]
+    except ValueError:
+        raise UsageError(f"--n {text!r}: expected whole numbers separated by commas, e.g. 8,16,28") from None
+    if not ns or any(n < 2 for n in ns):
+        raise UsageError(f"--n {text!r}: every n must be at least 2")
+    return sorted(set(ns))
+
+
+def handle(args: argparse.Namespace) -> int:
+    ns = parse_ns(args.n)
+    if not 0 < args.alpha < 1:
+        raise UsageError(f"--alpha {args.alpha}: must be between 0 and 1")
+    if args.simulations < 10:
+        raise UsageError("--simulations must be at least 10")
+    if args.jobs < 1:
+        raise UsageError("--jobs must be at least 1")
+    from analysis.errors import AnalysisInputError
+    from analysis.power_study import power_study
+    from pilot.progress import Progress
+    from server.commands.export import database_url
+
+    measures = [m.strip() for m in args.dv.split(",")] if args.dv else None
+    if measures is not None and not all(measures):
+        raise UsageError(f"--dv {args.dv!r} has an empty column name")
+    include = frozenset({"invalid"} if args.include_invalid else ())
+    progress = Progress(len(measures) if measures else 0, "power")
+    try:
+        result = power_study(database_url(args.database_url), args.study, args.out, ns,
+                             simulations=args.simulations, alpha=args.alpha, jobs=args.jobs, seed=args.seed,
+                             measures=measures, include=include, plots=not args.no_plots,
+                             on_measure=lambda name: progress.finished(name, True),
+                             on_start=lambda total: setattr(progress, "total", total))
+    except AnalysisInputError as exc:
+        raise UsageError(f"study {args.study}: {exc}") from exc
+    progress.close()
+    for row in result.needed.itertuples(index=False):
+        print(f"{row.measure} / {row.test}: 80 % at n = {_n(row.n_80)}, 90 % at n = {_n(row.n_90)}")
+    print(f"from {result.pilot_participants} pilot participants; wrote {len(result.files)} files to {args.out}",
+          file=sys.stderr)
+    return 0
+
+
+def _n(value: object) -> str:
+    import pandas as pd
+
+    return "beyond the grid" if value is None or pd.isna(value) else str(int(value))  # type: ignore[call-overload]

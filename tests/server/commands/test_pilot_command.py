@@ -1,0 +1,99 @@
+"""``steakhouse pilot`` end to end: simulated participants through the real server's REST flow and websocket,
+stored as pilot participants, left out of exports unless asked; what they did follows from the frames alone."""
+
+from __future__ import annotations
+
+import asyncio
+
+import pandas as pd
+import pytest
+from sqlalchemy import create_engine, select
+
+from analysis.export import read_dataset
+from pilot.client import Seat, respond, trial_rng
+from pilot.config import ParticipantConfig
+from pilot.mind import Mind
+from pilot.perception import Perception
+from pilot.run import run_pilot
+from planner.fov import view
+from planner.geometry import Direction
+from server.catalog import load_one
+from server.cli import main
+from server.store.tables import AnswerRow, ParticipantRow, TrialRow
+from steakhouse_test_robots import simulated_partner
+
+QUIZ = {"max_attempts": 2, "questions": [{"id": "q1", "text": "?", "options": ["a", "b"], "answer": 2,
+                                    "explanation": "b"}]}
+
+
+@pytest.fixture
+def piloted(live_server, study_file, db_url):
+    path = study_file(kitchens=["none_3"], robots=["stay", "baseline"], quiz=QUIZ,
+                      practice=[{"kitchen": "practice", "robot": "stay", "count": 1}],
+                      world={"orders": 1, "horizon": 60, "kb_delay": 2}, timing={"tick_rate_hz": 5})
+    server = live_server([path], robot_factory=simulated_partner)
+    loaded = load_one(path)
+    seat = Seat(server.url, "admin-secret", loaded, ParticipantConfig(), keep_frames=True)
+    result = asyncio.run(run_pilot(seat, 3, 2, seed=5))
+    return server, loaded, result, db_url
+
+
+def test_a_pilot_goes_through_the_flow_is_marked_and_is_exported_only_when_asked(piloted, tmp_path) -> None:
+    server, loaded, result, db_url = piloted
+    assert not result.failures
+    assert len(result.outcomes) == 3 and all(o.completed for o in result.outcomes)
+    assert all(o.trials == 3 for o in result.outcomes), "practice and both rounds"
+    with server.services.store.transaction() as session:
+        people = session.scalars(select(ParticipantRow)).all()
+        assert {(p.pilot, p.pilot_pace, p.status) for p in people} == {(True, "fast", "completed")}
+        assert session.query(TrialRow).filter(TrialRow.status == "finished").count() == 9
+        assert session.query(AnswerRow).count() > 0
+    _exports_leave_pilots_out_unless_asked(loaded.id, db_url, tmp_path)
+
+
+def test_what_it_sent_follows_from_the_masked_frames_alone(piloted) -> None:
+    """Each frame it got shows only the cells in its view; replaying those frames offline (no server) with
+    the trial's generator gives back every message it sent."""
+    _, loaded, result, _ = piloted
+    world = loaded.study.world
+    replayed = 0
+    for index, outcome in enumerate(sorted(result.outcomes, key=lambda o: o.name)):
+        for trial, (frames, sent) in enumerate(zip(outcome.frames, outcome.sent, strict=True)):
+            hello = frames[0]
+            seen = Perception(hello["width"], hello["height"], tuple(loaded.layouts.values()))
+            mind, rng = Mind(), trial_rng((5, int(outcome.name.rsplit("-", 1)[1]) - 1), trial)
+            states = [m for m in frames if m["type"] == "state"]
+            for frame, body in zip(states, sent, strict=False):
+                you = frame["you"]
+                shown = {(c["x"], c["y"]) for c in frame["cells"]}
+                layout = seen.observe(frame, world.fov_angle, world.kb_delay).layout
+                assert shown == set(view(layout, (you["x"], you["y"]), Direction(you["facing"]),
+                                         world.fov_angle).cells)
+                seen, mind, again = respond(mind, seen, frame, dict(hello["needs"]), loaded, ParticipantConfig(), rng)
+                assert again == body
+                replayed += 1
+    assert replayed > 50
+
+
+def _exports_leave_pilots_out_unless_asked(study_id: str, db_url: str, tmp_path) -> None:
+    engine = create_engine(db_url)
+    try:
+        plain = read_dataset(engine, study_id)
+        assert plain.tables["participants.csv"].empty and plain.tables["cells.csv"].empty
+        assert plain.tables["answers.csv"].empty
+        with_pilots = read_dataset(engine, study_id, include_pilot=True)
+        people = with_pilots.tables["participants.csv"]
+        assert len(people) == 3 and set(people["pilot"]) == {1}
+        assert len(with_pilots.tables["cells.csv"]) == 6
+    finally:
+        engine.dispose()
+    out = tmp_path / "results"
+    assert main(["analyze", "--study", study_id, "--database-url", db_url, "--out", str(out), "--no-plots",
+                 "--dv", "ticks,interrupts", "--include-pilot"]) == 0
+    assert (out / "anova.csv").is_file()
+    power = tmp_path / "power"
+    assert main(["power", "--study", study_id, "--database-url", db_url, "--n", "4,8", "--simulations", "50",
+                 "--dv", "ticks,interrupts", "--no-plots", "--out", str(power)]) == 0
+    table = pd.read_csv(power / "power.csv")
+    assert set(table["n"]) == {4, 8} and set(table["measure"]) == {"ticks", "interrupts"}
+    assert table["power"].between(0, 1).all() and (table["pilot_n"] == 3).all()
