@@ -33,7 +33,8 @@ from planner.kb import KnowledgeBase
 from planner.layout import STATIONS, Layout
 from planner.paths import Pose
 from planner.rules import Rules
-from planner.state import WorldState
+from planner.state import WorldState, initial_state
+from planner.step import step
 from planner.subtasks import SUBTASKS, Subtask, targets
 
 
@@ -140,3 +141,19 @@ def narrowest_stations(layout: Layout) -> tuple[Pos, ...]:
     counts = {pos: len(access_cells(layout, pos)) for pos in cells}
     fewest = min(c for c in counts.values() if c > 0)
     return tuple(pos for pos in cells if counts[pos] == fewest)
+
+
+def last_progress_tick(layout: Layout, rules: Rules, actions: tuple[tuple[Action, Action], ...]) -> int:
+    """The last tick at which the kitchen changed (an object, a station or an order; not the cooking clock
+    alone), replaying a recorded trial's ``(human, robot)`` actions: where a stalled trial stopped moving."""
+    world = initial_state(layout, rules)
+    last = 0
+    for human, robot in actions:
+        before = (world.objects, world.boards, world.sinks, world.orders_left, world.human.held, world.robot.held,
+                  tuple(g is None for g in world.grills))
+        world, _ = step(layout, world, {"human": human, "robot": robot}, rules)
+        after = (world.objects, world.boards, world.sinks, world.orders_left, world.human.held, world.robot.held,
+                 tuple(g is None for g in world.grills))
+        if after != before:
+            last = world.tick
+    return last
