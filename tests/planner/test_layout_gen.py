@@ -60,9 +60,8 @@ def test_each_style_has_its_shape(style):
 def test_a_simulated_team_finishes_every_kitchen():
     for seed in range(40):
         layout = generate_named(seed)
-        for sim in (seed % 3,):
-            result = run_trial(layout, sim)
-            assert result.finished, f"{layout.name} seed {sim}: {result.delivered} delivered\n{layout.text()}"
+        result = run_trial(layout, seed % 3)
+        assert result.finished, f"{layout.name} seed {seed % 3}: {result.delivered} delivered\n{layout.text()}"
 
 
 def test_size_is_honoured_and_bad_requests_name_the_reason():
