@@ -32,6 +32,8 @@ from planner.human import HumanMemory, HumanModel
 from planner.kb import KnowledgeBase
 from planner.layout import STATIONS, Layout
 from planner.paths import Pose
+from planner.planner_config import PlannerConfig
+from planner.rollout import potential
 from planner.rules import Rules
 from planner.state import WorldState, initial_state
 from planner.step import step
@@ -144,16 +146,17 @@ def narrowest_stations(layout: Layout) -> tuple[Pos, ...]:
 
 
 def last_progress_tick(layout: Layout, rules: Rules, actions: tuple[tuple[Action, Action], ...]) -> int:
-    """The last tick at which the kitchen changed (an object, a station or an order; not the cooking clock
-    alone), replaying a recorded trial's ``(human, robot)`` actions: where a stalled trial stopped moving."""
+    """The last tick at which the team made progress, replaying a recorded trial's ``(human, robot)``
+    actions: the last change of the shaping potential of :func:`planner.rollout.potential` (orders, steaks
+    on grills, boards and sinks in use and their counts, clean plates, plated steaks and dishes anywhere).
+    Carrying a dirty plate to a counter and back, or the grill's clock, is no progress. A stalled trial
+    stopped there."""
+    cfg = PlannerConfig()
     world = initial_state(layout, rules)
-    last = 0
+    last, phi = 0, potential(world, cfg)
     for human, robot in actions:
-        before = (world.objects, world.boards, world.sinks, world.orders_left, world.human.held, world.robot.held,
-                  tuple(g is None for g in world.grills))
         world, _ = step(layout, world, {"human": human, "robot": robot}, rules)
-        after = (world.objects, world.boards, world.sinks, world.orders_left, world.human.held, world.robot.held,
-                 tuple(g is None for g in world.grills))
-        if after != before:
-            last = world.tick
+        now = potential(world, cfg)
+        if now != phi:
+            last, phi = world.tick, now
     return last

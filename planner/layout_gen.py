@@ -258,5 +258,4 @@ def generate_named(seed: int, request: KitchenRequest = KitchenRequest()) -> Lay
     generate`` writes; :func:`style_of` reads the style back)."""
     rng = np.random.default_rng(seed)
     style = request.style or STYLES[int(rng.integers(len(STYLES)))]
-    layout = generate_kitchen(rng, KitchenRequest(style, request.size), name=f"gen_{seed}_{style}")
-    return layout
+    return generate_kitchen(rng, KitchenRequest(style, request.size), name=f"gen_{seed}_{style}")
