@@ -68,7 +68,8 @@ def run_one(spec: StallSpec) -> dict[str, object]:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--seeds", type=int, default=3, help="simulation seeds 0..N-1 per kitchen")
+    parser.add_argument("--seeds", type=int, default=3, help="simulation seeds per kitchen")
+    parser.add_argument("--first-seed", type=int, default=0)
     parser.add_argument("--generator-seeds", default="1000-1019", help="generated kitchens (a range; 'none')")
     parser.add_argument("--shipped", default="all", help="all, none, or comma-separated names")
     parser.add_argument("--robots", default=",".join(ROBOTS))
@@ -83,7 +84,8 @@ def main(argv: list[str] | None = None) -> int:
         low, _, high = args.generator_seeds.partition("-")
         generated = [f"gen:{s}" for s in range(int(low), int(high or low) + 1)]
     robots, partners = args.robots.split(","), args.partners.split(",")
-    specs = [StallSpec(k, r, p, s, args.budget) for s in range(args.seeds) for p in partners
+    seeds = range(args.first_seed, args.first_seed + args.seeds)
+    specs = [StallSpec(k, r, p, s, args.budget) for s in seeds for p in partners
              for k in shipped + generated for r in robots]
     rows = []
     with ProcessPoolExecutor(max_workers=args.jobs) as pool:
@@ -91,7 +93,7 @@ def main(argv: list[str] | None = None) -> int:
             rows.append(row)
             if i % 20 == 0 or i == len(specs):
                 print(f"{i}/{len(specs)} trials", file=sys.stderr, flush=True)
-    print(f"{len(shipped)} shipped + {len(generated)} generated kitchens × seeds 0–{args.seeds - 1}; "
+    print(f"{len(shipped)} shipped + {len(generated)} generated kitchens × seeds {seeds.start}–{seeds.stop - 1}; "
           f"adversary budget {args.budget} ticks; horizon {Rules().horizon}")
     print(f"{'partner':<11}{'robot':<12}{'unfinished':>11}{'trials':>8}{'mean ticks':>12}")
     for partner in partners:
