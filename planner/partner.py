@@ -1,4 +1,4 @@
-"""The simulated partner: the human model driving the robot's avatar, and the robot policy protocol.
+"""The simulated partner: the human model driving the robot's avatar, and the human and robot policy protocols.
 
 A robot policy has ``reset(world)`` and ``act(world, events, rng) -> Action``; the planners of
 :mod:`planner.robots` follow the same protocol.
@@ -14,10 +14,18 @@ import numpy as np
 from planner.events import Event
 from planner.geometry import Action
 from planner.human import HumanMemory, HumanModel
-from planner.kb import omniscient_kb
+from planner.kb import KnowledgeBase, omniscient_kb
 from planner.layout import Layout
 from planner.rules import Rules
 from planner.state import WorldState
+
+
+class HumanPolicy(Protocol):
+    """What plays the human's avatar in a headless trial: :class:`planner.human.HumanModel` (the simulated
+    human) or another partner model (e.g. :class:`planner.adversary.AdversarialHuman`)."""
+
+    def act(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory,
+            rng: np.random.Generator) -> tuple[Action, HumanMemory]: ...
 
 
 class RobotPolicy(Protocol):

@@ -16,7 +16,7 @@ from planner.geometry import Action
 from planner.human import HumanMemory, HumanModel
 from planner.kb import KnowledgeBase, initial_kb, update_kb
 from planner.layout import Layout
-from planner.partner import RobotPolicy, SimulatedPartner
+from planner.partner import HumanPolicy, RobotPolicy, SimulatedPartner
 from planner.rules import Rules
 from planner.state import WorldState, initial_state, is_done
 from planner.step import step
@@ -62,15 +62,16 @@ class TrialResult:
 def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings(),
               robot: RobotPolicy | None = None, record: bool = False,
               before_human: Callable[[KnowledgeBase, HumanMemory, np.random.Generator], None] | None = None,
-              ) -> TrialResult:
+              human: HumanPolicy | None = None) -> TrialResult:
     """Play one trial to the end (all orders delivered or the horizon). ``before_human`` (diagnostics,
     e.g. ``benchmarks/planner/clairvoyant.py``) is shown the simulated person's KB, memory and random
-    stream each tick before it acts; it must not consume the stream."""
+    stream each tick before it acts; it must not consume the stream. ``human`` plays the human's avatar
+    instead of the simulated human (e.g. :class:`planner.adversary.AdversarialHuman`)."""
     rules = settings.rules
     human_rng, robot_rng = np.random.default_rng(seed).spawn(2)
     world = initial_state(layout, rules)
     kb = initial_kb(world)
-    human = HumanModel(layout, rules)
+    human_model: HumanPolicy = human if human is not None else HumanModel(layout, rules)
     memory = HumanMemory()
     partner: RobotPolicy = robot if robot is not None else SimulatedPartner(layout, rules)
     partner.reset(world)
@@ -83,7 +84,7 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
     while not is_done(world, rules):
         if before_human is not None:
             before_human(kb, memory, human_rng)
-        h_action, memory = human.act(world, kb, memory, human_rng)
+        h_action, memory = human_model.act(world, kb, memory, human_rng)
         decide = getattr(partner, "decide", None)
         if decide is not None:
             decision = decide(world, events, robot_rng)
