@@ -1,16 +1,14 @@
-"""The simulated partner: the human model driving the robot's avatar, and the robot policy protocol.
-
-A robot policy has ``reset(world)`` and ``act(world, events, rng) -> Action``; the planners of
-:mod:`planner.robots` follow the same protocol.
-"""
+"""The simulated partner: the human model driving the robot's avatar, a :class:`planner.decision.Robot` like
+the planners of :mod:`planner.robots`."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Protocol
+import time
 
 import numpy as np
 
+from planner.decision import Decision
 from planner.events import Event
 from planner.geometry import Action
 from planner.human import HumanMemory, HumanModel
@@ -18,12 +16,6 @@ from planner.kb import omniscient_kb
 from planner.layout import Layout
 from planner.rules import Rules
 from planner.state import WorldState
-
-
-class RobotPolicy(Protocol):
-    def reset(self, world: WorldState) -> None: ...
-
-    def act(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator) -> Action: ...
 
 
 class SimulatedPartner:
@@ -39,3 +31,9 @@ class SimulatedPartner:
     def act(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator) -> Action:
         action, self.memory = self.model.act(world, omniscient_kb(world), self.memory, rng)
         return action
+
+    def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,
+               deadline: float | None = None) -> Decision:
+        start = time.perf_counter()
+        action = self.act(world, events, rng)
+        return Decision(action, elapsed_ms=(time.perf_counter() - start) * 1000)

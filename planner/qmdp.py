@@ -29,9 +29,9 @@ The lookahead horizon is ``search_depth`` subtasks × 6 ticks (default 7: 42 tic
 over abstract states). Measured on all kitchens × seeds 0–9 it is far worse (FOV-aware 146.8 ticks, 8 of
 100 trials unfinished; baseline 135.4, 3 unfinished; no significant difference) and needs up to ~300 ms
 per decision, so the rollouts are the default: they keep the human's FOV-limited KB for the whole
-lookahead, where the abstraction drops it after ``k + 1`` ticks. Randomness: rollouts
-use seeds derived from ``config.seed`` and the tick (common random numbers across candidates), so a
-decision is a pure function of the observation history. A ``deadline`` (``time.perf_counter()`` value)
+lookahead, where the abstraction drops it after ``k + 1`` ticks. Randomness: each decision draws one
+rollout seed from the ``rng`` it is handed (the trial's stream: same trial seed, same decisions; another
+seed, other rollouts) and every candidate of that tick uses it (common random numbers across candidates). A ``deadline`` (``time.perf_counter()`` value)
 stops the search and returns the best action so far (``timed_out``).
 """
 
@@ -56,6 +56,7 @@ from planner.planner_config import PlannerConfig
 from planner.rollout import Rollout, RobotTasker
 from planner.rules import Rules
 from planner.state import AgentState, WorldState
+from planner.standoff import Standoff, advance, alternatives, give_up, step_aside, take_over
 from planner.subtasks import Subtask
 
 TICKS_PER_SUBTASK = 6
@@ -77,6 +78,8 @@ class QmdpRobot:
         self.human_still = 0
         self.averages: dict[Subtask, float] = {}
         self.averages_key: tuple[str | None, int] | None = None
+        self.standoff = Standoff()
+        self.robot_before: AgentState | None = None
 
     def reset(self, world: WorldState) -> None:
         self.kb = initial_kb(world)
@@ -89,6 +92,8 @@ class QmdpRobot:
         self.human_still = 0
         self.averages = {}
         self.averages_key = None
+        self.standoff = Standoff()
+        self.robot_before = None
 
     def observe(self, world: WorldState, events: Sequence[Event]) -> None:
         if self.kb is None:
@@ -109,6 +114,9 @@ class QmdpRobot:
         moved = self.last_human is not None and self.last_human.pos != world.human.pos
         self.human_still = 0 if moved else self.human_still + 1
         self.last_human = world.human
+        target = self.tasker.targets(self.current, world) if self.current is not None else ()
+        self.standoff = advance(self.standoff, self.layout, self.robot_before, world, target, moved)
+        self.robot_before = world.robot
         if self.current is not None and (self.tasker.done(self.current, self.held_before, world)
                                          or self.current not in self.tasker.options(world, self.current)):
             self.current = None
@@ -123,7 +131,7 @@ class QmdpRobot:
         if key != self.averages_key:
             self.averages, self.averages_key = {}, key
         likely = self.belief.likely(self.cfg.belief_threshold, self.cfg.max_subtasks)
-        seed = self.cfg.seed * 1_000_003 + world.tick
+        seed = int(rng.integers(2**31))
         if self.reference is not None:
             by_action, explored, cut = self.reference.q_values(world, self.kb, likely, seed, deadline)
             return Decision(action=max(by_action, key=lambda a: by_action[a]),
@@ -136,6 +144,11 @@ class QmdpRobot:
                             elapsed_ms=(time.perf_counter() - start) * 1000)
         self.pending = ()
         options = self.tasker.options(world, self.current)
+        around = self.around_standoff(world, options)
+        if isinstance(around, Action):
+            return Decision(action=around, belief=self.belief.as_dict(),
+                            elapsed_ms=(time.perf_counter() - start) * 1000)
+        options = around
         horizon = self.cfg.search_depth * TICKS_PER_SUBTASK
         q: dict[Subtask, float] = {}
         values: dict[Subtask, float] = {}
@@ -155,15 +168,38 @@ class QmdpRobot:
                         belief=self.belief.as_dict(), explored_kbs=explored,
                         elapsed_ms=(time.perf_counter() - start) * 1000, timed_out=timed_out)
 
+    def around_standoff(self, world: WorldState, options: tuple[Subtask, ...]) -> tuple[Subtask, ...] | Action:
+        """:mod:`planner.standoff`: after ``standoff_ticks`` without progress behind the person, the person's
+        stalled work (taken over: the move toward it), else the other reachable options, else a step aside
+        (the action). While a given-up subtask is avoided it is dropped from the options; when it is the
+        only one the robot holds its place (stays) until the person moves."""
+        assert self.belief is not None
+        cells = self.tasker.targets
+        if self.standoff.stuck >= self.cfg.standoff_ticks:
+            given_up = self.current
+            self.standoff = give_up(self.standoff, given_up, world.tick, self.cfg.standoff_ticks)
+            choices = alternatives(self.layout, world, options, given_up, cells)
+            human_task = self.belief.likely(0.0, 1)[0][0]
+            taken = take_over(human_task, choices) if self.human_still >= self.cfg.standoff_ticks else None
+            if taken is not None:
+                self.current = taken
+                return self.rollout.robot_move(world, taken, True)
+            if not choices:
+                self.current = None
+                return step_aside(self.layout, world, cells(human_task, world))
+            return choices
+        avoided = self.standoff.avoided(world.tick)
+        if avoided is None or avoided not in options:
+            return options
+        rest = tuple(o for o in options if o is not avoided)
+        return rest if rest else Action.STAY
+
     def averaged(self, subtask: Subtask, value: float) -> float:
         """``value`` folded into the running average of ``subtask``'s rollout value (``value_smoothing``)."""
         before = self.averages.get(subtask)
         alpha = self.cfg.value_smoothing
         self.averages[subtask] = value if before is None else alpha * value + (1.0 - alpha) * before
         return self.averages[subtask]
-
-    def act(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator) -> Action:
-        return self.decide(world, events, rng).action
 
     def first_move(self, world: WorldState, subtask: Subtask, likely, horizon: int, seed: int,
                    deadline: float | None, direct_value: float) -> tuple[Action, int]:

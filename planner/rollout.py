@@ -18,6 +18,7 @@ Progress made sooner is worth more (``tick_discount`` per tick).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -67,29 +68,8 @@ class RobotTasker:
         onion the human carries, instead of only once both are on their stations (the human's rule judges
         by its KB, the robot sees the human's hands).
         """
-        b = Believed(kb=omniscient_kb(world), held=world.robot.held, partner_held=world.human.held,
-                     orders_left=world.orders_left)
-        options = list(available(b, self.rules, current))
-        unchopped = any(v is not None and v < self.rules.chop_time for v in world.boards)
-        unwashed = any(v is not None and v < self.rules.wash_time for v in world.sinks)
-        if world.robot.held is None:
-            if unchopped and Subtask.CHOP_ONION not in options:
-                options.append(Subtask.CHOP_ONION)
-            if unwashed and Subtask.WASH_PLATE not in options:
-                options.append(Subtask.WASH_PLATE)
-        elif world.robot.held == STEAK_PLATE and not any(v is not None and v >= self.rules.chop_time
-                                                         for v in world.boards):
-            if Subtask.DROP_ON_COUNTER not in options:
-                options.append(Subtask.DROP_ON_COUNTER)
-        coming = ((any(g is not None for g in world.grills) or world.human.held == MEAT)
-                  and (any(b is not None for b in world.boards) or world.human.held == ONION))
-        if coming and world.robot.held is None and Subtask.PICKUP_CLEAN_PLATE not in options:
-            if (any(v is not None and v >= self.rules.wash_time for v in world.sinks)
-                    or any(obj == CLEAN_PLATE for _, obj in world.objects)):
-                options.append(Subtask.PICKUP_CLEAN_PLATE)
-        elif coming and world.robot.held == CLEAN_PLATE and Subtask.PICKUP_STEAK not in options:
-            options.append(Subtask.PICKUP_STEAK)
-        return tuple(options)
+        return _robot_options(self.rules, world.robot.held, world.human.held, world.orders_left, world.objects,
+                              world.grills, world.boards, world.sinks, current)
 
     def done(self, subtask: Subtask, held_before: str | None, world: WorldState) -> bool:
         b = Believed(kb=omniscient_kb(world), held=world.robot.held, partner_held=world.human.held,
@@ -110,6 +90,36 @@ class RobotTasker:
             if d < best_d:
                 best, best_d = s, d
         return best
+
+
+@lru_cache(maxsize=1 << 15)
+def _robot_options(rules: Rules, held: str | None, human_held: str | None, orders_left: int,
+                   objects: tuple[tuple[Pos, str], ...], grills: tuple[int | None, ...], boards: tuple[int | None, ...],
+                   sinks: tuple[int | None, ...], current: Subtask | None) -> tuple[Subtask, ...]:
+    """:meth:`RobotTasker.options` from the parts of the world it reads (not the agents' poses), cached: every
+    rollout tick asks it, mostly about the same few kitchens."""
+    b = Believed(kb=KnowledgeBase(objects=objects, grills=grills, boards=boards, sinks=sinks, robot=None),
+                 held=held, partner_held=human_held, orders_left=orders_left)
+    options = list(available(b, rules, current))
+    unchopped = any(v is not None and v < rules.chop_time for v in boards)
+    unwashed = any(v is not None and v < rules.wash_time for v in sinks)
+    if held is None:
+        if unchopped and Subtask.CHOP_ONION not in options:
+            options.append(Subtask.CHOP_ONION)
+        if unwashed and Subtask.WASH_PLATE not in options:
+            options.append(Subtask.WASH_PLATE)
+    elif held == STEAK_PLATE and not any(v is not None and v >= rules.chop_time for v in boards):
+        if Subtask.DROP_ON_COUNTER not in options:
+            options.append(Subtask.DROP_ON_COUNTER)
+    coming = ((any(g is not None for g in grills) or human_held == MEAT)
+              and (any(v is not None for v in boards) or human_held == ONION))
+    if coming and held is None and Subtask.PICKUP_CLEAN_PLATE not in options:
+        if (any(v is not None and v >= rules.wash_time for v in sinks)
+                or any(obj == CLEAN_PLATE for _, obj in objects)):
+            options.append(Subtask.PICKUP_CLEAN_PLATE)
+    elif coming and held == CLEAN_PLATE and Subtask.PICKUP_STEAK not in options:
+        options.append(Subtask.PICKUP_STEAK)
+    return tuple(options)
 
 
 class Rollout:
