@@ -53,10 +53,12 @@ from planner.kb import KnowledgeBase, initial_kb, omniscient_kb, update_kb
 from planner.layout import Layout
 from planner.paths import Pose, best_moves, distance, next_pose
 from planner.planner_config import PlannerConfig
+from planner.reuse import Trace, follow, traced
 from planner.rollout import Rollout, RobotTasker
 from planner.rules import Rules
 from planner.state import AgentState, WorldState
-from planner.standoff import Standoff, advance, alternatives, give_up, step_aside, take_over
+from planner.standoff import (Standoff, advance, alternatives, give_up, hold_aside, in_the_way, step_aside,
+                              take_over)
 from planner.subtasks import Subtask
 
 TICKS_PER_SUBTASK = 6
@@ -80,6 +82,9 @@ class QmdpRobot:
         self.averages_key: tuple[str | None, int] | None = None
         self.standoff = Standoff()
         self.robot_before: AgentState | None = None
+        self.traces: dict[tuple[Subtask, Subtask], Trace] = {}
+        self.next_traces: dict[tuple[Subtask, Subtask], Trace] = {}
+        self.followed: dict[tuple[Subtask, Subtask], Trace] = {}
 
     def reset(self, world: WorldState) -> None:
         self.kb = initial_kb(world)
@@ -94,6 +99,7 @@ class QmdpRobot:
         self.averages_key = None
         self.standoff = Standoff()
         self.robot_before = None
+        self.traces, self.next_traces = {}, {}
 
     def observe(self, world: WorldState, events: Sequence[Event]) -> None:
         if self.kb is None:
@@ -143,13 +149,14 @@ class QmdpRobot:
             return Decision(action=action, belief=self.belief.as_dict(),
                             elapsed_ms=(time.perf_counter() - start) * 1000)
         self.pending = ()
+        self.traces, self.next_traces = self.next_traces, {}
         options = self.tasker.options(world, self.current)
         around = self.around_standoff(world, options)
         if isinstance(around, Action):
             return Decision(action=around, belief=self.belief.as_dict(),
                             elapsed_ms=(time.perf_counter() - start) * 1000)
         options = around
-        horizon = self.cfg.search_depth * TICKS_PER_SUBTASK
+        horizon = self.plan_horizon(world, options, likely)
         q: dict[Subtask, float] = {}
         values: dict[Subtask, float] = {}
         timed_out = False
@@ -168,11 +175,36 @@ class QmdpRobot:
                         belief=self.belief.as_dict(), explored_kbs=explored,
                         elapsed_ms=(time.perf_counter() - start) * 1000, timed_out=timed_out)
 
+    def plan_horizon(self, world: WorldState, options: tuple[Subtask, ...],
+                     likely: tuple[tuple[Subtask, float], ...]) -> int:
+        """This decision's lookahead in ticks: ``search_depth`` subtasks, shortened for every rollout alike when
+        the new rollouts it needs would pass ``rollout_budget`` simulated ticks. Also follows last tick's
+        rollouts (:func:`planner.reuse.follow`) into ``self.followed``."""
+        full = self.cfg.search_depth * TICKS_PER_SUBTASK
+        self.followed = {}
+        assert self.kb is not None
+        if self.cfg.reuse_rollouts and self.cfg.rollout_samples <= 1:
+            for key, kept in self.traces.items():
+                if key[0] in options and any(key[1] is s for s, _ in likely):
+                    trace = follow(self.rollout, kept, world, self.kb, key[1], key[0], self.human_still)
+                    if trace is not None:
+                        self.followed[key] = trace
+        budget = self.cfg.rollout_budget
+        if budget <= 0:
+            return full
+        kept_full = sum(1 for t in self.followed.values() if t.length >= full)
+        explore = (2 * len(likely)) if self.explore and self.cfg.exploration_depth > 0 else 0
+        fresh = (len(options) * len(likely) - kept_full) * max(self.cfg.rollout_samples, 1) + explore
+        if fresh * full <= budget:
+            return full
+        return max(budget // fresh, TICKS_PER_SUBTASK)
+
     def around_standoff(self, world: WorldState, options: tuple[Subtask, ...]) -> tuple[Subtask, ...] | Action:
         """:mod:`planner.standoff`: after ``standoff_ticks`` without progress behind the person, the person's
-        stalled work (taken over: the move toward it), else the other reachable options, else a step aside
-        (the action). While a given-up subtask is avoided it is dropped from the options; when it is the
-        only one the robot holds its place (stays) until the person moves."""
+        stalled work (taken over: the move toward it), else a step aside when the robot is in the person's
+        way, else the other reachable options, else a step aside (the action). While a given-up subtask is avoided the options are the reachable others
+        (:func:`planner.standoff.alternatives`); when there are none the robot holds its place (stays) until
+        the person moves."""
         assert self.belief is not None
         cells = self.tasker.targets
         if self.standoff.stuck >= self.cfg.standoff_ticks:
@@ -184,14 +216,18 @@ class QmdpRobot:
             if taken is not None:
                 self.current = taken
                 return self.rollout.robot_move(world, taken, True)
-            if not choices:
+            human_cells = cells(human_task, world)
+            if not choices or in_the_way(self.layout, world, human_cells):
                 self.current = None
-                return step_aside(self.layout, world, cells(human_task, world))
+                self.standoff = hold_aside(self.standoff, world.tick, self.cfg.standoff_ticks)
+                return step_aside(self.layout, world, human_cells)
             return choices
+        if world.tick < self.standoff.hold_until:
+            return Action.STAY
         avoided = self.standoff.avoided(world.tick)
         if avoided is None or avoided not in options:
             return options
-        rest = tuple(o for o in options if o is not avoided)
+        rest = alternatives(self.layout, world, options, avoided, cells)
         return rest if rest else Action.STAY
 
     def averaged(self, subtask: Subtask, value: float) -> float:
@@ -243,6 +279,14 @@ class QmdpRobot:
         candidate, so candidates are compared on common random numbers)."""
         assert self.kb is not None
         n = max(self.cfg.rollout_samples, 1)
+        if not prefix and n == 1 and self.cfg.reuse_rollouts:
+            key = (robot_subtask, human_subtask)
+            trace = self.followed.get(key)
+            if trace is None or trace.length < horizon:
+                trace = traced(self.rollout, world, self.kb, human_subtask, robot_subtask, horizon, seed,
+                               self.human_still)
+            self.next_traces[key] = trace
+            return trace.value(self.cfg.tick_discount, horizon)
         return sum(self.rollout.value(world, self.kb, human_subtask, robot_subtask, horizon, seed + 7919 * i,
                                       prefix=prefix, parked_for=self.human_still) for i in range(n)) / n
 

@@ -122,6 +122,18 @@ def _robot_options(rules: Rules, held: str | None, human_held: str | None, order
     return tuple(options)
 
 
+@dataclass(frozen=True, slots=True)
+class SimState:
+    """The simulated joint system between two rollout ticks."""
+
+    world: WorldState
+    kb: KnowledgeBase
+    memory: HumanMemory
+    robot_task: Subtask | None
+    human_still: int
+    phi: float
+
+
 class Rollout:
     """Simulates the joint system for one (robot subtask, human subtask) hypothesis."""
 
@@ -141,33 +153,43 @@ class Rollout:
     def run(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory, rng: np.random.Generator,
             robot_subtask: Subtask, horizon: int, prefix: tuple[Action, ...] = (), parked_for: int = 0) -> float:
         """:meth:`value` from a given human memory and random stream (``rng`` is consumed)."""
-        robot_task: Subtask | None = robot_subtask
-        phi = potential(world, self.cfg)
+        sim = self.start(world, kb, memory, robot_subtask, parked_for)
         total, discount = 0.0, 1.0
-        human_still = parked_for
         for t in range(horizon):
-            h_action, memory = self.human.act(world, kb, memory, rng)
-            if robot_task is None:
-                robot_task = self.tasker.nearest(world, self.tasker.options(world, None), memory.subtask)
-            r_action = prefix[t] if t < len(prefix) else self.robot_move(world, robot_task, human_still >= 2)
-            human_before = world.human.pos
-            held_before = world.robot.held
-            world, events = step(self.layout, world, {"human": h_action, "robot": r_action}, self.rules)
-            if self.omniscient:
-                kb = omniscient_kb(world)
-            else:
-                kb = update_kb(kb, self.layout, world, angle=self.cfg.human_angle,
-                               kb_delay=self.cfg.human_delay,
-                               own_events=[e for e in events if e.agent == "human"])
-            human_still = human_still + 1 if world.human.pos == human_before else 0
-            new_phi = potential(world, self.cfg)
-            total += discount * (new_phi - phi)
-            phi, discount = new_phi, discount * self.cfg.tick_discount
-            if self.tasker.done(robot_task, held_before, world) or robot_task not in self.tasker.options(world, robot_task):
-                robot_task = None
-            if world.orders_left == 0:
+            sim, gain = self.tick(sim, rng, prefix[t] if t < len(prefix) else None)
+            total += discount * gain
+            discount *= self.cfg.tick_discount
+            if sim.world.orders_left == 0:
                 break
         return total
+
+    def start(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory, robot_subtask: Subtask,
+              parked_for: int = 0) -> SimState:
+        return SimState(world, kb, memory, robot_subtask, parked_for, potential(world, self.cfg))
+
+    def tick(self, sim: SimState, rng: np.random.Generator, robot_action: Action | None = None) -> tuple[SimState, float]:
+        """One tick of the simulated joint system: the next state and the increment of Φ. The robot takes
+        ``robot_action`` if given, else its move toward its subtask."""
+        world, kb, robot_task, human_still = sim.world, sim.kb, sim.robot_task, sim.human_still
+        h_action, memory = self.human.act(world, kb, sim.memory, rng)
+        if robot_task is None:
+            robot_task = self.tasker.nearest(world, self.tasker.options(world, None), memory.subtask)
+        r_action = robot_action if robot_action is not None else self.robot_move(world, robot_task, human_still >= 2)
+        human_before = world.human.pos
+        held_before = world.robot.held
+        world, events = step(self.layout, world, {"human": h_action, "robot": r_action}, self.rules)
+        if self.omniscient:
+            kb = omniscient_kb(world)
+        else:
+            kb = update_kb(kb, self.layout, world, angle=self.cfg.human_angle,
+                           kb_delay=self.cfg.human_delay,
+                           own_events=[e for e in events if e.agent == "human"])
+        human_still = human_still + 1 if world.human.pos == human_before else 0
+        phi = potential(world, self.cfg)
+        next_task: Subtask | None = robot_task
+        if self.tasker.done(robot_task, held_before, world) or robot_task not in self.tasker.options(world, robot_task):
+            next_task = None
+        return SimState(world, kb, memory, next_task, human_still, phi), phi - sim.phi
 
     def robot_move(self, world: WorldState, subtask: Subtask, human_parked: bool = False) -> Action:
         """The robot's next move toward ``subtask`` (walking around a human parked for two ticks)."""

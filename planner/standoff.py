@@ -8,13 +8,19 @@ held object) for ``standoff_ticks`` consecutive ticks **while every way to its t
 person's cell**, it re-plans around the person, in this order:
 
 1. **take over the blocked work**: the person's own subtask (the robot's most likely hypothesis) when the
-   person is not progressing on it, the robot can do it and can reach it without passing the person;
-2. **another useful subtask**: the best of the robot's other options it can reach without passing the
-   person;
-3. **step aside**: when no option is reachable, the robot moves to the free neighbouring cell that leaves
-   the person the most room (so a person who needs the robot's cell can pass).
+   person has stood still as long, the robot can do it and can reach it without passing the person (two
+   agents stuck in a corridor, each needing the other's side: the robot does the person's errand);
+2. **step aside** when the robot is in the person's way too (the person faces the robot, and every way
+   from the person to the targets of its most likely subtask passes the robot's cell): the robot moves to a
+   free neighbouring cell off the person's way;
+3. **another useful subtask**: the best of the robot's other options it can reach without passing the
+   person; holding something, putting it down on a free counter is one (then the robot's hands are free
+   for other work);
+4. **step aside** when nothing else is reachable.
 
-The blocked subtask is then avoided until the person moves or ``2 × standoff_ticks`` ticks pass.
+The blocked subtask is then avoided until the person moves or ``2 × standoff_ticks`` ticks pass; after a step
+aside the robot also holds still for ``2 × standoff_ticks`` ticks (else it steps back into the way as soon as
+the person comes closer).
 State is an immutable :class:`Standoff`, advanced once per observed tick by :func:`advance`.
 """
 
@@ -39,19 +45,34 @@ class Standoff:
     avoid: Subtask | None = None
     """The subtask given up in the last standoff, avoided until ``avoid_until`` or until the person moves."""
     avoid_until: int = -1
+    hold_until: int = -1
+    """After a step aside the robot holds still until this tick, so the person can pass."""
 
     def avoided(self, tick: int) -> Subtask | None:
         return self.avoid if tick < self.avoid_until else None
 
 
 def blocked(layout: Layout, world: WorldState, cells: tuple[Pos, ...]) -> bool:
-    """Whether every way to every reachable target cell passes through the person's cell (the robot is not
-    already at one of them)."""
-    pose = (world.robot.pos, world.robot.facing)
+    """Whether every way from the robot to every reachable target cell passes through the person's cell (the
+    robot is not already at one of them)."""
+    return _blocked(layout, world.robot, world.human.pos, cells)
+
+
+def in_the_way(layout: Layout, world: WorldState, human_cells: tuple[Pos, ...]) -> bool:
+    """Whether the person is trying to get past the robot: it faces the robot's cell (its last move was
+    toward it) and every way from it to ``human_cells`` passes through that cell. (A person standing idle
+    at a station faces the station, not the robot.)"""
+    if world.human.facing.ahead(world.human.pos) != world.robot.pos:
+        return False
+    return _blocked(layout, world.human, world.robot.pos, human_cells)
+
+
+def _blocked(layout: Layout, agent: AgentState, other: Pos, cells: tuple[Pos, ...]) -> bool:
+    pose = (agent.pos, agent.facing)
     known = [c for c in cells if distance(layout, pose, c) < UNREACHABLE]
     if not known or any(distance(layout, pose, c) == 0 for c in known):
         return False
-    return not any(detour_moves(layout, pose, c, world.human.pos) for c in known)
+    return not any(detour_moves(layout, pose, c, other) for c in known)
 
 
 def reachable(layout: Layout, world: WorldState, cells: tuple[Pos, ...]) -> bool:
@@ -77,10 +98,19 @@ def give_up(state: Standoff, subtask: Subtask | None, tick: int, ticks: int) -> 
     return Standoff(stuck=0, avoid=subtask, avoid_until=tick + 2 * ticks)
 
 
+def hold_aside(state: Standoff, tick: int, ticks: int) -> Standoff:
+    """After stepping aside: hold still for ``2 × ticks`` ticks."""
+    return replace(state, hold_until=tick + 2 * ticks)
+
+
 def alternatives(layout: Layout, world: WorldState, options: tuple[Subtask, ...], blocked_subtask: Subtask | None,
                  targets: Targets) -> tuple[Subtask, ...]:
-    """The options other than ``blocked_subtask`` the robot can reach without passing the person."""
-    return tuple(s for s in options if s is not blocked_subtask and reachable(layout, world, targets(s, world)))
+    """The options other than ``blocked_subtask`` the robot can reach without passing the person, and, when
+    the robot holds something, putting it down on a free counter."""
+    extra = (Subtask.DROP_ON_COUNTER,) if world.robot.held is not None and Subtask.DROP_ON_COUNTER not in options \
+        else ()
+    return tuple(s for s in options + extra
+                 if s is not blocked_subtask and reachable(layout, world, targets(s, world)))
 
 
 def take_over(human_subtask: Subtask | None, choices: tuple[Subtask, ...]) -> Subtask | None:
