@@ -52,10 +52,10 @@ def _serve(op: str, message: tuple[Any, ...], policies: dict[int, Robot], factor
         return None
     if op == "decide":
         _, _, trial_id, world, events, seed, tick, deadline = message
-        policy = policies.get(trial_id)
-        if policy is None:
+        found = policies.get(trial_id)
+        if found is None:
             raise LookupError(f"trial {trial_id} has no planner in this worker")
-        return run_decision(policy, world, events, seed, tick, deadline)
+        return run_decision(found, world, events, seed, tick, deadline)
     if op == "close":
         policies.pop(message[2], None)
         return None
