@@ -7,6 +7,7 @@ from __future__ import annotations
 import asyncio
 import time
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 from steakhouse_testing import Player, play_to_end
@@ -46,13 +47,16 @@ def test_a_90_degree_5_tick_study_gets_a_robot_that_models_exactly_that_person(l
     built: list[Recording] = []
 
     def factory(name: str, layout: Layout, rules: Rules, config: PlannerConfig) -> Robot:
-        robot = make_robot(name, layout, rules, config)
+        # A short lookahead keeps every decision inside its tick on a busy machine (a late one is dropped
+        # and the requests queued behind it are cancelled at the trial's end); the model of the person
+        # does not depend on it.
+        robot = make_robot(name, layout, rules, replace(config, search_depth=1))
         assert isinstance(robot, QmdpRobot)
         built.append(Recording(robot))
         return built[-1]
 
     server = live_server([study_file(kitchens=["none_3"], robots=["fov_aware"],
-                                     timing={"mode": "wait_for_participant", "tick_rate_hz": 20},
+                                     timing={"mode": "wait_for_participant", "tick_rate_hz": 10},
                                      world={"orders": 1, "horizon": 60, "fov_angle": 90, "kb_delay": 5})],
                          robot_factory=factory)
 
