@@ -31,10 +31,11 @@ class PlannerConfig:
     ``standoff_ticks``: ticks without progress while the person blocks the robot's target before the robot
     re-plans around them (:mod:`planner.standoff`). ``reuse_rollouts``: keep a rollout whose first tick came
     true for the next tick's decision (:mod:`planner.reuse`; only with ``rollout_samples`` 1).
-    ``rollout_budget``: simulated ticks one decision may spend on new rollouts (0: no limit); the default is
-    eight rollouts of the full 42 ticks. A decision that would need more (the person just chose anew, so
-    three hypotheses × every robot option × the exploration's candidates) shortens the lookahead of all
-    its rollouts alike, to ``budget / rollouts`` ticks but never below one subtask (6 ticks)."""
+    ``rollout_budget``: simulated ticks one decision may spend on new rollouts (0: no limit; 336 is eight
+    rollouts of the full 42 ticks). A decision that would need more (the person just chose anew, so three
+    hypotheses × every robot option × the exploration's candidates) shortens the lookahead of all its
+    rollouts alike, to ``budget / rollouts`` ticks but never below one subtask (6 ticks). Both are off by
+    default: they cut the decision time but also the FOV-aware robot's effect (docs/domain.md §5)."""
 
     human_angle: float = FOV_ANGLE
     human_delay: int = KB_DELAY
@@ -61,8 +62,8 @@ class PlannerConfig:
     exploration_samples: int = 16
     abstract_discount: float = 0.8
     standoff_ticks: int = 5
-    reuse_rollouts: bool = True
-    rollout_budget: int = 336
+    reuse_rollouts: bool = False
+    rollout_budget: int = 0
 
     def __post_init__(self) -> None:
         if self.lookahead not in LOOKAHEADS:
