@@ -1,16 +1,22 @@
-"""What a robot planner answers each tick: the action and a record of how it chose (for logs and the admin view).
-
-Every robot policy (:mod:`planner.robots`) offers ``reset(world)``, ``decide(world, events, rng, deadline)``
-returning a :class:`Decision`, and ``act(world, events, rng)`` returning just the action. ``deadline`` is an
-absolute ``time.perf_counter()`` value: past it the planner returns its best action so far and sets
-``timed_out``.
+"""What a robot planner answers each tick (a :class:`Decision`: the action and a record of how it chose, for
+logs and the admin view), and the one interface every robot offers (:class:`Robot`), used alike by the
+server's robot pools, :mod:`planner.play` and the simulation.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import Protocol
 
+import numpy as np
+
+from planner.events import Event
 from planner.geometry import Action
+from planner.layout import Layout
+from planner.planner_config import PlannerConfig
+from planner.rules import Rules
+from planner.state import WorldState
 
 
 @dataclass(frozen=True, slots=True)
@@ -31,3 +37,24 @@ class Decision:
             "elapsed_ms": round(self.elapsed_ms, 3),
             "timed_out": self.timed_out,
         }
+
+
+class Robot(Protocol):
+    """A robot policy for one trial. ``reset`` starts it on the trial's first world; ``decide`` is called once
+    per tick with the world after the last step and that step's events. Its randomness comes only from
+    ``rng`` (one stream per trial, from the trial's seed: same seed, same decisions). ``deadline`` is an
+    absolute ``time.perf_counter()`` value: past it the planner returns its best action so far and sets
+    ``timed_out``."""
+
+    def reset(self, world: WorldState) -> None: ...
+
+    def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,
+               deadline: float | None = None) -> Decision: ...
+
+
+class RobotFactory(Protocol):
+    """``factory(name, layout, rules, config)`` → a fresh :class:`Robot` (``planner.robots.make_robot``).
+    ``config`` carries the study's model of the person (FOV angle, KB delay; docs/domain.md §5); ``rules``
+    the kitchen's numbers."""
+
+    def __call__(self, name: str, layout: Layout, rules: Rules, config: PlannerConfig) -> Robot: ...

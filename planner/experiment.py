@@ -15,6 +15,8 @@ from typing import Any
 import numpy as np
 from scipy import stats
 
+from planner.layout import Layout
+from planner.perception import FOV_ANGLE, KB_DELAY
 from planner.play import TrialSettings, run_trial
 from planner.planner_config import PlannerConfig
 from planner.robots import make_robot
@@ -26,29 +28,28 @@ COLUMNS = ("layout", "robot", "seed", "ticks", "finished", "reward", "kb_gap_mea
 
 @dataclass(frozen=True, slots=True)
 class TrialSpec:
-    layout_name: str
+    layout: Layout
     robot: str
     seed: int
-    human_angle: float = 120.0
-    kb_delay: int = 3
+    human_angle: float = FOV_ANGLE
+    kb_delay: int = KB_DELAY
     rollout_samples: int = 1
     lookahead: str = "rollout"
 
 
 def run_spec(spec: TrialSpec) -> dict[str, object]:
-    """One simulated trial as a row of ``trials.csv`` (importable by worker processes)."""
-    from study_config import load_layout
-
-    layout = load_layout(spec.layout_name)
+    """One simulated trial as a row of ``trials.csv`` (importable by worker processes; the kitchen travels in
+    the spec, so planner/ reads no files)."""
+    layout = spec.layout
     rules = Rules()
     robot = make_robot(spec.robot, layout, rules,
-                       PlannerConfig(human_angle=spec.human_angle, human_delay=spec.kb_delay, seed=spec.seed,
+                       PlannerConfig(human_angle=spec.human_angle, human_delay=spec.kb_delay,
                                      rollout_samples=spec.rollout_samples, lookahead=spec.lookahead))
     result = run_trial(layout, spec.seed, TrialSettings(angle=spec.human_angle, kb_delay=spec.kb_delay,
                                                          rules=rules), robot=robot)
     times = np.array(result.decision_ms) if result.decision_ms else np.zeros(1)
     return {
-        "layout": spec.layout_name, "robot": spec.robot, "seed": spec.seed, "ticks": result.ticks,
+        "layout": layout.name, "robot": spec.robot, "seed": spec.seed, "ticks": result.ticks,
         "finished": int(result.finished), "reward": result.score,
         "kb_gap_mean": round(result.kb_gap_mean, 4), "kb_gap_ticks_pct": round(result.kb_gap_ticks_pct, 2),
         "robot_in_fov_pct": round(result.robot_in_fov_pct, 2),

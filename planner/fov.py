@@ -17,6 +17,7 @@ from functools import lru_cache
 
 from planner.geometry import Direction, Pos
 from planner.layout import Layout, Terrain
+from planner.perception import FOV_ANGLE
 
 _EPS = 1e-9
 _TRACKED = (Terrain.COUNTER, Terrain.GRILL, Terrain.BOARD, Terrain.SINK)
@@ -46,12 +47,12 @@ def in_view(origin: Pos, facing: Direction, cell: Pos, angle: float) -> bool:
     return dot >= math.hypot(vx, vy) * math.cos(math.radians(angle / 2.0)) - _EPS
 
 
-def visible_cells(layout: Layout, pos: Pos, facing: Direction, angle: float = 120.0) -> frozenset[Pos]:
+def visible_cells(layout: Layout, pos: Pos, facing: Direction, angle: float = FOV_ANGLE) -> frozenset[Pos]:
     """The set of the layout's cells in view from ``pos`` facing ``facing``."""
     return view(layout, pos, facing, angle).cells
 
 
-def view(layout: Layout, pos: Pos, facing: Direction, angle: float = 120.0) -> View:
+def view(layout: Layout, pos: Pos, facing: Direction, angle: float = FOV_ANGLE) -> View:
     """The cached :class:`View` of a pose."""
     table = _table(layout, float(angle))
     key = (pos, facing)

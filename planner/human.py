@@ -13,6 +13,7 @@ robot's place, from the world.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -123,23 +124,9 @@ class HumanModel:
         (``partner_parked``) is walked around: the path avoids its cell all the way. Also answers whether
         the model wants to move (it is not yet at its target).
         """
-        best, best_d = None, UNREACHABLE
-        for cell in cells:
-            d = distances_to(self.layout, cell).get(pose, UNREACHABLE)
-            if d < best_d:
-                best, best_d = cell, d
-        if best is None:
-            return Action.STAY, False
-        if best_d == 0:
-            return Action.INTERACT, False
-        if partner_parked:
-            around = detour_moves(self.layout, pose, best, blocked)
-            if around:
-                return around[0], True
-        moves = best_moves(self.layout, pose, best, blocked)
-        if moves:
-            return moves[0], True
-        detours = detour_moves(self.layout, pose, best, blocked)
+        fixed, detours = _route(self.layout, pose, cells, blocked, partner_parked)
+        if fixed is not None:
+            return fixed
         if not detours or (rng is not None and rng.random() < WAIT_WHEN_BLOCKED):
             return Action.STAY, True
         if len(detours) == 1 or rng is None:
@@ -151,6 +138,31 @@ class HumanModel:
         if not free:
             return Action.STAY
         return free[int(rng.integers(len(free)))]
+
+
+@lru_cache(maxsize=1 << 17)
+def _route(layout: Layout, pose: Pose, cells: tuple[Pos, ...], blocked: Pos,
+           partner_parked: bool) -> tuple[tuple[Action, bool] | None, tuple[Action, ...]]:
+    """The deterministic part of :meth:`HumanModel.move_toward`, cached: the paths between the same poses
+    and targets come back every tick and in every rollout. Either the answer, or (``None``, the detours
+    around a partner on every shortest path) for the random choice among them."""
+    best, best_d = None, UNREACHABLE
+    for cell in cells:
+        d = distances_to(layout, cell).get(pose, UNREACHABLE)
+        if d < best_d:
+            best, best_d = cell, d
+    if best is None:
+        return (Action.STAY, False), ()
+    if best_d == 0:
+        return (Action.INTERACT, False), ()
+    if partner_parked:
+        around = detour_moves(layout, pose, best, blocked)
+        if around:
+            return (around[0], True), ()
+    moves = best_moves(layout, pose, best, blocked)
+    if moves:
+        return (moves[0], True), ()
+    return None, detour_moves(layout, pose, best, blocked)
 
 
 def _free(layout: Layout, pose: Pose, move: Action, blocked: Pos) -> bool:

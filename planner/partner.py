@@ -1,16 +1,15 @@
-"""The simulated partner: the human model driving the robot's avatar, and the human and robot policy protocols.
-
-A robot policy has ``reset(world)`` and ``act(world, events, rng) -> Action``; the planners of
-:mod:`planner.robots` follow the same protocol.
-"""
+"""The simulated partner: the human model driving the robot's avatar, a :class:`planner.decision.Robot` like
+the planners of :mod:`planner.robots`; and the protocol of what plays the human's avatar in a headless trial."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from typing import Protocol
+import time
 
 import numpy as np
 
+from planner.decision import Decision
 from planner.events import Event
 from planner.geometry import Action
 from planner.human import HumanMemory, HumanModel
@@ -28,12 +27,6 @@ class HumanPolicy(Protocol):
             rng: np.random.Generator) -> tuple[Action, HumanMemory]: ...
 
 
-class RobotPolicy(Protocol):
-    def reset(self, world: WorldState) -> None: ...
-
-    def act(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator) -> Action: ...
-
-
 class SimulatedPartner:
     """The simulated human's model driving the robot's avatar, seeing everything (a scripted teammate)."""
 
@@ -47,3 +40,9 @@ class SimulatedPartner:
     def act(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator) -> Action:
         action, self.memory = self.model.act(world, omniscient_kb(world), self.memory, rng)
         return action
+
+    def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,
+               deadline: float | None = None) -> Decision:
+        start = time.perf_counter()
+        action = self.act(world, events, rng)
+        return Decision(action, elapsed_ms=(time.perf_counter() - start) * 1000)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from planner.perception import FOV_ANGLE, KB_DELAY
+
 
 LOOKAHEADS = ("rollout", "abstract")
 
@@ -25,10 +27,18 @@ class PlannerConfig:
     reference did it (:mod:`planner.reference`): Q per low-level action from ``exploration_samples``
     motion sequences of depth ``exploration_depth`` and a heuristic search over abstract states
     (:mod:`planner.abstract`) ``abstract_depth`` transitions deep, discounted ``abstract_discount`` per
-    transition. Rewards are the reference implementation's shaping (docs/domain.md §5, step 4)."""
+    transition. Rewards are the reference implementation's shaping (docs/domain.md §5, step 4).
+    ``standoff_ticks``: ticks without progress while the person blocks the robot's target before the robot
+    re-plans around them (:mod:`planner.standoff`). ``reuse_rollouts``: keep a rollout whose first tick came
+    true for the next tick's decision (:mod:`planner.reuse`; only with ``rollout_samples`` 1).
+    ``rollout_budget``: simulated ticks one decision may spend on new rollouts (0: no limit; 336 is eight
+    rollouts of the full 42 ticks). A decision that would need more (the person just chose anew, so three
+    hypotheses × every robot option × the exploration's candidates) shortens the lookahead of all its
+    rollouts alike, to ``budget / rollouts`` ticks but never below one subtask (6 ticks). Both are off by
+    default: they cut the decision time but also the FOV-aware robot's effect (docs/domain.md §5)."""
 
-    human_angle: float = 120.0
-    human_delay: int = 3
+    human_angle: float = FOV_ANGLE
+    human_delay: int = KB_DELAY
     exploration_depth: int = 3
     search_depth: int = 7
     belief_threshold: float = 0.15
@@ -51,7 +61,9 @@ class PlannerConfig:
     abstract_depth: int = 5
     exploration_samples: int = 16
     abstract_discount: float = 0.8
-    seed: int = 0
+    standoff_ticks: int = 5
+    reuse_rollouts: bool = False
+    rollout_budget: int = 0
 
     def __post_init__(self) -> None:
         if self.lookahead not in LOOKAHEADS:

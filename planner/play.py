@@ -16,7 +16,9 @@ from planner.geometry import Action
 from planner.human import HumanMemory, HumanModel
 from planner.kb import KnowledgeBase, initial_kb, update_kb
 from planner.layout import Layout
-from planner.partner import HumanPolicy, RobotPolicy, SimulatedPartner
+from planner.perception import FOV_ANGLE, KB_DELAY
+from planner.decision import Robot
+from planner.partner import HumanPolicy, SimulatedPartner
 from planner.rules import Rules
 from planner.state import WorldState, initial_state, is_done
 from planner.step import step
@@ -27,8 +29,8 @@ from planner.summary import GAP_COMPONENTS, kb_gap_components
 class TrialSettings:
     """The human's field of view (degrees) and KB delay (ticks), and the kitchen's numbers."""
 
-    angle: float = 120.0
-    kb_delay: int = 3
+    angle: float = FOV_ANGLE
+    kb_delay: int = KB_DELAY
     rules: Rules = field(default_factory=Rules)
 
 
@@ -60,7 +62,7 @@ class TrialResult:
 
 
 def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings(),
-              robot: RobotPolicy | None = None, record: bool = False,
+              robot: Robot | None = None, record: bool = False,
               before_human: Callable[[KnowledgeBase, HumanMemory, np.random.Generator], None] | None = None,
               human: HumanPolicy | None = None) -> TrialResult:
     """Play one trial to the end (all orders delivered or the horizon). ``before_human`` (diagnostics,
@@ -73,7 +75,7 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
     kb = initial_kb(world)
     human_model: HumanPolicy = human if human is not None else HumanModel(layout, rules)
     memory = HumanMemory()
-    partner: RobotPolicy = robot if robot is not None else SimulatedPartner(layout, rules)
+    partner: Robot = robot if robot is not None else SimulatedPartner(layout, rules)
     partner.reset(world)
     events: tuple = ()
     gap_ticks = gap_sum = in_fov = 0
@@ -85,14 +87,11 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
         if before_human is not None:
             before_human(kb, memory, human_rng)
         h_action, memory = human_model.act(world, kb, memory, human_rng)
-        decide = getattr(partner, "decide", None)
-        if decide is not None:
-            decision = decide(world, events, robot_rng)
-            r_action = decision.action
+        decision = partner.decide(world, events, robot_rng)
+        r_action = decision.action
+        if robot is not None:
             decision_ms.append(decision.elapsed_ms)
             timed_out += decision.timed_out
-        else:
-            r_action = partner.act(world, events, robot_rng)
         world, events = step(layout, world, {"human": h_action, "robot": r_action}, rules)
         kb = update_kb(kb, layout, world, angle=settings.angle, kb_delay=settings.kb_delay,
                        own_events=[e for e in events if e.agent == "human"])

@@ -29,9 +29,9 @@ The lookahead horizon is ``search_depth`` subtasks × 6 ticks (default 7: 42 tic
 over abstract states). Measured on all kitchens × seeds 0–9 it is far worse (FOV-aware 146.8 ticks, 8 of
 100 trials unfinished; baseline 135.4, 3 unfinished; no significant difference) and needs up to ~300 ms
 per decision, so the rollouts are the default: they keep the human's FOV-limited KB for the whole
-lookahead, where the abstraction drops it after ``k + 1`` ticks. Randomness: rollouts
-use seeds derived from ``config.seed`` and the tick (common random numbers across candidates), so a
-decision is a pure function of the observation history. A ``deadline`` (``time.perf_counter()`` value)
+lookahead, where the abstraction drops it after ``k + 1`` ticks. Randomness: each decision draws one
+rollout seed from the ``rng`` it is handed (the trial's stream: same trial seed, same decisions; another
+seed, other rollouts) and every candidate of that tick uses it (common random numbers across candidates). A ``deadline`` (``time.perf_counter()`` value)
 stops the search and returns the best action so far (``timed_out``).
 """
 
@@ -53,9 +53,12 @@ from planner.kb import KnowledgeBase, initial_kb, omniscient_kb, update_kb
 from planner.layout import Layout
 from planner.paths import Pose, best_moves, distance, next_pose
 from planner.planner_config import PlannerConfig
+from planner.reuse import Trace, follow, traced
 from planner.rollout import Rollout, RobotTasker
 from planner.rules import Rules
 from planner.state import AgentState, WorldState
+from planner.standoff import (Standoff, advance, alternatives, give_up, hold_aside, in_the_way, step_aside,
+                              take_over)
 from planner.subtasks import Subtask
 
 TICKS_PER_SUBTASK = 6
@@ -77,6 +80,11 @@ class QmdpRobot:
         self.human_still = 0
         self.averages: dict[Subtask, float] = {}
         self.averages_key: tuple[str | None, int] | None = None
+        self.standoff = Standoff()
+        self.robot_before: AgentState | None = None
+        self.traces: dict[tuple[Subtask, Subtask], Trace] = {}
+        self.next_traces: dict[tuple[Subtask, Subtask], Trace] = {}
+        self.followed: dict[tuple[Subtask, Subtask], Trace] = {}
 
     def reset(self, world: WorldState) -> None:
         self.kb = initial_kb(world)
@@ -89,6 +97,9 @@ class QmdpRobot:
         self.human_still = 0
         self.averages = {}
         self.averages_key = None
+        self.standoff = Standoff()
+        self.robot_before = None
+        self.traces, self.next_traces = {}, {}
 
     def observe(self, world: WorldState, events: Sequence[Event]) -> None:
         if self.kb is None:
@@ -109,6 +120,9 @@ class QmdpRobot:
         moved = self.last_human is not None and self.last_human.pos != world.human.pos
         self.human_still = 0 if moved else self.human_still + 1
         self.last_human = world.human
+        target = self.tasker.targets(self.current, world) if self.current is not None else ()
+        self.standoff = advance(self.standoff, self.layout, self.robot_before, world, target, moved)
+        self.robot_before = world.robot
         if self.current is not None and (self.tasker.done(self.current, self.held_before, world)
                                          or self.current not in self.tasker.options(world, self.current)):
             self.current = None
@@ -123,7 +137,7 @@ class QmdpRobot:
         if key != self.averages_key:
             self.averages, self.averages_key = {}, key
         likely = self.belief.likely(self.cfg.belief_threshold, self.cfg.max_subtasks)
-        seed = self.cfg.seed * 1_000_003 + world.tick
+        seed = int(rng.integers(2**31))
         if self.reference is not None:
             by_action, explored, cut = self.reference.q_values(world, self.kb, likely, seed, deadline)
             return Decision(action=max(by_action, key=lambda a: by_action[a]),
@@ -135,8 +149,14 @@ class QmdpRobot:
             return Decision(action=action, belief=self.belief.as_dict(),
                             elapsed_ms=(time.perf_counter() - start) * 1000)
         self.pending = ()
+        self.traces, self.next_traces = self.next_traces, {}
         options = self.tasker.options(world, self.current)
-        horizon = self.cfg.search_depth * TICKS_PER_SUBTASK
+        around = self.around_standoff(world, options)
+        if isinstance(around, Action):
+            return Decision(action=around, belief=self.belief.as_dict(),
+                            elapsed_ms=(time.perf_counter() - start) * 1000)
+        options = around
+        horizon = self.plan_horizon(world, options, likely)
         q: dict[Subtask, float] = {}
         values: dict[Subtask, float] = {}
         timed_out = False
@@ -155,15 +175,67 @@ class QmdpRobot:
                         belief=self.belief.as_dict(), explored_kbs=explored,
                         elapsed_ms=(time.perf_counter() - start) * 1000, timed_out=timed_out)
 
+    def plan_horizon(self, world: WorldState, options: tuple[Subtask, ...],
+                     likely: tuple[tuple[Subtask, float], ...]) -> int:
+        """This decision's lookahead in ticks: ``search_depth`` subtasks, shortened for every rollout alike when
+        the new rollouts it needs would pass ``rollout_budget`` simulated ticks. Also follows last tick's
+        rollouts (:func:`planner.reuse.follow`) into ``self.followed``."""
+        full = self.cfg.search_depth * TICKS_PER_SUBTASK
+        self.followed = {}
+        assert self.kb is not None
+        if self.cfg.reuse_rollouts and self.cfg.rollout_samples <= 1:
+            for key, kept in self.traces.items():
+                if key[0] in options and any(key[1] is s for s, _ in likely):
+                    trace = follow(self.rollout, kept, world, self.kb, key[1], key[0], self.human_still)
+                    if trace is not None:
+                        self.followed[key] = trace
+        budget = self.cfg.rollout_budget
+        if budget <= 0:
+            return full
+        kept_full = sum(1 for t in self.followed.values() if t.length >= full)
+        explore = (2 * len(likely)) if self.explore and self.cfg.exploration_depth > 0 else 0
+        fresh = (len(options) * len(likely) - kept_full) * max(self.cfg.rollout_samples, 1) + explore
+        if fresh * full <= budget:
+            return full
+        return max(budget // fresh, TICKS_PER_SUBTASK)
+
+    def around_standoff(self, world: WorldState, options: tuple[Subtask, ...]) -> tuple[Subtask, ...] | Action:
+        """:mod:`planner.standoff`: after ``standoff_ticks`` without progress behind the person, the person's
+        stalled work (taken over: the move toward it), else a step aside when the robot is in the person's
+        way, else the other reachable options, else a step aside (the action). While a given-up subtask is avoided the options are the reachable others
+        (:func:`planner.standoff.alternatives`); when there are none the robot holds its place (stays) until
+        the person moves."""
+        assert self.belief is not None
+        cells = self.tasker.targets
+        if self.standoff.stuck >= self.cfg.standoff_ticks:
+            given_up = self.current
+            self.standoff = give_up(self.standoff, given_up, world.tick, self.cfg.standoff_ticks)
+            choices = alternatives(self.layout, world, options, given_up, cells)
+            human_task = self.belief.likely(0.0, 1)[0][0]
+            taken = take_over(human_task, choices) if self.human_still >= self.cfg.standoff_ticks else None
+            if taken is not None:
+                self.current = taken
+                return self.rollout.robot_move(world, taken, True)
+            human_cells = cells(human_task, world)
+            if not choices or in_the_way(self.layout, world, human_cells):
+                self.current = None
+                self.standoff = hold_aside(self.standoff, world.tick, self.cfg.standoff_ticks)
+                return step_aside(self.layout, world, human_cells)
+            return choices
+        if world.tick < self.standoff.hold_until:
+            return Action.STAY
+        avoided = self.standoff.avoided(world.tick)
+        if avoided is None or avoided not in options:
+            return options
+        rest = alternatives(self.layout, world, options, avoided, cells)
+        return rest if rest else Action.STAY
+
     def averaged(self, subtask: Subtask, value: float) -> float:
         """``value`` folded into the running average of ``subtask``'s rollout value (``value_smoothing``)."""
         before = self.averages.get(subtask)
         alpha = self.cfg.value_smoothing
         self.averages[subtask] = value if before is None else alpha * value + (1.0 - alpha) * before
         return self.averages[subtask]
-
-    def act(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator) -> Action:
-        return self.decide(world, events, rng).action
 
     def first_move(self, world: WorldState, subtask: Subtask, likely, horizon: int, seed: int,
                    deadline: float | None, direct_value: float) -> tuple[Action, int]:
@@ -207,6 +279,14 @@ class QmdpRobot:
         candidate, so candidates are compared on common random numbers)."""
         assert self.kb is not None
         n = max(self.cfg.rollout_samples, 1)
+        if not prefix and n == 1 and self.cfg.reuse_rollouts:
+            key = (robot_subtask, human_subtask)
+            trace = self.followed.get(key)
+            if trace is None or trace.length < horizon:
+                trace = traced(self.rollout, world, self.kb, human_subtask, robot_subtask, horizon, seed,
+                               self.human_still)
+            self.next_traces[key] = trace
+            return trace.value(self.cfg.tick_discount, horizon)
         return sum(self.rollout.value(world, self.kb, human_subtask, robot_subtask, horizon, seed + 7919 * i,
                                       prefix=prefix, parked_for=self.human_still) for i in range(n)) / n
 

@@ -11,7 +11,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from planner.decision import Decision
+from planner.decision import Decision, Robot
 from planner.events import Event
 from planner.geometry import Action
 from planner.layout import Layout
@@ -32,12 +32,11 @@ class StayRobot:
         start = time.perf_counter()
         return Decision(Action.STAY, elapsed_ms=(time.perf_counter() - start) * 1000)
 
-    def act(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator) -> Action:
-        return Action.STAY
 
-
-def make_robot(name: str, layout: Layout, rules: Rules, config: PlannerConfig | None = None):
-    """A fresh robot policy. Raises ``ValueError`` naming the known planners for an unknown name."""
+def make_robot(name: str, layout: Layout, rules: Rules, config: PlannerConfig | None = None) -> Robot:
+    """A fresh robot policy (a :class:`planner.decision.RobotFactory`). ``config`` is the robot's model of the
+    person (``None``: the paper's defaults). Raises ``ValueError`` naming the known planners for an unknown
+    name."""
     if name not in PLANNER_NAMES:
         raise ValueError(f"unknown robot planner {name!r}; known: {', '.join(PLANNER_NAMES)}")
     if name == "stay":

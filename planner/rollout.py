@@ -18,6 +18,7 @@ Progress made sooner is worth more (``tick_discount`` per tick).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -67,29 +68,8 @@ class RobotTasker:
         onion the human carries, instead of only once both are on their stations (the human's rule judges
         by its KB, the robot sees the human's hands).
         """
-        b = Believed(kb=omniscient_kb(world), held=world.robot.held, partner_held=world.human.held,
-                     orders_left=world.orders_left)
-        options = list(available(b, self.rules, current))
-        unchopped = any(v is not None and v < self.rules.chop_time for v in world.boards)
-        unwashed = any(v is not None and v < self.rules.wash_time for v in world.sinks)
-        if world.robot.held is None:
-            if unchopped and Subtask.CHOP_ONION not in options:
-                options.append(Subtask.CHOP_ONION)
-            if unwashed and Subtask.WASH_PLATE not in options:
-                options.append(Subtask.WASH_PLATE)
-        elif world.robot.held == STEAK_PLATE and not any(v is not None and v >= self.rules.chop_time
-                                                         for v in world.boards):
-            if Subtask.DROP_ON_COUNTER not in options:
-                options.append(Subtask.DROP_ON_COUNTER)
-        coming = ((any(g is not None for g in world.grills) or world.human.held == MEAT)
-                  and (any(b is not None for b in world.boards) or world.human.held == ONION))
-        if coming and world.robot.held is None and Subtask.PICKUP_CLEAN_PLATE not in options:
-            if (any(v is not None and v >= self.rules.wash_time for v in world.sinks)
-                    or any(obj == CLEAN_PLATE for _, obj in world.objects)):
-                options.append(Subtask.PICKUP_CLEAN_PLATE)
-        elif coming and world.robot.held == CLEAN_PLATE and Subtask.PICKUP_STEAK not in options:
-            options.append(Subtask.PICKUP_STEAK)
-        return tuple(options)
+        return _robot_options(self.rules, world.robot.held, world.human.held, world.orders_left, world.objects,
+                              world.grills, world.boards, world.sinks, current)
 
     def done(self, subtask: Subtask, held_before: str | None, world: WorldState) -> bool:
         b = Believed(kb=omniscient_kb(world), held=world.robot.held, partner_held=world.human.held,
@@ -112,6 +92,48 @@ class RobotTasker:
         return best
 
 
+@lru_cache(maxsize=1 << 15)
+def _robot_options(rules: Rules, held: str | None, human_held: str | None, orders_left: int,
+                   objects: tuple[tuple[Pos, str], ...], grills: tuple[int | None, ...], boards: tuple[int | None, ...],
+                   sinks: tuple[int | None, ...], current: Subtask | None) -> tuple[Subtask, ...]:
+    """:meth:`RobotTasker.options` from the parts of the world it reads (not the agents' poses), cached: every
+    rollout tick asks it, mostly about the same few kitchens."""
+    b = Believed(kb=KnowledgeBase(objects=objects, grills=grills, boards=boards, sinks=sinks, robot=None),
+                 held=held, partner_held=human_held, orders_left=orders_left)
+    options = list(available(b, rules, current))
+    unchopped = any(v is not None and v < rules.chop_time for v in boards)
+    unwashed = any(v is not None and v < rules.wash_time for v in sinks)
+    if held is None:
+        if unchopped and Subtask.CHOP_ONION not in options:
+            options.append(Subtask.CHOP_ONION)
+        if unwashed and Subtask.WASH_PLATE not in options:
+            options.append(Subtask.WASH_PLATE)
+    elif held == STEAK_PLATE and not any(v is not None and v >= rules.chop_time for v in boards):
+        if Subtask.DROP_ON_COUNTER not in options:
+            options.append(Subtask.DROP_ON_COUNTER)
+    coming = ((any(g is not None for g in grills) or human_held == MEAT)
+              and (any(v is not None for v in boards) or human_held == ONION))
+    if coming and held is None and Subtask.PICKUP_CLEAN_PLATE not in options:
+        if (any(v is not None and v >= rules.wash_time for v in sinks)
+                or any(obj == CLEAN_PLATE for _, obj in objects)):
+            options.append(Subtask.PICKUP_CLEAN_PLATE)
+    elif coming and held == CLEAN_PLATE and Subtask.PICKUP_STEAK not in options:
+        options.append(Subtask.PICKUP_STEAK)
+    return tuple(options)
+
+
+@dataclass(frozen=True, slots=True)
+class SimState:
+    """The simulated joint system between two rollout ticks."""
+
+    world: WorldState
+    kb: KnowledgeBase
+    memory: HumanMemory
+    robot_task: Subtask | None
+    human_still: int
+    phi: float
+
+
 class Rollout:
     """Simulates the joint system for one (robot subtask, human subtask) hypothesis."""
 
@@ -131,33 +153,43 @@ class Rollout:
     def run(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory, rng: np.random.Generator,
             robot_subtask: Subtask, horizon: int, prefix: tuple[Action, ...] = (), parked_for: int = 0) -> float:
         """:meth:`value` from a given human memory and random stream (``rng`` is consumed)."""
-        robot_task: Subtask | None = robot_subtask
-        phi = potential(world, self.cfg)
+        sim = self.start(world, kb, memory, robot_subtask, parked_for)
         total, discount = 0.0, 1.0
-        human_still = parked_for
         for t in range(horizon):
-            h_action, memory = self.human.act(world, kb, memory, rng)
-            if robot_task is None:
-                robot_task = self.tasker.nearest(world, self.tasker.options(world, None), memory.subtask)
-            r_action = prefix[t] if t < len(prefix) else self.robot_move(world, robot_task, human_still >= 2)
-            human_before = world.human.pos
-            held_before = world.robot.held
-            world, events = step(self.layout, world, {"human": h_action, "robot": r_action}, self.rules)
-            if self.omniscient:
-                kb = omniscient_kb(world)
-            else:
-                kb = update_kb(kb, self.layout, world, angle=self.cfg.human_angle,
-                               kb_delay=self.cfg.human_delay,
-                               own_events=[e for e in events if e.agent == "human"])
-            human_still = human_still + 1 if world.human.pos == human_before else 0
-            new_phi = potential(world, self.cfg)
-            total += discount * (new_phi - phi)
-            phi, discount = new_phi, discount * self.cfg.tick_discount
-            if self.tasker.done(robot_task, held_before, world) or robot_task not in self.tasker.options(world, robot_task):
-                robot_task = None
-            if world.orders_left == 0:
+            sim, gain = self.tick(sim, rng, prefix[t] if t < len(prefix) else None)
+            total += discount * gain
+            discount *= self.cfg.tick_discount
+            if sim.world.orders_left == 0:
                 break
         return total
+
+    def start(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory, robot_subtask: Subtask,
+              parked_for: int = 0) -> SimState:
+        return SimState(world, kb, memory, robot_subtask, parked_for, potential(world, self.cfg))
+
+    def tick(self, sim: SimState, rng: np.random.Generator, robot_action: Action | None = None) -> tuple[SimState, float]:
+        """One tick of the simulated joint system: the next state and the increment of Φ. The robot takes
+        ``robot_action`` if given, else its move toward its subtask."""
+        world, kb, robot_task, human_still = sim.world, sim.kb, sim.robot_task, sim.human_still
+        h_action, memory = self.human.act(world, kb, sim.memory, rng)
+        if robot_task is None:
+            robot_task = self.tasker.nearest(world, self.tasker.options(world, None), memory.subtask)
+        r_action = robot_action if robot_action is not None else self.robot_move(world, robot_task, human_still >= 2)
+        human_before = world.human.pos
+        held_before = world.robot.held
+        world, events = step(self.layout, world, {"human": h_action, "robot": r_action}, self.rules)
+        if self.omniscient:
+            kb = omniscient_kb(world)
+        else:
+            kb = update_kb(kb, self.layout, world, angle=self.cfg.human_angle,
+                           kb_delay=self.cfg.human_delay,
+                           own_events=[e for e in events if e.agent == "human"])
+        human_still = human_still + 1 if world.human.pos == human_before else 0
+        phi = potential(world, self.cfg)
+        next_task: Subtask | None = robot_task
+        if self.tasker.done(robot_task, held_before, world) or robot_task not in self.tasker.options(world, robot_task):
+            next_task = None
+        return SimState(world, kb, memory, next_task, human_still, phi), phi - sim.phi
 
     def robot_move(self, world: WorldState, subtask: Subtask, human_parked: bool = False) -> Action:
         """The robot's next move toward ``subtask`` (walking around a human parked for two ticks)."""

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import Enum
+from functools import lru_cache
 
 from planner.kb import KnowledgeBase
 from planner.layout import Layout
@@ -96,8 +97,15 @@ def forced_continuation(b: Believed) -> Subtask:
 
 def targets(layout: Layout, subtask: Subtask, kb: KnowledgeBase, rules: Rules) -> tuple[Pos, ...]:
     """The cells the human would interact with to do ``subtask``, as its KB sees the kitchen."""
+    return _targets(layout, subtask, kb.objects, kb.grills, kb.boards, kb.sinks, rules)
+
+
+@lru_cache(maxsize=1 << 15)
+def _targets(layout: Layout, subtask: Subtask, objects: tuple[tuple[Pos, str], ...], grills: tuple[int | None, ...],
+             boards: tuple[int | None, ...], sinks: tuple[int | None, ...], rules: Rules) -> tuple[Pos, ...]:
+    """:func:`targets` from the KB's parts it reads, cached (the same few KBs come back every tick)."""
     def counters_with(obj: str) -> tuple[Pos, ...]:
-        return tuple(p for p, o in kb.objects if o == obj)
+        return tuple(p for p, o in objects if o == obj)
 
     def where(cells: tuple[Pos, ...], statuses: tuple[int | None, ...], test) -> tuple[Pos, ...]:
         return tuple(c for c, s in zip(cells, statuses) if test(s))
@@ -109,25 +117,25 @@ def targets(layout: Layout, subtask: Subtask, kb: KnowledgeBase, rules: Rules) -
     if subtask is Subtask.PICKUP_PLATE:
         return layout.plates + counters_with(DIRTY_PLATE)
     if subtask is Subtask.PICKUP_CLEAN_PLATE:
-        return where(layout.sinks, kb.sinks, lambda s: s is not None and s >= rules.wash_time) + \
+        return where(layout.sinks, sinks, lambda s: s is not None and s >= rules.wash_time) + \
             counters_with(CLEAN_PLATE)
     if subtask is Subtask.PICKUP_STEAK:
-        return where(layout.grills, kb.grills, lambda s: s is not None) or layout.grills
+        return where(layout.grills, grills, lambda s: s is not None) or layout.grills
     if subtask is Subtask.PICKUP_GARNISH:
-        return where(layout.boards, kb.boards, lambda s: s is not None) or layout.boards
+        return where(layout.boards, boards, lambda s: s is not None) or layout.boards
     if subtask is Subtask.DROP_MEAT:
-        return where(layout.grills, kb.grills, lambda s: s is None)
+        return where(layout.grills, grills, lambda s: s is None)
     if subtask is Subtask.DROP_ONION:
-        return where(layout.boards, kb.boards, lambda s: s is None)
+        return where(layout.boards, boards, lambda s: s is None)
     if subtask is Subtask.DROP_PLATE:
-        return where(layout.sinks, kb.sinks, lambda s: s is None)
+        return where(layout.sinks, sinks, lambda s: s is None)
     if subtask is Subtask.CHOP_ONION:
-        return where(layout.boards, kb.boards, lambda s: s is not None and s < rules.chop_time)
+        return where(layout.boards, boards, lambda s: s is not None and s < rules.chop_time)
     if subtask is Subtask.WASH_PLATE:
-        return where(layout.sinks, kb.sinks, lambda s: s is not None and s < rules.wash_time)
+        return where(layout.sinks, sinks, lambda s: s is not None and s < rules.wash_time)
     if subtask is Subtask.DELIVER_DISH:
         return layout.serves
-    occupied = {p for p, _ in kb.objects}
+    occupied = {p for p, _ in objects}
     return tuple(c for c in layout.counters if c not in occupied)
 
 

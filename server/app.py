@@ -12,12 +12,12 @@ from __future__ import annotations
 import asyncio
 import logging
 import secrets
-from collections.abc import AsyncIterator, Callable
+from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
-from typing import Any
 
 from fastapi import FastAPI
 
+from planner.decision import RobotFactory
 from server import errors, security
 from server.catalog import Catalog, load_catalog
 from server.game.admission import Admission
@@ -37,7 +37,7 @@ from server.store.writer import BatchWriter
 log = logging.getLogger("server")
 
 
-def create_app(settings: Settings | None = None, *, robot_factory: Callable[..., Any] | None = None) -> FastAPI:
+def create_app(settings: Settings | None = None, *, robot_factory: RobotFactory | None = None) -> FastAPI:
     """The app for ``settings`` (read from the environment when omitted).
 
     ``robot_factory`` replaces ``settings.robot_factory`` for in-process planners (``robot_workers = 0``).

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from planner.layout import Layout
+from planner.planner_config import PlannerConfig
 from planner.rules import Rules
 from server.study import Study, load_study
 from study_config import load_layout
@@ -30,6 +31,13 @@ class LoadedStudy:
 
     def layout(self, kitchen: str) -> Layout:
         return self.layouts[kitchen]
+
+    @property
+    def planner_config(self) -> PlannerConfig:
+        """The robot's model of the person this study shows: its FOV angle and KB delay (docs/domain.md §5);
+        the kitchen's numbers reach the robot as :attr:`rules`."""
+        world = self.study.world
+        return PlannerConfig(human_angle=world.fov_angle, human_delay=world.kb_delay)
 
 
 class DuplicateStudyError(ValueError):

@@ -39,7 +39,7 @@ def main(argv: list[str] | None = None) -> int:
         for robot_name in robots:
             times: list[float] = []
             for seed in range(args.latency_seeds):
-                robot = make_robot(robot_name, layout, Rules(), PlannerConfig(seed=seed))
+                robot = make_robot(robot_name, layout, Rules(), PlannerConfig())
                 times.extend(run_trial(layout, seed, robot=robot).decision_ms)
             t = np.array(times)
             p50, p95, p99 = np.percentile(t, [50, 95, 99])
@@ -47,7 +47,7 @@ def main(argv: list[str] | None = None) -> int:
             print(f"{name:<10}{robot_name:<12}{p50:8.2f}{p95:8.2f}{p99:8.2f}{t.max():8.2f}{len(t):11d}")
     for robot_name, p99 in worst.items():
         print(f"worst p99 {robot_name}: {p99:.2f} ms")
-    specs = [TrialSpec(n, r, s) for n in layout_names() for r in ("fov_aware", "baseline")
+    specs = [TrialSpec(load_layout(n), r, s) for n in layout_names() for r in ("fov_aware", "baseline")
              for s in range(args.seeds)]
     rows = [run_spec(spec) for spec in specs]
     print(summarize_trials(rows))

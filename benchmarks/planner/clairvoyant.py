@@ -81,7 +81,7 @@ def clairvoyant_trial(layout: Layout, seed: int, settings: TrialSettings = Trial
     the final world. Before the human acts each tick, the robot is shown its KB, memory and a copy of its
     generator."""
     robot = ClairvoyantRobot(layout, settings.rules, PlannerConfig(
-        human_angle=settings.angle, human_delay=settings.kb_delay, seed=seed, value_smoothing=1.0,
+        human_angle=settings.angle, human_delay=settings.kb_delay, value_smoothing=1.0,
         max_subtasks=1))
     return run_trial(layout, seed, settings, robot=robot,
                      before_human=lambda kb, memory, rng: robot.see_human(kb, memory, copy.deepcopy(rng))).final
@@ -91,7 +91,7 @@ def run_one(job: tuple[str, str, int]) -> dict[str, Any]:
     """One (kitchen, robot, seed) trial as a row with ``planner.experiment``'s keys (worker processes)."""
     layout_name, robot, seed = job
     if robot != "clairvoyant":
-        return run_spec(TrialSpec(layout_name, robot, seed))  # exactly what `steakhouse simulate` runs
+        return run_spec(TrialSpec(load_layout(layout_name), robot, seed))  # exactly what `steakhouse simulate` runs
     rules = Rules()
     final = clairvoyant_trial(load_layout(layout_name), seed, TrialSettings(rules=rules))
     return {"layout": layout_name, "robot": robot, "seed": seed, "ticks": final.tick,

@@ -28,7 +28,7 @@ from pathlib import Path
 from typing import Any
 
 from planner.experiment import COLUMNS, TrialSpec, paired_comparison, run_spec
-from planner.layout_gen import generate_named, style_of
+from planner.layout_gen import STYLES, generate_named
 from study_config import layout_names, load_layout
 
 
@@ -59,16 +59,17 @@ def trial_specs(kitchens: list[str], shipped: tuple[str, ...], robots: list[str]
     specs = []
     for b in range(max(sim_seeds, 1)):
         if b < sim_seeds:
-            specs += [TrialSpec(k, r, b) for k in kitchens for r in robots]
+            specs += [TrialSpec(load_layout(k), r, b) for k in kitchens for r in robots]
         seeds = range(b * share, min((b + 1) * share, shipped_seeds))
-        specs += [TrialSpec(k, r, s) for s in seeds for k in shipped for r in robots]
+        specs += [TrialSpec(load_layout(k), r, s) for s in seeds for k in shipped for r in robots]
     return specs
 
 
 def group_of(row: dict[str, Any]) -> tuple[str, str]:
     """(``generated`` or ``shipped``, style or kitchen name) of a trial row."""
     name = Path(str(row["layout"])).stem
-    style = style_of(load_layout(str(row["layout"])))
+    tail = name.rsplit("_", 1)[-1]
+    style = tail if name.startswith("gen_") and tail in STYLES else None
     return ("generated", style) if style is not None else ("shipped", name)
 
 

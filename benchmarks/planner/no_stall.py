@@ -55,7 +55,7 @@ def kitchen(name: str) -> Layout:
 def run_one(spec: StallSpec) -> dict[str, object]:
     layout = kitchen(spec.kitchen)
     rules = Rules()
-    robot = make_robot(spec.robot, layout, rules, PlannerConfig(seed=spec.seed))
+    robot = make_robot(spec.robot, layout, rules, PlannerConfig())
     human = AdversarialHuman(layout, rules, AdversaryConfig(budget=spec.budget)) if spec.partner == "adversary" else None
     result = run_trial(layout, spec.seed, robot=robot, human=human, record=True)
     final = result.final

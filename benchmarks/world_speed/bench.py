@@ -22,6 +22,7 @@ def ours_runner(layout_name: str, seed: int):
     from planner.fov import view
     from planner.geometry import ACTIONS
     from planner.kb import initial_kb, update_kb
+    from planner.perception import FOV_ANGLE, KB_DELAY
     from planner.rules import Rules
     from planner.state import initial_state, is_done
     from planner.step import step
@@ -39,10 +40,10 @@ def ours_runner(layout_name: str, seed: int):
         picks = rng.integers(len(ACTIONS), size=(steps, 2))
         for h, r in picks:
             world, events = step(layout, world, {"human": ACTIONS[h], "robot": ACTIONS[r]}, rules)
-            kb = update_kb(kb, layout, world, angle=120.0, kb_delay=3,
+            kb = update_kb(kb, layout, world, angle=FOV_ANGLE, kb_delay=KB_DELAY,
                            own_events=[e for e in events if e.agent == "human"])
             kb_gap_components(kb, world, rules)
-            view(layout, world.human.pos, world.human.facing, 120.0)
+            view(layout, world.human.pos, world.human.facing, FOV_ANGLE)
             if is_done(world, rules):
                 world = initial_state(layout, rules)
                 kb = initial_kb(world)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
+from planner.perception import FOV_ANGLE
 from server.cli import UsageError
 
 MASK = "#"
@@ -16,7 +17,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--x", type=int, required=True)
     parser.add_argument("--y", type=int, required=True)
     parser.add_argument("--facing", required=True, choices=["north", "south", "east", "west"])
-    parser.add_argument("--angle", type=float, default=120.0, metavar="DEG")
+    parser.add_argument("--angle", type=float, default=FOV_ANGLE, metavar="DEG")
     parser.add_argument("--json", action="store_true", help='print {"visible": [[x, y], ...]}')
     parser.set_defaults(handler=_fov, subparser=parser)
 

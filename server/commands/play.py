@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
+from planner.perception import FOV_ANGLE, KB_DELAY
 from server.cli import UsageError
 
 
@@ -13,8 +14,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "play", help="play one headless trial: the simulated human with a simulated partner")
     parser.add_argument("--layout", required=True, metavar="NAME_OR_FILE")
     parser.add_argument("--seed", type=int, required=True)
-    parser.add_argument("--kb-delay", type=int, default=3, metavar="D")
-    parser.add_argument("--angle", type=float, default=120.0, metavar="DEG", help="the human's FOV")
+    parser.add_argument("--kb-delay", type=int, default=KB_DELAY, metavar="D")
+    parser.add_argument("--angle", type=float, default=FOV_ANGLE, metavar="DEG", help="the human's FOV")
     parser.add_argument("--json", action="store_true")
     parser.set_defaults(handler=_play, subparser=parser)
 

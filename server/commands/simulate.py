@@ -7,6 +7,7 @@ import csv
 import sys
 from pathlib import Path
 
+from planner.perception import FOV_ANGLE, KB_DELAY
 from server.cli import UsageError
 
 
@@ -15,8 +16,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--layouts", default="all", help="all, or comma-separated names/files")
     parser.add_argument("--robots", default="fov_aware,baseline")
     parser.add_argument("--seeds", type=int, default=10, help="seeds 0..N-1 per kitchen and robot")
-    parser.add_argument("--human-angle", type=float, default=120.0, metavar="DEG")
-    parser.add_argument("--kb-delay", type=int, default=3)
+    parser.add_argument("--human-angle", type=float, default=FOV_ANGLE, metavar="DEG")
+    parser.add_argument("--kb-delay", type=int, default=KB_DELAY)
     parser.add_argument("--lookahead", default="rollout", choices=("rollout", "abstract"),
                         help="how the QMDP robots plan: tick rollouts (default) or docs/domain.md §5 as the reference did "
                              "it (motion-sequence exploration and abstract-state search)")
@@ -40,16 +41,17 @@ def _simulate(args: argparse.Namespace) -> int:
     if unknown or not robots:
         raise UsageError(f"unknown robot(s) {', '.join(unknown) or '(none)'}; known: {', '.join(PLANNER_NAMES)}")
     names = list(layout_names()) if args.layouts == "all" else [n.strip() for n in args.layouts.split(",")]
+    layouts = []
     for name in names:
         try:
-            load_layout(name)
+            layouts.append(load_layout(name))
         except LayoutError as exc:
             raise UsageError(str(exc)) from exc
     if args.seeds < 1:
         raise UsageError("--seeds must be at least 1")
     if not 0 < args.human_angle <= 360 or args.kb_delay < 0:
         raise UsageError("--human-angle must be in (0, 360] and --kb-delay 0 or more")
-    specs = [TrialSpec(n, r, s, args.human_angle, args.kb_delay, lookahead=args.lookahead) for n in names
+    specs = [TrialSpec(lay, r, s, args.human_angle, args.kb_delay, lookahead=args.lookahead) for lay in layouts
              for r in robots for s in range(args.seeds)]
     jobs = args.jobs or os.cpu_count() or 1
     rows: list[dict[str, object]] = []

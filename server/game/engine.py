@@ -6,8 +6,9 @@ angle and KB delay and the participant's own events (docs/domain.md §3); the KB
 whether the robot is in the participant's FOV are computed for the tick record; and whether the participant's
 subtask got anywhere (a notice, or its end after ``blocked_ticks`` steps without progress: ``server.game.blocked``).
 
-Randomness: the avatar's tie-breaks draw from ``default_rng([seed, tick, 0])`` and the robot's from
-``default_rng([seed, tick, 1])``, so a trial resumed at tick t draws what it would have drawn.
+Randomness: the avatar's tie-breaks draw from ``default_rng([seed, tick, 0])``; the robot's planner, in its
+pool, from ``default_rng([seed, tick, 1])`` (``server.robots.choice.robot_rng``), so a trial resumed at tick t
+draws what it would have drawn.
 """
 
 from __future__ import annotations
@@ -74,9 +75,6 @@ class TrialEngine:
         """The participant's view now (the one FOV function, ``planner.fov.view``)."""
         human = self.world.human
         return view(self.layout, human.pos, human.facing, self.angle)
-
-    def robot_rng(self, tick: int) -> np.random.Generator:
-        return np.random.default_rng([self.seed, tick, 1])
 
     def advance(self, robot_action: Action) -> TickOutcome:
         """Step the world once with the participant's action and ``robot_action``."""

@@ -288,7 +288,7 @@ class LiveGame:
     async def _reopen_planner(self) -> None:
         try:
             await self.deps.pool.open(self.meta.trial_id, self.meta.robot, self.engine.layout, self.engine.rules,
-                                      self.engine.world)
+                                      self.loaded.planner_config, self.engine.world)
         except Exception as exc:  # noqa: BLE001 - the robot stays until a worker is back
             log.error("cannot re-open the planner of trial %d: %s", self.meta.trial_id, exc)
 

@@ -10,13 +10,13 @@ from __future__ import annotations
 
 import importlib
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
-from planner.decision import Decision
+from planner.decision import Decision, Robot, RobotFactory
 from planner.events import Event
 from planner.geometry import Action
 from planner.state import WorldState
@@ -36,22 +36,27 @@ class RobotChoice:
 STAY_CHOICE = RobotChoice(Action.STAY)
 
 
-def load_factory(path: str) -> Callable[..., Any]:
-    """``"module:function"`` → the function (a robot factory taking ``(name, layout, rules)``)."""
+def load_factory(path: str) -> RobotFactory:
+    """``"module:function"`` → the function (a :class:`planner.decision.RobotFactory`,
+    ``factory(name, layout, rules, config)``)."""
     module, _, attr = path.partition(":")
-    return getattr(importlib.import_module(module), attr)  # type: ignore[no-any-return]
+    factory = getattr(importlib.import_module(module), attr)
+    if not callable(factory):
+        raise TypeError(f"{path} is not a robot factory (not callable)")
+    return cast(RobotFactory, factory)
 
 
-def run_decision(policy: Any, world: WorldState, events: Sequence[Event], seed: int, tick: int,
+def robot_rng(seed: int, tick: int) -> np.random.Generator:
+    """The robot's random stream for the decision at ``tick`` of the trial with ``seed``: a pure function of
+    both, so a trial resumed at tick t (in any process) draws what it would have drawn."""
+    return np.random.default_rng([seed, tick, 1])
+
+
+def run_decision(policy: Robot, world: WorldState, events: Sequence[Event], seed: int, tick: int,
                  deadline: float) -> tuple[str, dict[str, Any]]:
     """Ask ``policy`` for its action; ``deadline`` is absolute ``time.monotonic()``. Returns the action's
-    value and the decision record. Policies with only ``act`` (simulated partners) are accepted too."""
-    rng = np.random.default_rng([seed, tick, 1])
+    value and the decision record."""
     start = time.perf_counter()
-    if hasattr(policy, "decide"):
-        budget = max(deadline - time.monotonic(), 0.0)
-        decision: Decision = policy.decide(world, events, rng, start + budget)
-    else:
-        action = policy.act(world, events, rng)
-        decision = Decision(action, elapsed_ms=(time.perf_counter() - start) * 1000)
+    budget = max(deadline - time.monotonic(), 0.0)
+    decision: Decision = policy.decide(world, events, robot_rng(seed, tick), start + budget)
     return decision.action.value, decision.to_dict()

@@ -12,19 +12,21 @@ from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
+from planner.decision import Robot, RobotFactory
 from planner.events import Event
 from planner.geometry import Action
 from planner.layout import Layout
+from planner.planner_config import PlannerConfig
 from planner.rules import Rules
 from planner.state import WorldState
 from server.robots.choice import RobotChoice, run_decision
-from server.robots.pool import choice_from_reply
+from server.robots.reply import choice_from_reply
 
 
 class InProcessRobots:
-    def __init__(self, factory: Callable[..., Any]) -> None:
+    def __init__(self, factory: RobotFactory) -> None:
         self.factory = factory
-        self._policies: dict[int, Any] = {}
+        self._policies: dict[int, Robot] = {}
         self._executor: ThreadPoolExecutor | None = None
 
     async def start(self) -> None:
@@ -41,9 +43,10 @@ class InProcessRobots:
             raise RuntimeError("the robot pool is not started")
         return asyncio.get_running_loop().run_in_executor(self._executor, fn, *args)
 
-    async def open(self, trial_id: int, robot: str, layout: Layout, rules: Rules, world: WorldState) -> None:
+    async def open(self, trial_id: int, robot: str, layout: Layout, rules: Rules, config: PlannerConfig,
+                   world: WorldState) -> None:
         def build() -> None:
-            policy = self.factory(robot, layout, rules)
+            policy = self.factory(robot, layout, rules, config)
             policy.reset(world)
             self._policies[trial_id] = policy
 

@@ -22,12 +22,15 @@ import time
 from collections.abc import Callable, Sequence
 from typing import Any, Protocol
 
+from planner.decision import RobotFactory
 from planner.events import Event
 from planner.geometry import Action
 from planner.layout import Layout
+from planner.planner_config import PlannerConfig
 from planner.rules import Rules
 from planner.state import WorldState
 from server.robots.choice import RobotChoice
+from server.robots.reply import choice_from_reply
 from server.robots.worker import worker_main
 
 log = logging.getLogger(__name__)
@@ -37,18 +40,14 @@ OPEN_TIMEOUT_S = 60.0
 class RobotPool(Protocol):
     async def start(self) -> None: ...
     async def shutdown(self) -> None: ...
-    async def open(self, trial_id: int, robot: str, layout: Layout, rules: Rules, world: WorldState) -> None: ...
+    async def open(self, trial_id: int, robot: str, layout: Layout, rules: Rules, config: PlannerConfig,
+                   world: WorldState) -> None:
+        """Build trial ``trial_id``'s planner with the factory, ``factory(robot, layout, rules, config)``, and
+        reset it on ``world``. ``config`` is the study's model of the person (its FOV angle and KB delay)."""
     async def decide(self, trial_id: int, world: WorldState, events: Sequence[Event], seed: int, tick: int,
                      deadline: float) -> RobotChoice: ...
     async def close_trial(self, trial_id: int) -> None: ...
     def describe(self) -> dict[str, Any]: ...
-
-
-def choice_from_reply(status: str, payload: Any, elapsed_ms: float) -> RobotChoice:
-    if status == "ok":
-        action, info = payload
-        return RobotChoice(Action(action), decision_ms=elapsed_ms, info=info)
-    return RobotChoice(Action.STAY, decision_ms=elapsed_ms, error="worker_lost" if status == "lost" else payload)
 
 
 class _Worker:
@@ -158,7 +157,8 @@ class ProcessRobots:
             await asyncio.to_thread(worker.stop)
         self._pins.clear()
 
-    async def open(self, trial_id: int, robot: str, layout: Layout, rules: Rules, world: WorldState) -> None:
+    async def open(self, trial_id: int, robot: str, layout: Layout, rules: Rules, config: PlannerConfig,
+                   world: WorldState) -> None:
         """Pin ``trial_id`` to the least-loaded worker and build its planner there (restarting a dead one)."""
         await self.close_trial(trial_id)
         for dead in [w for w in self._workers if not w.alive]:
@@ -168,7 +168,7 @@ class ProcessRobots:
         worker.trials.add(trial_id)
         self._pins[trial_id] = worker
         status, payload = await asyncio.wait_for(
-            worker.request("open", trial_id, robot, layout, rules, world), OPEN_TIMEOUT_S)
+            worker.request("open", trial_id, robot, layout, rules, config, world), OPEN_TIMEOUT_S)
         if status != "ok":
             worker.trials.discard(trial_id)
             self._pins.pop(trial_id, None)
@@ -202,7 +202,7 @@ class ProcessRobots:
              "pid": w.process.pid if w.process is not None else None} for w in self._workers]}
 
 
-def make_pool(workers: int, factory_path: str, factory: Callable[..., Any] | None = None) -> RobotPool:
+def make_pool(workers: int, factory_path: str, factory: RobotFactory | None = None) -> RobotPool:
     """Worker processes when ``workers`` > 0, else the in-process thread (with ``factory`` if given)."""
     if workers > 0:
         return ProcessRobots(workers, factory_path)

@@ -1,7 +1,7 @@
 """The body of one robot worker process: a loop over requests on a pipe, holding its trials' planners.
 
-Requests (pickled tuples): ``("open", req, trial_id, robot, layout, rules, world)`` builds the planner with
-the factory and resets it; ``("decide", req, trial_id, world, events, seed, tick, deadline)`` answers the
+Requests (pickled tuples): ``("open", req, trial_id, robot, layout, rules, config, world)`` builds the planner
+with the factory (``factory(robot, layout, rules, config)``) and resets it; ``("decide", req, trial_id, world, events, seed, tick, deadline)`` answers the
 action; ``("close", req, trial_id)`` drops the planner; ``("stop",)`` ends the process. Replies are
 ``(req, "ok", payload)`` or ``(req, "error", message)``. Requests are served one at a time, so a trial's
 planner is never used concurrently. The process ignores SIGINT (the server shuts it down) and exits when
@@ -14,13 +14,14 @@ import signal
 from multiprocessing.connection import Connection
 from typing import Any
 
+from planner.decision import Robot, RobotFactory
 from server.robots.choice import load_factory, run_decision
 
 
 def worker_main(conn: Connection, factory_path: str) -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     factory = load_factory(factory_path)
-    policies: dict[int, Any] = {}
+    policies: dict[int, Robot] = {}
     while True:
         try:
             message = conn.recv()
@@ -42,19 +43,19 @@ def worker_main(conn: Connection, factory_path: str) -> None:
     conn.close()
 
 
-def _serve(op: str, message: tuple[Any, ...], policies: dict[int, Any], factory: Any) -> Any:
+def _serve(op: str, message: tuple[Any, ...], policies: dict[int, Robot], factory: RobotFactory) -> Any:
     if op == "open":
-        _, _, trial_id, robot, layout, rules, world = message
-        policy = factory(robot, layout, rules)
+        _, _, trial_id, robot, layout, rules, config, world = message
+        policy = factory(robot, layout, rules, config)
         policy.reset(world)
         policies[trial_id] = policy
         return None
     if op == "decide":
         _, _, trial_id, world, events, seed, tick, deadline = message
-        policy = policies.get(trial_id)
-        if policy is None:
+        found = policies.get(trial_id)
+        if found is None:
             raise LookupError(f"trial {trial_id} has no planner in this worker")
-        return run_decision(policy, world, events, seed, tick, deadline)
+        return run_decision(found, world, events, seed, tick, deadline)
     if op == "close":
         policies.pop(message[2], None)
         return None

@@ -7,32 +7,36 @@ from typing import Literal
 
 from pydantic import Field, field_validator, model_validator
 
+from planner.perception import FOV_ANGLE, KB_DELAY
+from planner.rules import Rules
 from server.study.base import Loc, RobotName, StudyModel, duplicate_problems, raise_problems
 from server.study.kitchens import KitchenEntry
 from server.study.views import ViewName
 
 CODE_PLACEHOLDER = "{code}"
 _URL_PARAMETER = re.compile(r"^[A-Za-z0-9_.-]+$")
+_RULES = Rules()
 
 
 class World(StudyModel):
-    """The game's numbers (docs/domain.md §1–§3); the defaults are the paper's."""
+    """The game's numbers (docs/domain.md §1–§3); the defaults are the paper's, read from their one home in
+    ``planner`` (:mod:`planner.perception`, :class:`planner.rules.Rules`)."""
 
-    fov_angle: float = Field(default=120.0, gt=0, le=360)
+    fov_angle: float = Field(default=FOV_ANGLE, gt=0, le=360)
     """Field-of-view angle in degrees; cells outside it are black for the participant. 360 sees all."""
-    kb_delay: int = Field(default=3, ge=0)
+    kb_delay: int = Field(default=KB_DELAY, ge=0)
     """Consecutive ticks something must stay in view before it enters the human's knowledge base."""
-    orders: int = Field(default=2, ge=1)
+    orders: int = Field(default=_RULES.orders, ge=1)
     """Dishes to deliver; a trial ends when all are delivered (or at the horizon)."""
-    horizon: int = Field(default=400, ge=1)
+    horizon: int = Field(default=_RULES.horizon, ge=1)
     """Maximum ticks per trial."""
-    cook_time: int = Field(default=10, ge=1)
+    cook_time: int = Field(default=_RULES.cook_time, ge=1)
     """Ticks a steak needs on the grill."""
-    chop_time: int = Field(default=2, ge=1)
+    chop_time: int = Field(default=_RULES.chop_time, ge=1)
     """Interact presses to chop an onion."""
-    wash_time: int = Field(default=2, ge=1)
+    wash_time: int = Field(default=_RULES.wash_time, ge=1)
     """Interact presses to wash a plate."""
-    delivery_reward: int = Field(default=20, ge=0)
+    delivery_reward: int = Field(default=_RULES.delivery_reward, ge=0)
     """Score for each delivered dish."""
 
 

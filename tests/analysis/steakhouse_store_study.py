@@ -36,7 +36,7 @@ from server.store.writer import write_batch
 INTERRUPTS = tuple(Interrupt)
 
 
-def study_robots(name: str, layout: Any, rules: Any) -> Any:
+def study_robots(name: str, layout: Any, rules: Any, config: Any = None) -> Any:
     """Robot factory for test studies: ``stay`` stands still, any other name is the simulated partner
     (it works in the kitchen, so the two robots differ in ticks, KB gap and robot-in-FOV)."""
     return StayRobot() if name == "stay" else SimulatedPartner(layout, rules)

@@ -32,7 +32,7 @@ def carry_onion_to_board(layout: Layout, rules: Rules, name: str, seed: int, bef
                          now: WorldState, max_ticks: int) -> OnionRun:
     """Robot ``name`` (reset on ``before``) plays from ``now`` until a board is loaded; fails the test if it
     takes more than ``max_ticks``."""
-    robot = make_robot(name, layout, rules, PlannerConfig(seed=seed))
+    robot = make_robot(name, layout, rules, PlannerConfig())
     robot.reset(before)
     kb = initial_kb(before)
     rng = np.random.default_rng(seed)

@@ -25,7 +25,7 @@ ONLY = {mode: tuple(1.0 if m is mode else 0.0 for m in Mode) for mode in Mode}
 def test_every_planner_finishes_with_the_adversary(robot):
     for kitchen, seed in ((load_layout("none_3"), 2), (generate_named(3), 0)):
         human = AdversarialHuman(kitchen, Rules(), AdversaryConfig(budget=40))
-        result = run_trial(kitchen, seed, robot=make_robot(robot, kitchen, Rules(), PlannerConfig(seed=seed)),
+        result = run_trial(kitchen, seed, robot=make_robot(robot, kitchen, Rules(), PlannerConfig()),
                            human=human)
         assert result.finished, f"{robot} stalled on {kitchen.name} seed {seed} at tick {result.ticks}"
         assert set(human.history[:40]) & set(DISRUPTIVE)

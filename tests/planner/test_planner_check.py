@@ -23,7 +23,7 @@ RULES = Rules()
 @pytest.mark.parametrize("name", PLANNER_NAMES)
 def test_decisions_are_legal_and_carry_their_record(name):
     layout = load_layout("none_3")
-    robot = make_robot(name, layout, RULES, PlannerConfig(seed=1))
+    robot = make_robot(name, layout, RULES, PlannerConfig())
     world = initial_state(layout, RULES)
     robot.reset(world)
     decision = robot.decide(world, (), np.random.default_rng(0))
@@ -36,7 +36,7 @@ def test_decisions_are_legal_and_carry_their_record(name):
 @pytest.mark.parametrize("name", PLANNER_NAMES)
 def test_same_seed_same_trial(name):
     layout = load_layout("mid_2")
-    runs = [run_trial(layout, 5, robot=make_robot(name, layout, RULES, PlannerConfig(seed=5)), record=True)
+    runs = [run_trial(layout, 5, robot=make_robot(name, layout, RULES, PlannerConfig()), record=True)
             for _ in range(2)]
     assert runs[0].actions == runs[1].actions and all(a in ACTIONS for pair in runs[0].actions for a in pair)
 
@@ -47,7 +47,7 @@ def test_same_seed_same_trial(name):
 def test_finishes_every_kitchen_with_the_simulated_human(name, kitchen):
     layout = load_layout(kitchen)
     for seed in range(2):
-        robot = make_robot(name, layout, RULES, PlannerConfig(seed=seed))
+        robot = make_robot(name, layout, RULES, PlannerConfig())
         result = run_trial(layout, seed, robot=robot)
         assert result.finished, f"{name} on {kitchen} seed {seed}: {result.delivered} delivered"
 

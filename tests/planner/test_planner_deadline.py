@@ -40,6 +40,6 @@ class AlwaysLate:
 @pytest.mark.parametrize("kitchen", ["none_3", "mid_2"])
 def test_a_planner_always_past_its_deadline_plays_a_whole_trial(kitchen):
     layout = load_layout(kitchen)
-    robot = AlwaysLate(make_robot("fov_aware", layout, Rules(), PlannerConfig(seed=0)))
+    robot = AlwaysLate(make_robot("fov_aware", layout, Rules(), PlannerConfig()))
     result = run_trial(layout, 0, robot=robot)
     assert result.ticks > 0 and robot.timed_out > 0

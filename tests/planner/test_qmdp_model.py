@@ -22,7 +22,7 @@ def test_modelled_kb_is_the_simulated_humans_kb_every_tick(kitchen, seed):
     """Same FOV, same delay, same worlds: the robot's KB of the person must equal the person's own, from
     the first tick (the world the robot was reset with counts once, as it does for the person)."""
     layout = load_layout(kitchen)
-    robot = make_robot("fov_aware", layout, RULES, PlannerConfig(seed=seed))
+    robot = make_robot("fov_aware", layout, RULES, PlannerConfig())
     human_rng, robot_rng = np.random.default_rng(seed).spawn(2)
     world = initial_state(layout, RULES)
     kb, memory, events = initial_kb(world), HumanMemory(), ()

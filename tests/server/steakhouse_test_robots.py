@@ -1,6 +1,6 @@
 """Robot factories for the server tests, importable by spawned worker processes (same ``sys.path``).
 
-Each is ``factory(name, layout, rules) -> policy`` like ``planner.robots.make_robot``.
+Each is ``factory(name, layout, rules, config) -> policy`` like ``planner.robots.make_robot``.
 """
 
 from __future__ import annotations
@@ -16,10 +16,11 @@ from planner.decision import Decision
 from planner.events import Event
 from planner.geometry import Action
 from planner.partner import SimulatedPartner
+from planner.planner_config import PlannerConfig
 from planner.state import WorldState
 
 
-def simulated_partner(name: str, layout: Any, rules: Any) -> SimulatedPartner:
+def simulated_partner(name: str, layout: Any, rules: Any, config: Any = None) -> SimulatedPartner:
     """The simulated human's model driving the robot: it moves all over the kitchen (``act`` only)."""
     return SimulatedPartner(layout, rules)
 
@@ -42,7 +43,7 @@ class Counting:
                         q_values={"calls": float(self.calls), "pid": float(self.pid)})
 
 
-def counting(name: str, layout: Any, rules: Any) -> Counting:
+def counting(name: str, layout: Any, rules: Any, config: Any = None) -> Counting:
     return Counting()
 
 
@@ -55,7 +56,7 @@ class Slow(Counting):
         return super().decide(world, events, rng, deadline)
 
 
-def slow(name: str, layout: Any, rules: Any) -> Slow:
+def slow(name: str, layout: Any, rules: Any, config: Any = None) -> Slow:
     return Slow()
 
 
@@ -65,7 +66,7 @@ class Failing(Counting):
         raise ValueError("planner bug")
 
 
-def failing(name: str, layout: Any, rules: Any) -> Failing:
+def failing(name: str, layout: Any, rules: Any, config: Any = None) -> Failing:
     return Failing()
 
 
@@ -79,9 +80,27 @@ class Crashing(Counting):
         return super().decide(world, events, rng, deadline)
 
 
-def crashing(name: str, layout: Any, rules: Any) -> Crashing:
+def crashing(name: str, layout: Any, rules: Any, config: Any = None) -> Crashing:
     return Crashing()
 
 
-def unbuildable(name: str, layout: Any, rules: Any) -> Counting:
+def unbuildable(name: str, layout: Any, rules: Any, config: Any = None) -> Counting:
     raise ImportError(f"planner {name!r} is not installed")
+
+
+class ConfigEcho(Counting):
+    """Answers with the model of the person it was built with (in ``q_values``), so a test sees what
+    reached a worker process."""
+
+    def __init__(self, config: PlannerConfig) -> None:
+        super().__init__()
+        self.config = config
+
+    def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,
+               deadline: float | None = None) -> Decision:
+        return Decision(Action.STAY, q_values={"angle": self.config.human_angle,
+                                               "delay": float(self.config.human_delay)})
+
+
+def config_echo(name: str, layout: Any, rules: Any, config: PlannerConfig) -> ConfigEcho:
+    return ConfigEcho(config)

@@ -1,0 +1,135 @@
+"""Standoffs: the robot's target is blocked by the person and nothing moves (docs/domain.md §5, "Standoffs").
+
+A person may stand in the only access cell of a station, or in the only way to it, for a long time (an
+idle or adversarial participant; two agents each waiting for the other). The planner's rollouts value
+waiting there (the person is predicted to move on), so without this rule a robot can wait behind such a
+person for the rest of the trial. The rule: when the robot has made **no progress** (same cell, same
+held object) for ``standoff_ticks`` consecutive ticks **while every way to its target passes through the
+person's cell**, it re-plans around the person, in this order:
+
+1. **take over the blocked work**: the person's own subtask (the robot's most likely hypothesis) when the
+   person has stood still as long, the robot can do it and can reach it without passing the person (two
+   agents stuck in a corridor, each needing the other's side: the robot does the person's errand);
+2. **step aside** when the robot is in the person's way too (the person faces the robot, and every way
+   from the person to the targets of its most likely subtask passes the robot's cell): the robot moves to a
+   free neighbouring cell off the person's way;
+3. **another useful subtask**: the best of the robot's other options it can reach without passing the
+   person; holding something, putting it down on a free counter is one (then the robot's hands are free
+   for other work);
+4. **step aside** when nothing else is reachable.
+
+The blocked subtask is then avoided until the person moves or ``2 × standoff_ticks`` ticks pass; after a step
+aside the robot also holds still for ``2 × standoff_ticks`` ticks (else it steps back into the way as soon as
+the person comes closer).
+State is an immutable :class:`Standoff`, advanced once per observed tick by :func:`advance`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+
+from planner.geometry import DIRECTIONS, Action, Pos, manhattan, move_action
+from planner.layout import Layout
+from planner.paths import detour_moves, distance, UNREACHABLE
+from planner.state import AgentState, WorldState
+from planner.subtasks import Subtask
+
+Targets = Callable[[Subtask, WorldState], tuple[Pos, ...]]
+
+
+@dataclass(frozen=True, slots=True)
+class Standoff:
+    stuck: int = 0
+    """Consecutive ticks without progress while the target was blocked."""
+    avoid: Subtask | None = None
+    """The subtask given up in the last standoff, avoided until ``avoid_until`` or until the person moves."""
+    avoid_until: int = -1
+    hold_until: int = -1
+    """After a step aside the robot holds still until this tick, so the person can pass."""
+
+    def avoided(self, tick: int) -> Subtask | None:
+        return self.avoid if tick < self.avoid_until else None
+
+
+def blocked(layout: Layout, world: WorldState, cells: tuple[Pos, ...]) -> bool:
+    """Whether every way from the robot to every reachable target cell passes through the person's cell (the
+    robot is not already at one of them)."""
+    return _blocked(layout, world.robot, world.human.pos, cells)
+
+
+def in_the_way(layout: Layout, world: WorldState, human_cells: tuple[Pos, ...]) -> bool:
+    """Whether the person is trying to get past the robot: it faces the robot's cell (its last move was
+    toward it) and every way from it to ``human_cells`` passes through that cell. (A person standing idle
+    at a station faces the station, not the robot.)"""
+    if world.human.facing.ahead(world.human.pos) != world.robot.pos:
+        return False
+    return _blocked(layout, world.human, world.robot.pos, human_cells)
+
+
+def _blocked(layout: Layout, agent: AgentState, other: Pos, cells: tuple[Pos, ...]) -> bool:
+    pose = (agent.pos, agent.facing)
+    known = [c for c in cells if distance(layout, pose, c) < UNREACHABLE]
+    if not known or any(distance(layout, pose, c) == 0 for c in known):
+        return False
+    return not any(detour_moves(layout, pose, c, other) for c in known)
+
+
+def reachable(layout: Layout, world: WorldState, cells: tuple[Pos, ...]) -> bool:
+    """Whether one of ``cells`` can be reached (or is reached) without passing the person's cell."""
+    pose = (world.robot.pos, world.robot.facing)
+    return any(distance(layout, pose, c) == 0 or detour_moves(layout, pose, c, world.human.pos) for c in cells)
+
+
+def advance(state: Standoff, layout: Layout, before: AgentState | None, world: WorldState,
+            target: tuple[Pos, ...], human_moved: bool) -> Standoff:
+    """The standoff after the robot observed ``world`` (``before``: the robot one tick earlier; ``target``:
+    the cells of the robot's current subtask)."""
+    if human_moved:
+        state = replace(state, avoid=None, avoid_until=-1)
+    progressed = before is None or before.pos != world.robot.pos or before.held != world.robot.held
+    if progressed or not target or not blocked(layout, world, target):
+        return replace(state, stuck=0)
+    return replace(state, stuck=state.stuck + 1)
+
+
+def give_up(state: Standoff, subtask: Subtask | None, tick: int, ticks: int) -> Standoff:
+    """Avoid ``subtask`` for ``2 × ticks`` ticks; the count starts again."""
+    return Standoff(stuck=0, avoid=subtask, avoid_until=tick + 2 * ticks)
+
+
+def hold_aside(state: Standoff, tick: int, ticks: int) -> Standoff:
+    """After stepping aside: hold still for ``2 × ticks`` ticks."""
+    return replace(state, hold_until=tick + 2 * ticks)
+
+
+def alternatives(layout: Layout, world: WorldState, options: tuple[Subtask, ...], blocked_subtask: Subtask | None,
+                 targets: Targets) -> tuple[Subtask, ...]:
+    """The options other than ``blocked_subtask`` the robot can reach without passing the person, and, when
+    the robot holds something, putting it down on a free counter."""
+    extra = (Subtask.DROP_ON_COUNTER,) if world.robot.held is not None and Subtask.DROP_ON_COUNTER not in options \
+        else ()
+    return tuple(s for s in options + extra
+                 if s is not blocked_subtask and reachable(layout, world, targets(s, world)))
+
+
+def take_over(human_subtask: Subtask | None, choices: tuple[Subtask, ...]) -> Subtask | None:
+    """The person's stalled subtask, when the robot can do it (it is among ``choices``)."""
+    return human_subtask if human_subtask in choices else None
+
+
+def step_aside(layout: Layout, world: WorldState, human_cells: tuple[Pos, ...]) -> Action:
+    """The move to a free neighbouring floor cell that is off the person's way to ``human_cells`` (the
+    targets of its most likely subtask: from there the person can still reach one), farther from the person
+    on ties; ``STAY`` when the robot cannot move."""
+    robot, human = world.robot.pos, world.human.pos
+    pose = (human, world.human.facing)
+
+    def clear(cell: Pos) -> bool:
+        return any(distance(layout, pose, c) == 0 or detour_moves(layout, pose, c, cell) for c in human_cells)
+
+    moves = [(clear(d.ahead(robot)), manhattan(d.ahead(robot), human), -i, d) for i, d in enumerate(DIRECTIONS)
+             if d.ahead(robot) in layout.floor and d.ahead(robot) != human]
+    if not moves:
+        return Action.STAY
+    return move_action(max(moves)[3])

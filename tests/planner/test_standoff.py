@@ -1,0 +1,98 @@
+"""Standoffs (planner.standoff, issue 18 part 1): a person who blocks the robot's target and does not move
+no longer freezes the robot. Each scenario is also played with the rule switched off
+(``standoff_ticks`` out of reach), to show the robot would otherwise wait for the rest of the trial."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import replace
+
+import numpy as np
+
+from planner.geometry import Action, Direction
+from planner.layout import Layout, parse_layout
+from planner.paths import best_moves, distance
+from planner.planner_config import PlannerConfig
+from planner.robots import make_robot
+from planner.rules import Rules
+from planner.standoff import take_over
+from planner.state import AgentState, WorldState, initial_state
+from planner.step import step
+from planner.subtasks import Subtask
+
+RULES = Rules()
+OFF = PlannerConfig(standoff_ticks=10**6)
+ON = PlannerConfig()
+# The onion crate (1,1) and the board (1,3) are reached only from (1,2).
+CORNER = parse_layout("""XXXXXXXXX
+XOXMXXDXX
+X2     1X
+XBXPXWXSX
+XXXXXXXXX
+""", name="corner")
+# A one-cell corridor (y = 2) from the room on the left to the meat crate and grill on the right, with one
+# alcove at (5,3).
+CORRIDOR = parse_layout("""XXXXXXXXXXX
+XODXXXXXXMX
+X    1 2  X
+XBWSX XXXPX
+XXXXXXXXXXX
+""", name="corridor")
+Human = Callable[[WorldState], Action]
+
+
+def idle(world: WorldState) -> Action:
+    return Action.STAY
+
+
+def stubborn(layout: Layout, target: tuple[int, int]) -> Human:
+    """A person who walks the shortest way to ``target`` and never steps aside: blocked, it waits."""
+    def act(world: WorldState) -> Action:
+        pose = (world.human.pos, world.human.facing)
+        if distance(layout, pose, target) == 0:
+            return Action.INTERACT
+        moves = best_moves(layout, pose, target)
+        return moves[0] if moves else Action.STAY
+    return act
+
+
+def play(layout: Layout, world: WorldState, config: PlannerConfig, human: Human, ticks: int = 40) -> WorldState:
+    robot = make_robot("fov_aware", layout, RULES, config)
+    robot.reset(world)
+    rng = np.random.default_rng(0)
+    events: tuple = ()
+    for _ in range(ticks):
+        action = robot.decide(world, events, rng).action
+        world, events = step(layout, world, {"human": human(world), "robot": action}, RULES)
+    return world
+
+
+def test_blocked_by_an_idle_person_the_robot_puts_its_load_down_and_does_other_work():
+    # The robot carries an onion to the only board; the person stands in the board's only access cell.
+    start = initial_state(CORNER, RULES)
+    world = replace(start, robot=AgentState((4, 2), Direction.WEST, "onion"),
+                    human=AgentState((1, 2), Direction.SOUTH))
+    stalled = play(CORNER, world, OFF, idle)
+    assert stalled.robot.held == "onion" and stalled.grills == (None,) and stalled.sinks == (None,)
+    moved_on = play(CORNER, world, ON, idle)
+    assert moved_on.grills != (None,), "the robot should have started the meat"
+    assert moved_on.sinks != (None,), "the robot should have put a plate in the sink"
+
+
+def test_in_a_corridor_the_robot_steps_aside_and_both_get_through():
+    # The robot brings meat to the grill on the right, the person an onion to the board on the left; each
+    # is in the other's only way, and the person never gives way.
+    start = initial_state(CORRIDOR, RULES)
+    world = replace(start, robot=replace(start.robot, held="meat"), human=replace(start.human, held="onion"))
+    stalled = play(CORRIDOR, world, OFF, stubborn(CORRIDOR, (1, 3)))
+    assert (stalled.robot.held, stalled.human.held, stalled.grills, stalled.boards) == (
+        "meat", "onion", (None,), (None,))
+    through = play(CORRIDOR, world, ON, stubborn(CORRIDOR, (1, 3)))
+    assert through.boards != (None,), "the person should have reached the board"
+    assert through.grills != (None,), "the robot should have reached the grill"
+
+
+def test_the_person_s_stalled_errand_is_taken_over_when_the_robot_can_do_it():
+    choices = (Subtask.PICKUP_ONION, Subtask.PICKUP_PLATE)
+    assert take_over(Subtask.PICKUP_ONION, choices) is Subtask.PICKUP_ONION
+    assert take_over(Subtask.PICKUP_MEAT, choices) is None
