@@ -9,6 +9,8 @@ must not interleave take a row lock (``SELECT ... FOR UPDATE``, see :mod:`server
 
 from __future__ import annotations
 
+import sqlite3
+import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -77,9 +79,27 @@ def _create_engine(url: str) -> Engine:
 def _sqlite_connect(dbapi_connection: Any, _record: Any) -> None:
     dbapi_connection.isolation_level = None
     cursor = dbapi_connection.cursor()
-    for pragma in ("journal_mode=WAL", "synchronous=NORMAL", "foreign_keys=ON", f"busy_timeout={SQLITE_BUSY_MS}"):
+    cursor.execute(f"PRAGMA busy_timeout={SQLITE_BUSY_MS}")
+    _enable_wal(cursor)
+    for pragma in ("synchronous=NORMAL", "foreign_keys=ON"):
         cursor.execute(f"PRAGMA {pragma}")
     cursor.close()
+
+
+def _enable_wal(cursor: Any) -> None:
+    """Put the file in WAL mode. Switching the journal mode of a new file takes an exclusive lock that SQLite
+    does not wait for through the busy handler: when several connections (server processes starting together)
+    open a new file at once, the others get "database is locked" until the first one's switch is done, so they
+    try again until then (within the busy timeout)."""
+    deadline = time.monotonic() + SQLITE_BUSY_MS / 1000
+    while True:
+        try:
+            cursor.execute("PRAGMA journal_mode=WAL")
+            return
+        except sqlite3.OperationalError as exc:
+            if "locked" not in str(exc) or time.monotonic() > deadline:
+                raise
+            time.sleep(0.01)
 
 
 def _sqlite_begin(conn: Any) -> None:

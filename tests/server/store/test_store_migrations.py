@@ -30,7 +30,7 @@ def test_migrations_match_the_models(db_url):
 
 
 def test_migrating_again_and_concurrently_is_harmless(db_url):
-    stores = [Store(db_url) for _ in range(3)]
+    stores = [Store(db_url) for _ in range(6)]
     errors: list[BaseException] = []
 
     def run(store: Store) -> None:
