@@ -28,18 +28,19 @@ from dataclasses import dataclass, field
 HISTORY = 20
 DEFAULT_MAX_WAIT_S = 600.0
 """How long a participant may wait for a slot before being screened out (``STEAKHOUSE_ADMISSION_MAX_WAIT_S``)."""
-TRIAL_CORE_SHARE = 0.030
-"""CPU one live trial costs, as a share of one core: the server's and the robot workers' CPU over the
-trials at the largest passing N of ``benchmarks/load/capacity.py`` (docs/operations.md §2: N = 30 on the
-2-core reference machine, (21.7 % + 68.4 %) / 30 ≈ 3.0 % of a core with the FOV-aware robot at 5 Hz)."""
+TRIAL_CORE_SHARE = 0.068
+"""CPU one live trial costs, as a share of one core: the server's and the robot workers' CPU over the trials
+of ``benchmarks/load/capacity.py`` at the largest N whose robot kept (nearly) every decision on time
+(docs/operations.md §2, measured 2026-12-02 on the quiet 2-core reference machine: N = 10,
+(17.6 % + 50.7 %) / 10 ≈ 6.8 % of a core with the FOV-aware robot at 5 Hz; 2 of 2,991 decisions late)."""
 USABLE_CORE_SHARE = 0.45
-"""Share of the machine's cores that live trials may use and keep every robot decision on time: that N = 30
-row used 90 % of 200 %, the next measured (N = 40, 122 %) had decisions past their deadline; planner
-decisions queue behind each other well before the cores are full."""
+"""Share of the machine's cores that live trials may use and keep robot decisions on time: N = 10 used 68 % of
+200 % (0.07 % of decisions late), N = 15 120 % (0.6 % late), N = 20 151 % (5.5 % late, past the invalid-trial
+threshold); planner decisions queue behind each other well before the cores are full."""
 
 
 def default_capacity(cpu_count: int | None = None) -> int:
-    """``floor(cores × USABLE_CORE_SHARE / TRIAL_CORE_SHARE)``, at least 1 (30 on 2 cores)."""
+    """``floor(cores × USABLE_CORE_SHARE / TRIAL_CORE_SHARE)``, at least 1 (13 on 2 cores)."""
     cores = cpu_count if cpu_count is not None else (os.cpu_count() or 1)
     return max(1, math.floor(cores * USABLE_CORE_SHARE / TRIAL_CORE_SHARE + 1e-9))
 

@@ -10,9 +10,9 @@ from server.game.admission import Admission, default_capacity
 
 
 def test_the_default_capacity_follows_the_cores():
-    assert default_capacity(2) == 30
-    assert default_capacity(8) == 120
-    assert default_capacity(1) == 15
+    assert default_capacity(2) == 13
+    assert default_capacity(8) == 52
+    assert default_capacity(1) == 6
 
 
 def test_slots_up_to_the_capacity_then_a_line_in_arrival_order():
