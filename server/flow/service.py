@@ -85,6 +85,13 @@ def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run
     return outcome
 
 
+def _rejoined(session: Session, row: ParticipantRow, token: str) -> Joined:
+    found = participants.assignment_of(session, row.id)
+    if found is None:
+        raise ApiError(500, "internal", "participant without assignment")
+    return Joined(token, row, found, rejoined=True)
+
+
 def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recruit_id: str | None, test_run: bool,
              presented_token: str | None, pilot_pace: str | None) -> Joined | Refused:
     study = loaded.study
@@ -94,13 +101,10 @@ def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recrui
         if existing is not None and existing.pilot != pilot:
             raise ApiError(409, "recruit_id_taken", "this recruiting id belongs to a pilot participant"
                            if existing.pilot else "this recruiting id belongs to a real participant")
-        if existing is not None and pilot:
+        if existing is not None and pilot:  # the admin's pilot driver resumes its pilot with a new token
             token = secrets.token_urlsafe(32)
             participants.rotate_token(session, existing.id, token)
-            found = participants.assignment_of(session, existing.id)
-            if found is None:
-                raise ApiError(500, "internal", "participant without assignment")
-            return Joined(token, existing, found, rejoined=True)
+            return _rejoined(session, existing, token)
         if existing is not None:
             holder = participants.by_token(session, presented_token) if presented_token else None
             if presented_token is None or holder is None or holder.id != existing.id:
@@ -108,10 +112,7 @@ def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recrui
                                      payload={"reason": "already_started", "had_token": presented_token is not None},
                                      created_at=utcnow()))
                 return Refused(existing)
-            found = participants.assignment_of(session, existing.id)
-            if found is None:
-                raise ApiError(500, "internal", "participant without assignment")
-            return Joined(presented_token, existing, found, rejoined=True)
+            return _rejoined(session, existing, presented_token)
     token = secrets.token_urlsafe(32)
     counts = assignment.order_counts(session, study.id, len(loaded.orders), utcnow(),
                                      study.assignment.in_progress_window_minutes, pilot=pilot)
@@ -140,10 +141,7 @@ def resume_on_new_device(store: Store, participant_id: int, expected_token_hash:
         participants.rotate_token(session, row.id, token)
         session.add(EventRow(participant_id=row.id, trial_id=None, tick=None, kind="resume_link_used",
                              payload={}, created_at=utcnow()))
-        found = participants.assignment_of(session, row.id)
-        if found is None:
-            raise ApiError(500, "internal", "participant without assignment")
-        return Joined(token, row, found, rejoined=True)
+        return _rejoined(session, row, token)
 
 
 def _apply(session: Session, row: ParticipantRow, progress: Progress, new: Progress, move_: Move) -> None:

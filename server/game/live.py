@@ -270,15 +270,21 @@ class LiveGame:
     def _judge(self, missed: bool) -> None:
         """Count the decision; the moment the trial becomes invalid, say so in the log, the events and the
         trial row (docs/operations.md, "Robot health")."""
-        was_invalid = self.health.invalid
-        self.health = self.health.record(missed)
-        if self.health.invalid and not was_invalid:
-            log.warning("trial %d (participant %s) is invalid: %s", self.meta.trial_id, self.meta.participant,
-                        self.health.invalid_reason)
-            self.event("trial_invalid", self.health.to_dict())
+        if self._update_health(self.health.record(missed), "is invalid"):
             task = asyncio.create_task(asyncio.to_thread(self._store_health, self.health))
             self._health_writes.add(task)
             task.add_done_callback(self._health_writes.discard)
+
+    def _update_health(self, health: RobotHealth, verb: str) -> bool:
+        """Take ``health``; when it makes the trial invalid, log a warning and a ``trial_invalid`` event and
+        answer ``True``."""
+        became_invalid = health.invalid and not self.health.invalid
+        self.health = health
+        if became_invalid:
+            log.warning("trial %d (participant %s) %s: %s", self.meta.trial_id, self.meta.participant, verb,
+                        health.invalid_reason)
+            self.event("trial_invalid", health.to_dict())
+        return became_invalid
 
     def _store_health(self, health: RobotHealth) -> None:
         with self.deps.store.transaction() as session:
@@ -323,12 +329,7 @@ class LiveGame:
         if self._decision is not None:
             self._decision.cancel()
         world = self.engine.world
-        was_invalid = self.health.invalid
-        self.health = self.health.final()
-        if self.health.invalid and not was_invalid:
-            log.warning("trial %d (participant %s) ended invalid: %s", self.meta.trial_id, self.meta.participant,
-                        self.health.invalid_reason)
-            self.event("trial_invalid", self.health.to_dict())
+        self._update_health(self.health.final(), "ended invalid")
         self.event("trial_end", {"status": status, "reason": reason, "ticks": world.tick})
         await self.deps.writer.flush()
         delivered = self.engine.rules.orders - world.orders_left
