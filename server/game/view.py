@@ -72,11 +72,11 @@ def visible_world(layout: Layout, world: WorldState, rules: Rules,
     cell showing only its terrain (shared between messages; they are serialised, never changed). Only
     objects on counters and station statuses are built per tick."""
     human = world.human
+    seen = view(layout, human.pos, human.facing, angle).cells
     table = _ordered_table(layout, float(angle))
     key = (human.pos, human.facing)
     ordered = table.get(key)
     if ordered is None:
-        seen = view(layout, human.pos, human.facing, angle).cells
         ordered = table[key] = tuple((pos, _station_entry(layout, pos), _bare_cell(layout, pos))
                                      for pos in sorted(seen, key=lambda p: (p[1], p[0])))
     objects = dict(world.objects) if world.objects else {}
@@ -89,7 +89,7 @@ def visible_world(layout: Layout, world: WorldState, rules: Rules,
         else:
             cells.append(CellView.model_construct(x=pos[0], y=pos[1], terrain=bare.terrain, object=thing,
                                                   station=station))
-    robot = agent_view(world.robot) if world.robot.pos in view(layout, human.pos, human.facing, angle).cells else None
+    robot = agent_view(world.robot) if world.robot.pos in seen else None
     return cells, robot
 
 
