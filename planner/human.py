@@ -69,16 +69,13 @@ class HumanModel:
 
     def commit(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory,
                rng: np.random.Generator) -> Subtask:
-        """The subtask after this tick's observation: keep the current one or choose anew."""
+        """The subtask after this tick's observation: keep the current one or choose anew (uniformly among
+        the available subtasks, drawn from ``rng`` only when there is a choice)."""
         b = self.believed(world, kb)
-        current = memory.subtask
-        if current is not None and is_done(current, memory.held, b.held, b, self.rules):
-            options = available(b, self.rules, current)
-            current = None
-        else:
-            options = available(b, self.rules, current)
-        if current is not None and current in options and targets(self.layout, current, kb, self.rules):
-            return current
+        kept, options = _choice(self.layout, self.rules, kb.objects, kb.grills, kb.boards, kb.sinks, b.held,
+                                b.partner_held, b.orders_left, memory.subtask, memory.held)
+        if kept is not None:
+            return kept
         return options[int(rng.integers(len(options)))] if len(options) > 1 else options[0]
 
     def act(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory,
@@ -138,6 +135,24 @@ class HumanModel:
         if not free:
             return Action.STAY
         return free[int(rng.integers(len(free)))]
+
+
+@lru_cache(maxsize=1 << 16)
+def _choice(layout: Layout, rules: Rules, objects: tuple[tuple[Pos, str], ...], grills: tuple[int | None, ...],
+            boards: tuple[int | None, ...], sinks: tuple[int | None, ...], held: str | None,
+            partner_held: str | None, orders_left: int, current: Subtask | None,
+            held_before: str | None) -> tuple[Subtask | None, tuple[Subtask, ...]]:
+    """The deterministic part of :meth:`HumanModel.commit`, from the parts of the KB it reads, cached (every
+    rollout tick asks it, mostly about the same few kitchens): the current subtask when it is kept, else
+    ``None`` and the options to choose among."""
+    kb = KnowledgeBase(objects=objects, grills=grills, boards=boards, sinks=sinks, robot=None)
+    b = Believed(kb=kb, held=held, partner_held=partner_held, orders_left=orders_left)
+    if current is not None and is_done(current, held_before, held, b, rules):
+        return None, available(b, rules, current)
+    options = available(b, rules, current)
+    if current is not None and current in options and targets(layout, current, kb, rules):
+        return current, options
+    return None, options
 
 
 @lru_cache(maxsize=1 << 17)

@@ -22,6 +22,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from planner.events import EventKind
 from planner.geometry import Action, Pos
 from planner.human import HumanMemory, HumanModel
 from planner.kb import KnowledgeBase, omniscient_kb, update_kb
@@ -32,7 +33,7 @@ from planner.planner_config import PlannerConfig
 from planner.rules import Rules
 from planner.state import WorldState
 from planner.step import step
-from planner.subtasks import Believed, Subtask, available, is_done, targets
+from planner.subtasks import Believed, Subtask, available, finished, targets
 
 
 def potential(world: WorldState, cfg: PlannerConfig) -> float:
@@ -72,12 +73,10 @@ class RobotTasker:
                               world.grills, world.boards, world.sinks, current)
 
     def done(self, subtask: Subtask, held_before: str | None, world: WorldState) -> bool:
-        b = Believed(kb=omniscient_kb(world), held=world.robot.held, partner_held=world.human.held,
-                     orders_left=world.orders_left)
-        return is_done(subtask, held_before, world.robot.held, b, self.rules)
+        return finished(subtask, held_before, world.robot.held, world.boards, world.sinks, self.rules)
 
     def targets(self, subtask: Subtask, world: WorldState) -> tuple[Pos, ...]:
-        return targets(self.layout, subtask, omniscient_kb(world), self.rules)
+        return targets(self.layout, subtask, world, self.rules)
 
     def nearest(self, world: WorldState, options: tuple[Subtask, ...], avoid: Subtask | None) -> Subtask:
         pose = (world.robot.pos, world.robot.facing)
@@ -185,7 +184,8 @@ class Rollout:
                            kb_delay=self.cfg.human_delay,
                            own_events=[e for e in events if e.agent == "human"])
         human_still = human_still + 1 if world.human.pos == human_before else 0
-        phi = potential(world, self.cfg)
+        # Φ reads only what interactions change (cooking moves a grill's count, not whether it is used).
+        phi = potential(world, self.cfg) if any(e.kind is not EventKind.BLOCKED for e in events) else sim.phi
         next_task: Subtask | None = robot_task
         if self.tasker.done(robot_task, held_before, world) or robot_task not in self.tasker.options(world, robot_task):
             next_task = None

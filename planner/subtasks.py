@@ -15,6 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import Enum
 from functools import lru_cache
+from typing import Protocol
 
 from planner.kb import KnowledgeBase
 from planner.layout import Layout
@@ -95,8 +96,22 @@ def forced_continuation(b: Believed) -> Subtask:
     return Subtask.DELIVER_DISH
 
 
-def targets(layout: Layout, subtask: Subtask, kb: KnowledgeBase, rules: Rules) -> tuple[Pos, ...]:
-    """The cells the human would interact with to do ``subtask``, as its KB sees the kitchen."""
+class Kitchen(Protocol):
+    """What :func:`targets` reads: a KB (the kitchen as someone believes it) or the world itself."""
+
+    @property
+    def objects(self) -> tuple[tuple[Pos, str], ...]: ...
+    @property
+    def grills(self) -> tuple[int | None, ...]: ...
+    @property
+    def boards(self) -> tuple[int | None, ...]: ...
+    @property
+    def sinks(self) -> tuple[int | None, ...]: ...
+
+
+def targets(layout: Layout, subtask: Subtask, kb: Kitchen, rules: Rules) -> tuple[Pos, ...]:
+    """The cells the human would interact with to do ``subtask``, as its KB sees the kitchen (or, given the
+    world, as it is)."""
     return _targets(layout, subtask, kb.objects, kb.grills, kb.boards, kb.sinks, rules)
 
 
@@ -141,18 +156,27 @@ def _targets(layout: Layout, subtask: Subtask, objects: tuple[tuple[Pos, str], .
 
 def is_done(subtask: Subtask, held_before: str | None, held: str | None, b: Believed, rules: Rules) -> bool:
     """Whether ``subtask`` finished in the last step, from what the human holds before and after."""
-    if subtask in _PICKS:
-        return held == _PICKS[subtask]
-    if subtask in (Subtask.DROP_MEAT, Subtask.DROP_ONION, Subtask.DROP_PLATE, Subtask.DROP_ON_COUNTER,
-                   Subtask.DELIVER_DISH):
+    return finished(subtask, held_before, held, b.kb.boards, b.kb.sinks, rules)
+
+
+def finished(subtask: Subtask, held_before: str | None, held: str | None, boards: tuple[int | None, ...],
+             sinks: tuple[int | None, ...], rules: Rules) -> bool:
+    """:func:`is_done` from the only parts of a KB it reads (the boards and sinks), so a caller that judges
+    on the world itself needs no KB built for it."""
+    picked = _PICKS.get(subtask)
+    if picked is not None:
+        return held == picked
+    if subtask in _DROPS:
         return held_before is not None and held is None
     if subtask is Subtask.CHOP_ONION:
-        return not any(s is not None and s < rules.chop_time for s in b.kb.boards)
+        return not any(s is not None and s < rules.chop_time for s in boards)
     if subtask is Subtask.WASH_PLATE:
-        return not any(s is not None and s < rules.wash_time for s in b.kb.sinks)
+        return not any(s is not None and s < rules.wash_time for s in sinks)
     return False
 
 
+_DROPS = frozenset((Subtask.DROP_MEAT, Subtask.DROP_ONION, Subtask.DROP_PLATE, Subtask.DROP_ON_COUNTER,
+                    Subtask.DELIVER_DISH))
 _PICKS = {
     Subtask.PICKUP_MEAT: MEAT, Subtask.PICKUP_ONION: ONION, Subtask.PICKUP_PLATE: DIRTY_PLATE,
     Subtask.PICKUP_CLEAN_PLATE: CLEAN_PLATE, Subtask.PICKUP_STEAK: STEAK_PLATE,
