@@ -4,7 +4,9 @@
 
 For each N (ascending) one fresh run of ``run.py`` (its own server and store) with the FOV-aware robot at
 5 Hz; N passes when, after the warm-up, the server's p99 tick lateness is at most ``--max-p99-ms`` (50),
-no robot decision missed its deadline and nothing failed. Stops at the first N that fails (``--all`` runs
+no robot decision missed its deadline and nothing failed. The server's admission cap is set to N for the
+run (``--max-live-trials``): the question is how many live trials the machine carries, not how many the
+default cap lets in. Stops at the first N that fails (``--all`` runs
 every N). Prints one row per N with the machine's load average before and after its run and the CPU other
 processes used during it (``oth cpu%``: other work on the machine skews a row), and the largest passing N.
 ``--json`` prints the rows as a JSON list instead.
@@ -40,7 +42,7 @@ def passes(result: dict[str, Any], max_p99_ms: float) -> bool:
 def run_one(n: int, args: argparse.Namespace) -> dict[str, Any]:
     command = [sys.executable, str(HERE / "run.py"), "--participants", str(n), "--seconds", str(args.seconds),
                "--warmup", str(args.warmup), "--robot", args.robot, "--tick-rate", str(args.tick_rate),
-               "--database", args.database, "--json"]
+               "--database", args.database, "--max-live-trials", str(n), "--json"]
     if args.workers is not None:
         command += ["--workers", str(args.workers)]
     timeout = args.warmup + args.seconds + 240
