@@ -32,6 +32,7 @@ from planner.state import AgentState, WorldState
 
 ROBOT_KEY: Pos = (-1, -1)
 _TRACKED_KINDS = (Terrain.COUNTER, Terrain.GRILL, Terrain.BOARD, Terrain.SINK)
+_NO_OBJECTS: dict[Pos, str] = {}
 
 
 @dataclass(frozen=True, slots=True)
@@ -174,28 +175,33 @@ def update_kb(kb: KnowledgeBase, layout: Layout, world: WorldState, *, angle: fl
     seen = view(layout, viewer.pos, viewer.facing, angle)
     in_view = seen.cells
     w = _Working(kb, layout)
-    world_objects = dict(world.objects)
+    world_objects: dict[Pos, str] | None = None
     previous = {key: (occ, n) for key, occ, n in kb.streaks}
     streaks: list[tuple[Pos, object, int]] = []
     own_cells = set()
     for event in own_events:
         entry = layout.stations.get(event.pos)
         if entry is not None and entry[0] in _TRACKED_KINDS:
+            if world_objects is None:
+                world_objects = dict(world.objects)
             own_cells.add(event.pos)
             w.copy_cell(event.pos, world, world_objects)
-    kb_objects = w.counters() if own_cells else dict(kb.objects)
-    for cell in world_objects.keys() | kb_objects.keys():
-        if cell not in in_view:
-            continue
-        occ = world_objects.get(cell)
-        if occ == kb_objects.get(cell):
-            continue
-        prev = previous.get(cell)
-        count = prev[1] + 1 if prev is not None and prev[0] == occ else 1
-        if count >= kb_delay:
-            w.set_counter(cell, occ)
-        else:
-            streaks.append((cell, occ, count))
+    if own_cells or world.objects != kb.objects:  # else every counter agrees with the KB: no streak to keep
+        if world_objects is None:
+            world_objects = dict(world.objects)
+        kb_objects = w.counters() if own_cells else dict(kb.objects)
+        for cell in world_objects.keys() | kb_objects.keys():
+            if cell not in in_view:
+                continue
+            occ = world_objects.get(cell)
+            if occ == kb_objects.get(cell):
+                continue
+            prev = previous.get(cell)
+            count = prev[1] + 1 if prev is not None and prev[0] == occ else 1
+            if count >= kb_delay:
+                w.set_counter(cell, occ)
+            else:
+                streaks.append((cell, occ, count))
     for cell, kind, i in seen.stations:
         value = _statuses(world, kind)[i]
         occupied = value is not None
@@ -205,7 +211,7 @@ def update_kb(kb: KnowledgeBase, layout: Layout, world: WorldState, *, angle: fl
             count = max(count, kb_delay)
         streaks.append((cell, occupied, count))
         if count >= kb_delay:
-            w.copy_cell(cell, world, world_objects)
+            w.copy_cell(cell, world, _NO_OBJECTS)  # a grill, board or sink: no counter read
     robot = world.robot
     if robot.pos in in_view:
         prev = previous.get(ROBOT_KEY)
