@@ -115,3 +115,20 @@ def test_the_in_process_pool_has_the_same_rules(factory, expect):
         assert choice.missed and choice.action is Action.STAY
     else:
         assert choice.error == "ValueError: planner bug"
+
+
+def test_workers_yield_the_cpu_to_the_game_loop():
+    """On a busy machine the server's ticks go before planning: the workers run at a lower priority."""
+    import os
+
+    async def run():
+        pool = ProcessRobots(1, "steakhouse_test_robots:counting")
+        await pool.start()
+        try:
+            await pool.open(1, "any", LAYOUT, RULES, CONFIG, WORLD)
+            pid = (await decide(pool, 1)).info["q_values"]["pid"]
+            return os.getpriority(os.PRIO_PROCESS, int(pid))
+        finally:
+            await pool.shutdown()
+
+    assert asyncio.run(run()) >= os.getpriority(os.PRIO_PROCESS, 0) + 5
