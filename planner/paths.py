@@ -86,25 +86,37 @@ def _shortening(layout: Layout, target: Pos) -> dict[Pose, tuple[tuple[Action, P
 
 @lru_cache(maxsize=65536)
 def detour_moves(layout: Layout, pose: Pose, target: Pos, blocked: Pos) -> tuple[Action, ...]:
-    """The first moves of every shortest path to face ``target`` that never enters ``blocked``."""
-    goal = distances_to(layout, target)
-    if goal.get(pose) == 0:
+    """The first moves of every shortest path to face ``target`` that never enters ``blocked`` (``pose`` is
+    not on ``blocked``: it is the other agent's cell)."""
+    if distances_to(layout, target).get(pose) == 0:
         return ()
-    firsts: dict[Pose, frozenset[Action]] = {}
-    frontier = {pose}
-    seen = {pose}
+    table = _distances_avoiding(layout, target, blocked)
+    here = table.get(pose)
+    if here is None:
+        return ()
+    moves = [move_action(d) for d in DIRECTIONS
+             if (after := next_pose(layout, pose, d))[0] != blocked and table.get(after) == here - 1]
+    return tuple(sorted(moves, key=lambda a: a.value))
+
+
+@lru_cache(maxsize=8192)
+def _distances_avoiding(layout: Layout, target: Pos, blocked: Pos) -> dict[Pose, int]:
+    """:func:`distances_to` over the paths that never enter ``blocked``: one backward search per (target,
+    blocked cell) answers every pose, where a search from each pose would repeat it per pose."""
+    dist: dict[Pose, int] = {}
+    frontier: list[Pose] = []
+    for d in DIRECTIONS:
+        stand = (target[0] - d.vector[0], target[1] - d.vector[1])
+        if stand in layout.floor and stand != blocked:
+            dist[(stand, d)] = 0
+            frontier.append((stand, d))
+    preds = _predecessors(layout)
     while frontier:
-        layer: dict[Pose, set[Action]] = {}
-        for current in frontier:
-            for d in DIRECTIONS:
-                after = next_pose(layout, current, d)
-                if after[0] == blocked or after in seen:
-                    continue
-                layer.setdefault(after, set()).update(firsts.get(current, (move_action(d),)))
-        reached = [a for p in layer if goal.get(p) == 0 for a in layer[p]]
-        if reached:
-            return tuple(sorted(set(reached), key=lambda a: a.value))
-        seen.update(layer)
-        firsts.update({p: frozenset(v) for p, v in layer.items()})
-        frontier = set(layer)
-    return ()
+        nxt: list[Pose] = []
+        for pose in frontier:
+            for prev in preds.get(pose, ()):
+                if prev not in dist and prev[0] != blocked:
+                    dist[prev] = dist[pose] + 1
+                    nxt.append(prev)
+        frontier = nxt
+    return dist
