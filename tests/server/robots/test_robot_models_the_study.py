@@ -10,7 +10,7 @@ from collections.abc import Sequence
 from dataclasses import replace
 
 import numpy as np
-from steakhouse_testing import Player, play_to_end, play_until
+from steakhouse_testing import Player, play_to_end, play_until, until_unloaded
 
 from planner.decision import Decision, Robot, RobotFactory
 from planner.events import Event
@@ -109,10 +109,7 @@ def test_a_resumed_trials_robot_goes_on_from_the_logged_model_of_the_person(live
         hello = await first.recv()
         await play_until(first, 15)
         await first.close()
-        deadline = time.monotonic() + 10
-        while server.services.registry.games and time.monotonic() < deadline:
-            await asyncio.sleep(0.05)
-        assert not server.services.registry.games, "the trial must be unloaded after the grace window"
+        await until_unloaded(server.services)
         second = await player.socket()
         resumed = await second.recv()
         end = await play_to_end(second)
