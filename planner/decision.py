@@ -13,6 +13,7 @@ import numpy as np
 
 from planner.events import Event
 from planner.geometry import Action
+from planner.kb import KnowledgeBase
 from planner.layout import Layout
 from planner.planner_config import PlannerConfig
 from planner.rules import Rules
@@ -40,13 +41,17 @@ class Decision:
 
 
 class Robot(Protocol):
-    """A robot policy for one trial. ``reset`` starts it on the trial's first world; ``decide`` is called once
-    per tick with the world after the last step and that step's events. Its randomness comes only from
-    ``rng`` (one stream per trial, from the trial's seed: same seed, same decisions). ``deadline`` is an
-    absolute ``time.perf_counter()`` value: past it the planner returns its best action so far and sets
-    ``timed_out``."""
+    """A robot policy for one trial. ``reset`` starts it on the world the trial starts or resumes from;
+    ``decide`` is called once per tick with the world after the last step and that step's events. Its
+    randomness comes only from ``rng`` (one stream per trial, from the trial's seed: same seed, same
+    decisions). ``deadline`` is an absolute ``time.perf_counter()`` value: past it the planner returns its
+    best action so far and sets ``timed_out``."""
 
-    def reset(self, world: WorldState) -> None: ...
+    def reset(self, world: WorldState, kb: KnowledgeBase | None = None) -> None:
+        """Start on ``world``. ``kb`` is the person's modelled KB at ``world`` (docs/domain.md §3) when a trial
+        resumes mid-way (the server's restored KB); ``None`` at a trial's first world, where the person's KB is
+        :func:`planner.kb.initial_kb`. A robot that models the person's KB starts its model from it (unless
+        its model is another person's, e.g. the baseline's omniscient one)."""
 
     def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,
                deadline: float | None = None) -> Decision: ...

@@ -33,15 +33,35 @@ STATIONS: tuple[Terrain, ...] = (
 START_CHARS = {"1": "robot", "2": "human"}
 
 
-class LayoutError(ValueError):
-    """A layout that cannot be played. Names the source, the line and column (1-based) and the reason."""
+@dataclass(frozen=True, slots=True)
+class LayoutProblem:
+    """One thing wrong with a grid: the reason, and the line and column (1-based) when it is at one cell."""
 
-    def __init__(self, source: str, line: int | None, column: int | None, reason: str) -> None:
-        self.source, self.line, self.column, self.reason = source, line, column, reason
-        where = source
-        if line is not None:
-            where += f":{line}" + (f":{column}" if column is not None else "")
-        super().__init__(f"{where}: {reason}")
+    reason: str
+    line: int | None = None
+    column: int | None = None
+
+    def where(self, source: str) -> str:
+        """``source:line:column`` (as much of it as is known)."""
+        if self.line is None:
+            return source
+        return f"{source}:{self.line}" + (f":{self.column}" if self.column is not None else "")
+
+
+class LayoutError(ValueError):
+    """A layout that cannot be played: its source and every problem found in it (``problems``: those at a
+    cell in reading order, then those of the whole grid); the message has one ``source:line:column: reason``
+    line per problem."""
+
+    def __init__(self, source: str, problems: tuple[LayoutProblem, ...]) -> None:
+        if not problems:
+            raise ValueError("a LayoutError needs at least one problem")
+        self.source, self.problems = source, problems
+        super().__init__("\n".join(self.lines()))
+
+    def lines(self) -> tuple[str, ...]:
+        """One ``source:line:column: reason`` per problem."""
+        return tuple(f"{p.where(self.source)}: {p.reason}" for p in self.problems)
 
 
 @dataclass(frozen=True, slots=True)
@@ -94,54 +114,36 @@ class Layout:
 
 
 def parse_layout(text: str, name: str = "layout", source: str | None = None) -> Layout:
-    """Parse and validate a grid. Raises :class:`LayoutError` naming line, column and reason."""
+    """Parse and validate a grid. Raises :class:`LayoutError` listing every problem, each with its line,
+    column and reason, so a researcher fixing a kitchen file sees them all at once.
+
+    The checks of single cells (unknown characters, a second start, ragged rows, floor on the border) and of
+    the whole grid (a missing start or station) are all reported together; an unknown character counts as
+    a counter for the others. Reachability is checked only on a grid that passes them all, since a broken
+    grid would make it report walls that are typos.
+    """
     src = source or name
     lines = text.splitlines()
     while lines and lines[-1].strip() == "":
         lines.pop()
     if not lines:
-        raise LayoutError(src, None, None, "the layout is empty")
-    width = len(lines[0])
-    starts: dict[str, Pos] = {}
-    rows: list[str] = []
-    for y, line in enumerate(lines):
-        if len(line) != width:
-            raise LayoutError(src, y + 1, min(len(line), width) + 1,
-                              f"ragged row: {len(line)} characters where the first row has {width}")
-        cells: list[str] = []
-        for x, ch in enumerate(line):
-            if ch in START_CHARS:
-                agent = START_CHARS[ch]
-                if agent in starts:
-                    first = starts[agent]
-                    raise LayoutError(src, y + 1, x + 1,
-                                      f"a second {agent} start ('{ch}'); the first is at line {first[1] + 1}, "
-                                      f"column {first[0] + 1}")
-                starts[agent] = (x, y)
-                ch = Terrain.FLOOR.value
-            elif ch not in _TERRAIN_CHARS:
-                raise LayoutError(src, y + 1, x + 1, f"unknown character {ch!r}; allowed: {_ALLOWED}")
-            cells.append(ch)
-        rows.append("".join(cells))
-    height = len(rows)
-    for y, row in enumerate(rows):
-        for x, ch in enumerate(row):
-            on_border = x in (0, width - 1) or y in (0, height - 1)
-            if on_border and ch == Terrain.FLOOR.value:
-                raise LayoutError(src, y + 1, x + 1, "the kitchen is not closed: floor on the border")
-    for agent, ch in (("robot", "1"), ("human", "2")):
-        if agent not in starts:
-            raise LayoutError(src, None, None, f"no {agent} start ('{ch}')")
+        raise LayoutError(src, (LayoutProblem("the layout is empty"),))
+    rows, starts, found = _read_cells(lines)
+    problems = sorted(found + _border_problems(rows), key=lambda p: (p.line or 0, p.column or 0))
     by_kind: dict[Terrain, list[Pos]] = {t: [] for t in Terrain}
     for y, row in enumerate(rows):
         for x, ch in enumerate(row):
             by_kind[Terrain(ch)].append((x, y))
-    for station in STATIONS:
-        if not by_kind[station]:
-            raise LayoutError(src, None, None,
-                              f"missing station: no {station.name.lower()} ('{station.value}')")
+    problems += [LayoutProblem(f"no {agent} start ('{ch}')") for ch, agent in START_CHARS.items()
+                 if agent not in starts]
+    problems += [LayoutProblem(f"missing station: no {station.name.lower()} ('{station.value}')")
+                 for station in STATIONS if not by_kind[station]]
     floor = frozenset(by_kind[Terrain.FLOOR])
-    _check_reachable(src, floor, starts, by_kind)
+    if not problems:
+        problems = _unreachable(floor, starts, by_kind)
+    if problems:
+        raise LayoutError(src, tuple(problems))
+    width, height = len(rows[0]), len(rows)
     stations: dict[Pos, tuple[Terrain, int]] = {pos: (kind, i) for kind, found in by_kind.items()
                                                 if kind is not Terrain.FLOOR for i, pos in enumerate(found)}
     return Layout(
@@ -159,10 +161,50 @@ _TERRAIN_CHARS = {t.value for t in Terrain}
 _ALLOWED = "X, space, O, M, D, P, B, W, S, 1, 2"
 
 
-def _check_reachable(src: str, floor: frozenset[Pos], starts: dict[str, Pos],
-                     by_kind: dict[Terrain, list[Pos]]) -> None:
+def _read_cells(lines: list[str]) -> tuple[list[str], dict[str, Pos], list[LayoutProblem]]:
+    """The rows with starts as floor and unknown characters as counters, the starts, and the problems of
+    single cells and rows (ragged rows, unknown characters, a second start)."""
+    width = len(lines[0])
+    starts: dict[str, Pos] = {}
+    rows: list[str] = []
+    problems: list[LayoutProblem] = []
+    for y, line in enumerate(lines):
+        if len(line) != width:
+            problems.append(LayoutProblem(f"ragged row: {len(line)} characters where the first row has {width}",
+                                          y + 1, min(len(line), width) + 1))
+        cells: list[str] = []
+        for x, ch in enumerate(line):
+            if ch in START_CHARS:
+                agent = START_CHARS[ch]
+                if agent in starts:
+                    first = starts[agent]
+                    problems.append(LayoutProblem(f"a second {agent} start ('{ch}'); the first is at line "
+                                                  f"{first[1] + 1}, column {first[0] + 1}", y + 1, x + 1))
+                else:
+                    starts[agent] = (x, y)
+                ch = Terrain.FLOOR.value
+            elif ch not in _TERRAIN_CHARS:
+                problems.append(LayoutProblem(f"unknown character {ch!r}; allowed: {_ALLOWED}", y + 1, x + 1))
+                ch = Terrain.COUNTER.value
+            cells.append(ch)
+        rows.append("".join(cells))
+    return rows, starts, problems
+
+
+def _border_problems(rows: list[str]) -> list[LayoutProblem]:
+    """Every floor cell on the grid's edge (a ragged row's edge is its own last cell)."""
+    height = len(rows)
+    return [LayoutProblem("the kitchen is not closed: floor on the border", y + 1, x + 1)
+            for y, row in enumerate(rows) for x, ch in enumerate(row)
+            if ch == Terrain.FLOOR.value and (x in (0, len(row) - 1) or y in (0, height - 1))]
+
+
+def _unreachable(floor: frozenset[Pos], starts: dict[str, Pos],
+                 by_kind: dict[Terrain, list[Pos]]) -> list[LayoutProblem]:
+    """Every kind of station no cell of which has a floor neighbour reachable from both starts."""
     regions = {agent: _flood(floor, pos) for agent, pos in starts.items()}
     shared = regions["human"] & regions["robot"]
+    problems = []
     for station in STATIONS:
         reachable = any(
             (x + dx, y + dy) in shared
@@ -171,8 +213,9 @@ def _check_reachable(src: str, floor: frozenset[Pos], starts: dict[str, Pos],
         )
         if not reachable:
             x, y = by_kind[station][0]
-            raise LayoutError(src, y + 1, x + 1,
-                              f"no {station.name.lower()} ('{station.value}') can be reached by both agents")
+            problems.append(LayoutProblem(f"no {station.name.lower()} ('{station.value}') can be reached by "
+                                          "both agents", y + 1, x + 1))
+    return problems
 
 
 def _flood(floor: frozenset[Pos], start: Pos) -> frozenset[Pos]:

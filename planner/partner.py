@@ -34,7 +34,7 @@ class SimulatedPartner:
         self.model = HumanModel(layout, rules, me="robot")
         self.memory = HumanMemory()
 
-    def reset(self, world: WorldState) -> None:
+    def reset(self, world: WorldState, kb: KnowledgeBase | None = None) -> None:
         self.memory = HumanMemory()
 
     def act(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator) -> Action:

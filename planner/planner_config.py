@@ -72,5 +72,11 @@ class PlannerConfig:
     def omniscient_human(self) -> PlannerConfig:
         return replace(self, human_angle=360.0, human_delay=0)
 
+    @property
+    def human_sees_everything(self) -> bool:
+        """The modelled person sees every cell and acknowledges it at once (360°, delay 0): their KB is the
+        world (docs/domain.md §3)."""
+        return self.human_angle >= 360 and self.human_delay == 0
+
 
 BASELINE = PlannerConfig().omniscient_human()

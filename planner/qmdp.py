@@ -86,8 +86,11 @@ class QmdpRobot:
         self.next_traces: dict[tuple[Subtask, Subtask], Trace] = {}
         self.followed: dict[tuple[Subtask, Subtask], Trace] = {}
 
-    def reset(self, world: WorldState) -> None:
-        self.kb = initial_kb(world)
+    def reset(self, world: WorldState, kb: KnowledgeBase | None = None) -> None:
+        """Start on ``world`` (:meth:`planner.decision.Robot.reset`): the model of the person's KB is ``kb``
+        (a resumed trial's restored KB) or, at a trial's start or for a model that sees everything at once
+        (the baseline's: its KB is the world), :func:`initial_kb`."""
+        self.kb = kb if kb is not None and not self.cfg.human_sees_everything else initial_kb(world)
         self.kb_tick = world.tick
         self.belief = None
         self.last_human = None

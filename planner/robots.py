@@ -14,6 +14,7 @@ import numpy as np
 from planner.decision import Decision, Robot
 from planner.events import Event
 from planner.geometry import Action
+from planner.kb import KnowledgeBase
 from planner.layout import Layout
 from planner.planner_config import PlannerConfig
 from planner.registry import PLANNER_NAMES
@@ -24,7 +25,7 @@ from planner.state import WorldState
 class StayRobot:
     """A robot that never moves."""
 
-    def reset(self, world: WorldState) -> None:
+    def reset(self, world: WorldState, kb: KnowledgeBase | None = None) -> None:
         return None
 
     def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,

@@ -8,7 +8,7 @@ from __future__ import annotations
 from functools import lru_cache
 from pathlib import Path
 
-from planner.layout import Layout, LayoutError, parse_layout
+from planner.layout import Layout, LayoutError, LayoutProblem, parse_layout
 
 STUDY_DIR = Path(__file__).resolve().parent
 LAYOUT_DIR = STUDY_DIR / "layouts"
@@ -31,7 +31,7 @@ def resolve_layout_path(name_or_path: str | Path, base: Path | None = None) -> P
 
 
 def load_layout(name_or_path: str | Path, base: Path | None = None) -> Layout:
-    """Load a kitchen by shipped name or file path. Raises :class:`LayoutError` (file, line, column, reason)."""
+    """Load a kitchen by shipped name or file path. Raises :class:`LayoutError` (file and every problem)."""
     path = resolve_layout_path(name_or_path, base)
     return _load_path(str(path.resolve()) if path.exists() else str(path))
 
@@ -41,9 +41,9 @@ def _load_path(path_text: str) -> Layout:
     path = Path(path_text)
     if not path.is_file():
         known = ", ".join(layout_names())
-        raise LayoutError(str(path), None, None, f"no such layout file (shipped kitchens: {known})")
+        raise LayoutError(str(path), (LayoutProblem(f"no such layout file (shipped kitchens: {known})"),))
     try:
         text = path.read_text(encoding="utf-8")
     except UnicodeDecodeError as exc:
-        raise LayoutError(str(path), None, None, f"not a UTF-8 text file ({exc.reason})") from exc
+        raise LayoutError(str(path), (LayoutProblem(f"not a UTF-8 text file ({exc.reason})"),)) from exc
     return parse_layout(text, name=path.stem, source=str(path))

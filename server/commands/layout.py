@@ -1,4 +1,5 @@
-"""``steakhouse layout check FILE_OR_NAME...``: exit 0 when every layout is valid, else 1 naming each problem.
+"""``steakhouse layout check FILE_OR_NAME...``: exit 0 when every layout is valid, else 1 with one line per
+problem of every invalid layout (``invalid: FILE:LINE:COLUMN: reason``).
 
 ``steakhouse layout generate --seed S [--count N] [--size WxH] [--style STYLE] --out DIR``: writes N kitchens
 in the paper's style (:mod:`planner.layout_gen`), kitchen ``i`` drawn from generator seed ``S + i`` and
@@ -38,7 +39,8 @@ def _check(args: argparse.Namespace) -> int:
         try:
             layout = load_layout(name)
         except LayoutError as exc:
-            print(f"invalid: {exc}", file=sys.stderr)
+            for line in exc.lines():
+                print(f"invalid: {line}", file=sys.stderr)
             failed += 1
         else:
             print(f"ok: {name} ({layout.width}x{layout.height})")

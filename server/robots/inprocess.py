@@ -15,6 +15,7 @@ from typing import Any
 from planner.decision import Robot, RobotFactory
 from planner.events import Event
 from planner.geometry import Action
+from planner.kb import KnowledgeBase
 from planner.layout import Layout
 from planner.planner_config import PlannerConfig
 from planner.rules import Rules
@@ -44,10 +45,10 @@ class InProcessRobots:
         return asyncio.get_running_loop().run_in_executor(self._executor, fn, *args)
 
     async def open(self, trial_id: int, robot: str, layout: Layout, rules: Rules, config: PlannerConfig,
-                   world: WorldState) -> None:
+                   world: WorldState, kb: KnowledgeBase) -> None:
         def build() -> None:
             policy = self.factory(robot, layout, rules, config)
-            policy.reset(world)
+            policy.reset(world, kb)
             self._policies[trial_id] = policy
 
         await self._run(build)

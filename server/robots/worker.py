@@ -1,8 +1,9 @@
 """The body of one robot worker process: a loop over requests on a pipe, holding its trials' planners.
 
-Requests (pickled tuples): ``("open", req, trial_id, robot, layout, rules, config, world)`` builds the planner
-with the factory (``factory(robot, layout, rules, config)``) and resets it; ``("decide", req, trial_id, world, events, seed, tick, deadline)`` answers the
-action; ``("close", req, trial_id)`` drops the planner; ``("stop",)`` ends the process. Replies are
+Requests (pickled tuples): ``("open", req, trial_id, robot, layout, rules, config, world, kb)`` builds the
+planner with the factory (``factory(robot, layout, rules, config)``) and resets it on the world and the
+person's modelled KB the trial starts or resumes from; ``("decide", req, trial_id, world, events, seed, tick,
+deadline)`` answers the action; ``("close", req, trial_id)`` drops the planner; ``("stop",)`` ends the process. Replies are
 ``(req, "ok", payload)`` or ``(req, "error", message)``. Requests are served one at a time, so a trial's
 planner is never used concurrently. The process ignores SIGINT (the server shuts it down) and exits when
 the pipe closes (the server died). It runs at a lower CPU priority than the server (``WORKER_NICE``): when
@@ -54,9 +55,9 @@ def worker_main(conn: Connection, factory_path: str) -> None:
 
 def _serve(op: str, message: tuple[Any, ...], policies: dict[int, Robot], factory: RobotFactory) -> Any:
     if op == "open":
-        _, _, trial_id, robot, layout, rules, config, world = message
+        _, _, trial_id, robot, layout, rules, config, world, kb = message
         policy = factory(robot, layout, rules, config)
-        policy.reset(world)
+        policy.reset(world, kb)
         policies[trial_id] = policy
         return None
     if op == "decide":

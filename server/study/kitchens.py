@@ -2,9 +2,9 @@
 
 The layout's grid is parsed here with the same checker ``serve`` and the game use
 (:func:`planner.layout.parse_layout`), so ``steakhouse study validate`` refuses every kitchen ``serve`` would
-refuse, naming the file, line and column (:class:`KitchenFileError`). The file's SHA-256 is part of the
-resolved study, so editing a kitchen changes the study's config hash (a trial's record says exactly which
-grid it was played on).
+refuse, naming the file, line and column of every problem (:class:`KitchenFileError`). The file's SHA-256
+is part of the resolved study, so editing a kitchen changes the study's config hash (a trial's record says
+exactly which grid it was played on).
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from typing import Annotated, Any
 from pydantic import BeforeValidator, Field, ValidationInfo
 
 from planner.layout import LayoutError, parse_layout
-from server.study.base import Loc, StudyModel, duplicate_problems
+from server.study.base import Loc, StudyModel, duplicate_problems, raise_problems
 
 LAYOUT_SUFFIX = ".layout"
 _NAME = re.compile(r"^[A-Za-z0-9_-]+$")
@@ -51,12 +51,12 @@ class Kitchen(StudyModel):
 
 
 class KitchenFileError(ValueError):
-    """A kitchen file whose grid cannot be played: ``where`` is the entry as written with the line and column
-    (``my/kitchen.layout:3:7``), ``reason`` what is wrong."""
+    """A kitchen file whose grid cannot be played: ``problems`` lists every problem as ``(where, reason)``,
+    ``where`` the entry as written with the line and column (``my/kitchen.layout:3:7``)."""
 
-    def __init__(self, where: str, reason: str) -> None:
-        super().__init__(f"({where}): {reason}")
-        self.where, self.reason = where, reason
+    def __init__(self, problems: tuple[tuple[str, str], ...]) -> None:
+        super().__init__("; ".join(f"({where}): {reason}" for where, reason in problems))
+        self.problems = problems
 
 
 def resolve_kitchen(entry: str, base_dir: Path) -> Kitchen:
@@ -87,25 +87,24 @@ def resolve_kitchen(entry: str, base_dir: Path) -> Kitchen:
     try:
         parse_layout(data.decode("utf-8"), name=path.stem, source=shown)
     except UnicodeDecodeError as exc:
-        raise KitchenFileError(shown, f"not a UTF-8 text file ({exc.reason})") from exc
+        raise KitchenFileError(((shown, f"not a UTF-8 text file ({exc.reason})"),)) from exc
     except LayoutError as exc:
-        where = shown if exc.line is None else f"{shown}:{exc.line}" + (f":{exc.column}" if exc.column else "")
-        raise KitchenFileError(where, exc.reason) from exc
+        raise KitchenFileError(tuple((p.where(shown), p.reason) for p in exc.problems)) from exc
     return Kitchen(name=path.stem, source=entry, sha256=hashlib.sha256(data).hexdigest(), path=path.resolve())
 
 
 def resolve_kitchens(entries: list[Any] | tuple[Any, ...], base_dir: Path,
                      ) -> tuple[tuple[Any, ...] | None, list[tuple[Loc, str, str | None]]]:
     """Resolve every entry of a study's ``kitchens``: the kitchens, or ``None`` and every problem at once
-    (``(location, reason, where)``: an unknown name, a missing file, an invalid grid, a duplicate), so one bad
-    entry never hides another's problem."""
+    (``(location, reason, where)``: an unknown name, a missing file, each problem of an invalid grid, a
+    duplicate), so one bad entry never hides another's problem."""
     resolved: list[Any] = []
     problems: list[tuple[Loc, str, str | None]] = []
     for index, entry in enumerate(entries):
         try:
             resolved.append(_kitchen_before(entry, base_dir))
         except KitchenFileError as exc:
-            problems.append(((index,), exc.reason, exc.where))
+            problems += [((index,), reason, where) for where, reason in exc.problems]
             resolved.append(None)
         except ValueError as exc:
             problems.append(((index,), str(exc), None))
@@ -140,5 +139,14 @@ def _kitchen_before(value: Any, base_dir: Path) -> Any:
     return resolve_kitchen(value, base_dir)
 
 
-KitchenEntry = Annotated[Kitchen, BeforeValidator(lambda value, info: _kitchen_before(value, base_dir_of(info)))]
+def _kitchen_entry(value: Any, info: ValidationInfo) -> Any:
+    """One kitchen field: every problem of an invalid grid reported at the field, each with its place."""
+    try:
+        return _kitchen_before(value, base_dir_of(info))
+    except KitchenFileError as exc:
+        raise_problems([((), reason) for _, reason in exc.problems], value, [where for where, _ in exc.problems])
+        raise
+
+
+KitchenEntry = Annotated[Kitchen, BeforeValidator(_kitchen_entry)]
 """A kitchen written as a string in YAML (name or path), resolved against ``context["base_dir"]``."""

@@ -11,7 +11,6 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from server.study.base import STUDY_ERROR, Loc, StudyModel
-from server.study.kitchens import KitchenFileError
 from server.study.models import Study
 from server.study.yaml_source import ParsedYaml, YamlSyntaxError, parse_yaml
 
@@ -117,16 +116,12 @@ def render_path(loc: Loc) -> str:
 def _source(error: Any) -> str | None:
     """Where in another file (a kitchen layout) the problem is, when it is there."""
     ctx = error.get("ctx") or {}
-    if isinstance(ctx.get("error"), KitchenFileError):
-        return str(ctx["error"].where)
     where = ctx.get("where") if error["type"] == STUDY_ERROR else None
     return str(where) if where else None
 
 
 def _reason(error: Any) -> str:
     kind = error["type"]
-    if kind == "value_error" and isinstance(error["ctx"]["error"], KitchenFileError):
-        return str(error["ctx"]["error"].reason)
     if kind == "value_error":
         return str(error["ctx"]["error"])
     if kind == STUDY_ERROR:

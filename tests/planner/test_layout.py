@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from planner.layout import LayoutError, Terrain, parse_layout
+from planner.layout import LayoutError, LayoutProblem, Terrain, parse_layout
 from study_config import LAYOUT_DIR, layout_names, load_layout
 
 GOOD = "XXXXXXXXX\nXOMDPBWSX\nX       X\nX1  X  2X\nX       X\nXXXXXXXXX\n"
@@ -40,38 +40,63 @@ def bad(text: str) -> LayoutError:
     return info.value
 
 
+def only(text: str) -> LayoutProblem:
+    (problem,) = bad(text).problems
+    return problem
+
+
 def test_ragged_row():
-    error = bad(GOOD.replace("X       X\nX1", "X      X\nX1", 1))
-    assert error.line == 3 and "ragged" in str(error)
+    problem = only(GOOD.replace("X       X\nX1", "X      X\nX1", 1))
+    assert problem.line == 3 and "ragged" in problem.reason
 
 
 def test_unclosed_border():
-    error = bad(GOOD.replace("XXXXXXXXX\nXOM", "XXXX XXXX\nXOM", 1))
-    assert (error.line, error.column) == (1, 5) and "not closed" in str(error)
+    problem = only(GOOD.replace("XXXXXXXXX\nXOM", "XXXX XXXX\nXOM", 1))
+    assert (problem.line, problem.column) == (1, 5) and "not closed" in problem.reason
 
 
 def test_missing_station():
-    error = bad(GOOD.replace("W", "X"))
-    assert "missing station" in str(error) and "sink" in str(error)
+    problem = only(GOOD.replace("W", "X"))
+    assert "missing station" in problem.reason and "sink" in problem.reason
 
 
 def test_unknown_character():
-    error = bad(GOOD.replace("B", "Q"))
-    assert (error.line, error.column) == (2, 6) and "unknown character 'Q'" in str(error)
+    problem = only(GOOD.replace("B", "Q").replace("XXXXXXXXX\nXOM", "XXXXXXXXX\nXBOM", 1).replace("WSX", "WS"))
+    assert (problem.line, problem.column) == (2, 7) and "unknown character 'Q'" in problem.reason
 
 
 def test_two_humans():
-    error = bad(GOOD.replace("X1  X  2X", "X1 2X  2X"))
-    assert (error.line, error.column) == (4, 8) and "second human" in str(error)
+    problem = only(GOOD.replace("X1  X  2X", "X1 2X  2X"))
+    assert (problem.line, problem.column) == (4, 8) and "second human" in problem.reason
 
 
 def test_missing_start():
-    assert "no robot start" in str(bad(GOOD.replace("1", " ")))
+    assert "no robot start" in only(GOOD.replace("1", " ")).reason
 
 
 def test_unreachable_station():
     walled = "XXXXXXXXX\nXOMDPBWXX\nX   X XSX\nX1  X 2 X\nXXXXXXXXX\n"
-    assert "reached" in str(bad(walled))
+    problems = bad(walled).problems  # the two starts share no floor: no station serves both
+    assert len(problems) == 7 and all("can be reached by both agents" in p.reason for p in problems)
+
+
+def test_every_problem_is_reported_at_once_in_reading_order():
+    broken = GOOD.replace("B", "Q").replace("X1  X  2X", "X1 2X  2 ").replace("D", "X")
+    error = bad(broken)
+    assert [(p.line, p.column) for p in error.problems] == [(2, 6), (4, 8), (4, 9), (None, None), (None, None)]
+    assert [p.reason.split(";")[0].split(":")[0] for p in error.problems] == [
+        "unknown character 'Q'", "a second human start ('2')", "the kitchen is not closed",
+        "missing station", "missing station"]
+    assert "plate" in error.problems[3].reason and "board" in error.problems[4].reason
+    assert str(error).splitlines() == list(error.lines())
+    assert error.lines()[0].startswith("bad.layout:2:6: unknown character 'Q'")
+    assert error.lines()[3] == "bad.layout: missing station: no plate ('D')"
+
+
+def test_reachability_waits_for_an_otherwise_valid_grid():
+    walled = "XXXXXXXXX\nXOMDPBWXX\nX   X XSX\nX1  X 2 X\nXXXXXXXXX\n"
+    problems = bad(walled.replace("XOMDPBWXX", "XOMDPBWXQ")).problems
+    assert [p.reason.split(";")[0] for p in problems] == ["unknown character 'Q'"]
 
 
 def test_error_message_names_the_source():

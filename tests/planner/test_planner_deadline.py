@@ -12,6 +12,7 @@ import pytest
 
 from planner.decision import Decision
 from planner.events import Event
+from planner.kb import KnowledgeBase
 from planner.play import run_trial
 from planner.planner_config import PlannerConfig
 from planner.robots import make_robot
@@ -27,8 +28,8 @@ class AlwaysLate:
         self.inner = inner
         self.timed_out = 0
 
-    def reset(self, world: WorldState) -> None:
-        self.inner.reset(world)  # type: ignore[attr-defined]
+    def reset(self, world: WorldState, kb: KnowledgeBase | None = None) -> None:
+        self.inner.reset(world, kb)  # type: ignore[attr-defined]
 
     def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,
                deadline: float | None = None) -> Decision:

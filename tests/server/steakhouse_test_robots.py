@@ -15,6 +15,7 @@ import numpy as np
 from planner.decision import Decision
 from planner.events import Event
 from planner.geometry import Action
+from planner.kb import KnowledgeBase
 from planner.partner import SimulatedPartner
 from planner.planner_config import PlannerConfig
 from planner.state import WorldState
@@ -33,7 +34,7 @@ class Counting:
         self.calls = 0
         self.pid = os.getpid()
 
-    def reset(self, world: WorldState) -> None:
+    def reset(self, world: WorldState, kb: KnowledgeBase | None = None) -> None:
         self.calls = 0
 
     def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,
@@ -89,17 +90,23 @@ def unbuildable(name: str, layout: Any, rules: Any, config: Any = None) -> Count
 
 
 class ConfigEcho(Counting):
-    """Answers with the model of the person it was built with (in ``q_values``), so a test sees what
-    reached a worker process."""
+    """Answers with the model of the person it was built with and whether the KB it was reset with knows
+    where the robot is (in ``q_values``), so a test sees what reached a worker process."""
 
     def __init__(self, config: PlannerConfig) -> None:
         super().__init__()
         self.config = config
+        self.kb: KnowledgeBase | None = None
+
+    def reset(self, world: WorldState, kb: KnowledgeBase | None = None) -> None:
+        super().reset(world, kb)
+        self.kb = kb
 
     def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,
                deadline: float | None = None) -> Decision:
+        knows_robot = -1.0 if self.kb is None else float(self.kb.robot is not None)
         return Decision(Action.STAY, q_values={"angle": self.config.human_angle,
-                                               "delay": float(self.config.human_delay)})
+                                               "delay": float(self.config.human_delay), "kb_robot": knows_robot})
 
 
 def config_echo(name: str, layout: Any, rules: Any, config: PlannerConfig) -> ConfigEcho:

@@ -304,3 +304,12 @@ async def play_until(sock: Socket, tick: int) -> dict[str, Any]:
                 await sock.send("select_subtask", subtask=message["available"][0])
             if message["tick"] >= tick:
                 return message
+
+
+async def until_unloaded(services: Any, timeout: float = 10.0) -> None:
+    """Wait until the server process holds no live game (a disconnected trial is unloaded when its reconnect
+    grace window ends); fails after ``timeout`` seconds."""
+    deadline = time.monotonic() + timeout
+    while services.registry.games and time.monotonic() < deadline:
+        await asyncio.sleep(0.05)
+    assert not services.registry.games, "the trial must be unloaded after the grace window"

@@ -4,10 +4,9 @@ the stored ticks stay gap-free and unduplicated; after the grace window the stud
 from __future__ import annotations
 
 import asyncio
-import time
 
 import pytest
-from steakhouse_testing import Player, play_to_end, play_until
+from steakhouse_testing import Player, play_to_end, play_until, until_unloaded
 
 from server.store import trials
 from server.store.tables import EventRow, ParticipantRow, TrialRow
@@ -91,10 +90,7 @@ def test_after_the_grace_window_the_study_policy_applies(live_server, study_file
         hello1 = await first.recv()
         last = await play_until(first, 8)
         await first.close()
-        deadline = time.monotonic() + 5
-        while server.services.registry.games and time.monotonic() < deadline:
-            await asyncio.sleep(0.05)
-        assert not server.services.registry.games, "the trial must be unloaded after the grace window"
+        await until_unloaded(server.services, timeout=5)
         session = await player.session()
         second = await player.socket()
         reply = await second.recv()

@@ -125,3 +125,32 @@ def test_each_station_state_and_progress_step_is_drawn_differently(module_page):
       return out;
     }""")
     assert got == {"grill": 4, "board": 4, "sink": 4, "objects": 7}
+
+
+def test_the_instructions_never_invent_a_field_of_view(module_page):
+    """Without the study's angle in the session view the page says so where the cone is explained and keeps
+    the button disabled; with it, the text and the picture use that angle."""
+    got = module_page.evaluate("""async () => {
+      const { instructionsPage } = await import('/js/pages/instructions.js');
+      const render = (session) => {
+        const root = document.createElement('main');
+        document.body.replaceChildren(root);
+        instructionsPage(root, { session: { instructions: 'Read this.', ...session }, api: {}, route: () => {} });
+        return {
+          error: root.querySelector('#fov-error')?.textContent || null,
+          text: root.querySelector('#fov-text')?.textContent || null,
+          picture: root.querySelector('#instructions-picture') !== null,
+          disabled: root.querySelector('#instructions-done').disabled,
+          says120: root.textContent.includes('120°'),
+        };
+      };
+      return { missing: render({}), nulled: render({ fov_angle: null }), text: render({ fov_angle: '90' }),
+               zero: render({ fov_angle: 0 }), given: render({ fov_angle: 90 }) };
+    }""")
+    for case in ("missing", "nulled", "text", "zero"):
+        page = got[case]
+        assert page["error"] and "could not load the study's field of view" in page["error"], case
+        assert (page["text"], page["picture"], page["disabled"], page["says120"]) == (None, False, True, False), case
+    given = got["given"]
+    assert given["error"] is None and "cone of 90°" in given["text"]
+    assert (given["picture"], given["disabled"], given["says120"]) == (True, False, False)

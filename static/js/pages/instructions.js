@@ -3,6 +3,10 @@
  * kitchen), then a picture of what the black cells mean drawn by the game's own painter (the whole kitchen
  * beside the participant's view with the study's field-of-view angle, `session.fov_angle`), a legend of
  * everything in the kitchen, and the keys. The button finishes the step.
+ *
+ * The angle is the study's, sent in every session view (docs/protocol.md §1). Without a valid one the page
+ * says so where the cone would be explained and keeps the button disabled: a participant is never told a
+ * field of view the study did not set.
  */
 
 import { h, show } from "../dom.js";
@@ -19,11 +23,30 @@ function coneText(angle) {
     "changed. Turn or walk to look again. The robot may be in a black cell.";
 }
 
-export function instructionsPage(root, ctx) {
-  const angle = Number(ctx.session.fov_angle) || 120;
-  const error = h("p", { class: "error", role: "alert", id: "instructions-error" });
-  const next = h("button", { type: "button", class: "primary", id: "instructions-done" }, "I have read this: continue");
+/** The study's field of view in degrees from the session view, or null when it is missing or out of (0, 360]. */
+export function studyAngle(session) {
+  const angle = session.fov_angle;
+  return typeof angle === "number" && angle > 0 && angle <= 360 ? angle : null;
+}
+
+function coneSection(angle) {
+  if (angle === null) {
+    return [h("p", { class: "error", role: "alert", id: "fov-error" },
+      "This page could not load the study's field of view, so it cannot show you what you will see. Please " +
+      "reload the page; if this message stays, contact the researcher.")];
+  }
   const picture = h("div", { class: "picture", id: "instructions-picture" }, h("p", { class: "muted" }, "Loading the picture…"));
+  loadExample().then((example) => picture.replaceChildren(examplePicture(example, 40, angle))).catch(() => {
+    picture.replaceChildren(h("p", { class: "muted" }, "The picture could not be loaded; the text above explains it."));
+  });
+  return [h("p", { id: "fov-text", dataset: { angle: String(angle) } }, coneText(angle)), picture];
+}
+
+export function instructionsPage(root, ctx) {
+  const angle = studyAngle(ctx.session);
+  const error = h("p", { class: "error", role: "alert", id: "instructions-error" });
+  const next = h("button", { type: "button", class: "primary", id: "instructions-done", disabled: angle === null },
+    "I have read this: continue");
   next.addEventListener("click", async () => {
     next.disabled = true;
     try {
@@ -40,8 +63,7 @@ export function instructionsPage(root, ctx) {
       "highlighted from what you hold."),
     new RecipeStrip({ id: "instructions-recipe", compact: false, icon: 30 }).node,
     h("h2", {}, "What the black cells mean"),
-    h("p", { id: "fov-text", dataset: { angle: String(angle) } }, coneText(angle)),
-    picture,
+    coneSection(angle),
     h("h2", {}, "What is in the kitchen"),
     legend(),
     h("h2", {}, "Keys"),
@@ -53,8 +75,4 @@ export function instructionsPage(root, ctx) {
       "once, one per key press; afterwards your task continues from where you are. Stop cancels the task. A task " +
       "that cannot work with what you hold is greyed out, and the reason shows when you point at it."),
     h("div", { class: "actions" }, next), error));
-
-  loadExample().then((example) => picture.replaceChildren(examplePicture(example, 40, angle))).catch(() => {
-    picture.replaceChildren(h("p", { class: "muted" }, "The picture could not be loaded; the text above explains it."));
-  });
 }

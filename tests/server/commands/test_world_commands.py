@@ -23,6 +23,19 @@ def test_layout_check_names_file_line_column_and_reason(tmp_path, capsys):
     assert f"{broken}:2:4: unknown character 'Q'" in err
 
 
+def test_layout_check_lists_every_problem_of_a_file_one_per_line(tmp_path, capsys):
+    broken = tmp_path / "broken.layout"
+    broken.write_text("XXXXXXX\nXOMDPBX\nX1 Q 2X\n   2  X\nXXSWXXX\n")
+    assert main(["layout", "check", str(broken), "none_3"]) == 1
+    out, err = capsys.readouterr()
+    assert out == "ok: none_3 (15x10)\n"
+    assert err.splitlines() == [
+        f"invalid: {broken}:3:4: unknown character 'Q'; allowed: X, space, O, M, D, P, B, W, S, 1, 2",
+        f"invalid: {broken}:4:1: the kitchen is not closed: floor on the border",
+        f"invalid: {broken}:4:4: a second human start ('2'); the first is at line 3, column 6",
+    ]
+
+
 def test_fov_json_lists_visible_cells(capsys):
     assert main(["fov", "--layout", "none_3", "--x", "5", "--y", "3", "--facing", "east", "--json"]) == 0
     visible = {tuple(c) for c in json.loads(capsys.readouterr().out)["visible"]}

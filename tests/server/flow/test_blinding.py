@@ -22,7 +22,7 @@ STUDY = {
     "description": "fov_aware vs baseline vs no_rollout", "notes": "conditions: fov_aware@none_3 …",
     "kitchens": ["none_3", "mid_2"], "robots": ["fov_aware", "baseline", "no_rollout"], "factors": ["robot", "kitchen"],
     "practice": [{"kitchen": "side_1", "robot": "stay"}],
-    "world": {"orders": 1, "horizon": 12, "kb_delay": 1},
+    "world": {"orders": 1, "horizon": 12, "kb_delay": 1, "fov_angle": 100},
     "quiz": {"questions": [{"id": "seen", "text": "What do you see?", "options": ["Everything", "Your view"],
                             "answer": 2, "explanation": "Only what is in front of you."}]},
 }
@@ -123,3 +123,19 @@ def test_nothing_a_participant_receives_names_their_conditions(live_server, stud
     assert {"hello", "state", "error", "trial_end"} <= kinds, "the probe met the websocket's errors too"
     statuses = {where.rsplit(" ", 1)[-1] for where, _ in record.received if "→" in where}
     assert {"200", "401", "404", "409", "422"} <= statuses, statuses
+
+
+def test_every_session_view_and_hello_carry_the_studys_one_field_of_view(live_server, study_file):
+    """The instructions draw the participant's cone from ``session.fov_angle`` and the trial page from
+    ``hello.fov_angle``, so both are always sent. The angle is the study's ``world.fov_angle``, the same in
+    every condition (a condition is a robot, a kitchen and a view), so it tells nothing about the condition."""
+    path = study_file("probe", **STUDY)
+    server = live_server([path], robot_factory=simulated_partner, static_dir=REPO / "static")
+    record = Recorder()
+    asyncio.run(probe(server.url, record))
+    sessions = [json.loads(data) for where, data in record.received if where == "GET /api/session → 200"]
+    hellos = [m for m in (json.loads(data) for where, data in record.received if where == "ws") if m["type"] == "hello"]
+    assert {s["state"] for s in sessions} >= {"consent", "instructions", "quiz", "practice", "trial", "questionnaire"}
+    assert len(hellos) == 7, "the practice round and the six conditions"
+    assert [s.get("fov_angle") for s in sessions] == [100] * len(sessions)
+    assert [h.get("fov_angle") for h in hellos] == [100] * len(hellos)

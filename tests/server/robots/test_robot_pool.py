@@ -10,6 +10,7 @@ import pytest
 from steakhouse_test_robots import counting, failing, slow
 
 from planner.geometry import Action
+from planner.kb import initial_kb
 from planner.planner_config import PlannerConfig
 from planner.rules import Rules
 from planner.state import initial_state
@@ -20,6 +21,7 @@ LAYOUT = load_layout("practice")
 RULES = Rules()
 CONFIG = PlannerConfig()
 WORLD = initial_state(LAYOUT, RULES)
+KB = initial_kb(WORLD)
 
 
 async def decide(pool, trial: int, budget: float = 2.0):
@@ -31,8 +33,8 @@ def test_each_trial_keeps_its_planner_in_one_worker_process():
         pool = ProcessRobots(2, "steakhouse_test_robots:counting")
         await pool.start()
         try:
-            await pool.open(1, "any", LAYOUT, RULES, CONFIG, WORLD)
-            await pool.open(2, "any", LAYOUT, RULES, CONFIG, WORLD)
+            await pool.open(1, "any", LAYOUT, RULES, CONFIG, WORLD, KB)
+            await pool.open(2, "any", LAYOUT, RULES, CONFIG, WORLD, KB)
             choices = {t: [await decide(pool, t) for _ in range(3)] for t in (1, 2)}
             described = pool.describe()
         finally:
@@ -54,7 +56,7 @@ def test_a_late_decision_is_discarded_and_the_robot_stays():
         pool = ProcessRobots(1, "steakhouse_test_robots:slow")
         await pool.start()
         try:
-            await pool.open(1, "any", LAYOUT, RULES, CONFIG, WORLD)
+            await pool.open(1, "any", LAYOUT, RULES, CONFIG, WORLD, KB)
             late = await decide(pool, 1, budget=0.05)
             await asyncio.sleep(0.4)
             on_time = await decide(pool, 1, budget=2.0)
@@ -74,13 +76,13 @@ def test_a_failing_planner_and_a_dead_worker_make_the_robot_stay_until_reopened(
         await failing_pool.start()
         await crashing_pool.start()
         try:
-            await failing_pool.open(1, "any", LAYOUT, RULES, CONFIG, WORLD)
+            await failing_pool.open(1, "any", LAYOUT, RULES, CONFIG, WORLD, KB)
             failed = await decide(failing_pool, 1)
-            await crashing_pool.open(7, "any", LAYOUT, RULES, CONFIG, WORLD)
+            await crashing_pool.open(7, "any", LAYOUT, RULES, CONFIG, WORLD, KB)
             before = [await decide(crashing_pool, 7) for _ in range(2)]
             crashed = await decide(crashing_pool, 7)
             after_crash = await decide(crashing_pool, 7)
-            await crashing_pool.open(7, "any", LAYOUT, RULES, CONFIG, WORLD)
+            await crashing_pool.open(7, "any", LAYOUT, RULES, CONFIG, WORLD, KB)
             reopened = await decide(crashing_pool, 7)
         finally:
             await failing_pool.shutdown()
@@ -102,7 +104,7 @@ def test_the_in_process_pool_has_the_same_rules(factory, expect):
         pool = InProcessRobots(factory)
         await pool.start()
         try:
-            await pool.open(1, "any", LAYOUT, RULES, CONFIG, WORLD)
+            await pool.open(1, "any", LAYOUT, RULES, CONFIG, WORLD, KB)
             return await decide(pool, 1, budget=0.1), await decide(pool, 99)
         finally:
             await pool.shutdown()

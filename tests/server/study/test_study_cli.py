@@ -68,9 +68,13 @@ def test_kitchen_files_are_checked_as_serve_would_and_every_problem_is_listed(
 ) -> None:
     (tmp_path / "my").mkdir()
     grid = (STUDY_CONFIG / "layouts" / "none_3.layout").read_text(encoding="utf-8").splitlines()
+    (tmp_path / "my" / "open.layout").write_text("\n".join([grid[0][:7] + " " + grid[0][8:], *grid[1:]]) + "\n",
+                                                 encoding="utf-8")
+    # Three different problems in one file: every one is listed, in reading order.
     grid[2] = grid[2][:6] + "Q" + grid[2][7:]
+    grid[4] = grid[4][:4] + "2" + grid[4][5:]
+    grid[6] = " " + grid[6][1:]
     (tmp_path / "my" / "kitchen.layout").write_text("\n".join(grid) + "\n", encoding="utf-8")
-    (tmp_path / "my" / "open.layout").write_text("X X\nX2X\nX1X\n", encoding="utf-8")
     study = tmp_path / "study.yaml"
     study.write_text(
         "id: kitchens\ntitle: Kitchens\n"
@@ -84,16 +88,19 @@ def test_kitchen_files_are_checked_as_serve_would_and_every_problem_is_listed(
     assert out == ""
     lines = err.splitlines()
     problems = [line.split(" (line ")[0] for line in lines[:-1]]
+    kitchen_problems = [
+        "(my/kitchen.layout:3:7): unknown character 'Q'; allowed: X, space, O, M, D, P, B, W, S, 1, 2",
+        "(my/kitchen.layout:5:5): a second human start ('2'); the first is at line 4, column 6",
+        "(my/kitchen.layout:7:1): the kitchen is not closed: floor on the border",
+    ]
     assert problems == [
-        f"{study}: kitchens[1] (my/kitchen.layout:3:7): unknown character 'Q'; allowed: X, space, O, M, D, P, B, W, "
-        "S, 1, 2",
+        *(f"{study}: kitchens[1] {problem}" for problem in kitchen_problems),
         f"{study}: kitchens[2]: no kitchen file at {(tmp_path / 'my' / 'missing.layout').resolve()}",
         f"{study}: kitchens[3]: duplicate kitchen 'none_3' (already at [0])",
-        f"{study}: kitchens[4] (my/open.layout:1:2): the kitchen is not closed: floor on the border",
+        f"{study}: kitchens[4] (my/open.layout:1:8): the kitchen is not closed: floor on the border",
         f"{study}: robots[1]: unknown robot 'terminator'; choose one of: fov_aware, baseline, no_rollout, stay",
         f"{study}: robots[2]: duplicate robot 'fov_aware' (already at [0])",
-        f"{study}: practice[0].kitchen (my/kitchen.layout:3:7): unknown character 'Q'; allowed: X, space, O, M, D, P, "
-        "B, W, S, 1, 2",
+        *(f"{study}: practice[0].kitchen {problem}" for problem in kitchen_problems),
     ], "\n".join(lines)
     assert lines[-1] == "1 of 1 study file(s) invalid"
 
