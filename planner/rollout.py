@@ -141,7 +141,7 @@ class Rollout:
         self.human = HumanModel(layout, rules, me="human")
         self.robot_model = HumanModel(layout, rules, me="robot")
         self.tasker = RobotTasker(layout, rules)
-        self.omniscient = cfg.human_angle >= 360.0 and cfg.human_delay == 0
+        self.omniscient = cfg.human_sees_everything
 
     def value(self, world: WorldState, kb: KnowledgeBase, human_subtask: Subtask, robot_subtask: Subtask,
               horizon: int, seed: int, prefix: tuple[Action, ...] = (), parked_for: int = 0) -> float:
