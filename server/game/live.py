@@ -16,7 +16,10 @@ The clock:
   the pilot runs many trials at once on a busy one. Real participants' trials keep the study's clock and deadline.
 - The robot's decision for a state is requested as soon as the state exists, with a deadline of
   ``decision_deadline_fraction`` of the period; a missed deadline makes the robot stay that tick and is
-  logged as a ``deadline_miss`` event.
+  logged as a ``deadline_miss`` event. The exception is the first decision of a trial (or of a resumed
+  trial): the clock starts once it is in, at most ``FIRST_DECISION_S`` later. That decision is the costliest
+  (the robot's belief is spread over every subtask the person might start, and a fresh robot worker's caches
+  are cold), and when many participants start at once those decisions would queue behind each other.
 - Robot health (``server.game.health``): every decision counts toward the trial's share of missed
   deadlines; past the study's ``validity.max_missed_decisions_pct`` the trial is marked invalid as it
   happens (a warning in the server log, a ``trial_invalid`` event, the trial row's ``invalid_reason``).
@@ -59,6 +62,8 @@ log = logging.getLogger(__name__)
 MAX_LOGGED_ERRORS = 50
 PILOT_DECISION_S = 10.0
 """A ``fast`` pilot trial's robot decision deadline (seconds after the request)."""
+FIRST_DECISION_S = 2.0
+"""How long a trial's clock waits for the robot's first decision (see the module docstring)."""
 
 
 @dataclass(frozen=True)
@@ -193,7 +198,7 @@ class LiveGame:
         period = self.period
         next_at: float | None = None
         last_start: float | None = None
-        self._request_decision()
+        await self._robot_ready()
         while not self.engine.done:
             if not self.connected.is_set():
                 await self.connected.wait()
@@ -244,9 +249,16 @@ class LiveGame:
                 await asyncio.wait_for(self.answered.wait(), period)
         self.answered.clear()
 
-    def _request_decision(self) -> None:
+    async def _robot_ready(self) -> None:
+        """Request the first decision with ``FIRST_DECISION_S`` (a ``fast`` pilot: its usual budget) and wait
+        until it is in; it is the one the first step takes."""
+        self._request_decision(FIRST_DECISION_S if not self.fast else PILOT_DECISION_S)
+        assert self._decision is not None
+        await asyncio.wait({self._decision})
+
+    def _request_decision(self, budget: float | None = None) -> None:
         world = self.engine.world
-        deadline = time.monotonic() + self.decision_budget()
+        deadline = time.monotonic() + (self.decision_budget() if budget is None else budget)
         self._decision = asyncio.create_task(self.deps.pool.decide(
             self.meta.trial_id, world, self.engine.last_events, self.meta.seed, world.tick, deadline))
         self._decision_tick = world.tick
