@@ -127,7 +127,7 @@ def test_workers_yield_the_cpu_to_the_game_loop():
         pool = ProcessRobots(1, "steakhouse_test_robots:counting")
         await pool.start()
         try:
-            await pool.open(1, "any", LAYOUT, RULES, CONFIG, WORLD)
+            await pool.open(1, "any", LAYOUT, RULES, CONFIG, WORLD, KB)
             pid = (await decide(pool, 1)).info["q_values"]["pid"]
             return os.getpriority(os.PRIO_PROCESS, int(pid))
         finally:
