@@ -14,6 +14,7 @@ import numpy as np
 from planner.decision import Decision, Robot
 from planner.events import Event
 from planner.geometry import Action
+from planner.interning import interned
 from planner.kb import KnowledgeBase
 from planner.layout import Layout
 from planner.planner_config import PlannerConfig
@@ -43,4 +44,4 @@ def make_robot(name: str, layout: Layout, rules: Rules, config: PlannerConfig | 
     if name == "stay":
         return StayRobot()
     from planner.qmdp import make_qmdp_robot
-    return make_qmdp_robot(name, layout, rules, config)
+    return make_qmdp_robot(name, interned(layout), interned(rules), config)
