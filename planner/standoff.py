@@ -21,6 +21,7 @@ person's cell**, it re-plans around the person, in this order:
 The blocked subtask is then avoided until the person moves or ``2 × standoff_ticks`` ticks pass; after a step
 aside the robot also holds still for ``2 × standoff_ticks`` ticks (else it steps back into the way as soon as
 the person comes closer).
+
 **Team stalls.** The person can also stall the team without blocking anyone: the simulated person whose
 out-of-date KB says the sink is busy shuttles its dirty plate between a counter and its hands for the rest of
 the trial, and the robot, which counts on that plate reaching the sink, has no option left that it keeps
@@ -31,8 +32,8 @@ sinks in use, clean plates, plated steaks and dishes: :func:`planner.rollout.pot
 ``stall_ticks`` consecutive ticks, the robot **takes the person's stalled work over**: it judges its options
 as if the person's hands were empty (:func:`unaided`: what the person carries and has not brought is no
 longer counted on, so the robot fetches and washes its own plate, brings its own meat or onion) and keeps
-the subtask it chooses until it is done (:func:`committed`), until Φ changes again. The blocked-target rule
-above comes first.
+the subtask it chooses until it is done (:func:`committed`); ordinary planning resumes as soon as Φ changes.
+The blocked-target rule above comes first.
 
 State is an immutable :class:`Standoff`, advanced once per observed tick by :func:`advance`.
 """
