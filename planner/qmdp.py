@@ -58,7 +58,7 @@ from planner.rollout import Rollout, RobotTasker, potential
 from planner.rules import Rules
 from planner.state import AgentState, WorldState
 from planner.standoff import (Standoff, advance, alternatives, committed, give_up, hold_aside, in_the_way,
-                              step_aside, take_over, unaided)
+                              step_aside, take_over, unaided, within_reach)
 from planner.subtasks import Subtask
 
 TICKS_PER_SUBTASK = 6
@@ -207,7 +207,8 @@ class QmdpRobot:
         way, else the other reachable options, else a step aside (the action). While a given-up subtask is avoided the options are the reachable others
         (:func:`planner.standoff.alternatives`); when there are none the robot holds its place (stays) until
         the person moves. In a team stall (no progress for ``stall_ticks``) the options are judged without
-        the person's load and the robot keeps its subtask (:func:`planner.standoff.committed`)."""
+        the person's load and the robot keeps its subtask (:func:`planner.standoff.committed`), moving toward
+        the targets it can reach without passing the person when some cannot be (the move)."""
         assert self.belief is not None
         cells = self.tasker.targets
         if self.standoff.stuck >= self.cfg.standoff_ticks:
@@ -229,6 +230,13 @@ class QmdpRobot:
             return Action.STAY
         if self.standoff.stalled(self.cfg.stall_ticks):
             options = committed(self.tasker.options(unaided(world), self.current), self.current)
+            if options == (self.current,):
+                targets = self.tasker.targets(options[0], world)
+                clear = within_reach(self.layout, world, targets)
+                if clear and clear != targets:
+                    pose = (world.robot.pos, world.robot.facing)
+                    return self.rollout.robot_model.move_toward(pose, clear, world.human.pos,
+                                                                partner_parked=self.human_still >= 2)[0]
         avoided = self.standoff.avoided(world.tick)
         if avoided is None or avoided not in options:
             return options

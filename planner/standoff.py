@@ -32,7 +32,10 @@ sinks in use, clean plates, plated steaks and dishes: :func:`planner.rollout.pot
 ``stall_ticks`` consecutive ticks, the robot **takes the person's stalled work over**: it judges its options
 as if the person's hands were empty (:func:`unaided`: what the person carries and has not brought is no
 longer counted on, so the robot fetches and washes its own plate, brings its own meat or onion) and keeps
-the subtask it chooses until it is done (:func:`committed`); ordinary planning resumes as soon as Φ changes.
+the subtask it chooses until it is done (:func:`committed`), heading only for the targets it can reach
+without passing the person (:func:`within_reach`: a plate the person keeps putting down on a counter that
+only the person's cell gives on to is not one; heading for it whenever it lies there turned the robot back
+and forth as well); ordinary planning resumes as soon as Φ changes.
 The blocked-target rule above comes first.
 
 State is an immutable :class:`Standoff`, advanced once per observed tick by :func:`advance`.
@@ -99,8 +102,14 @@ def _blocked(layout: Layout, agent: AgentState, other: Pos, cells: tuple[Pos, ..
 
 def reachable(layout: Layout, world: WorldState, cells: tuple[Pos, ...]) -> bool:
     """Whether one of ``cells`` can be reached (or is reached) without passing the person's cell."""
+    return bool(within_reach(layout, world, cells))
+
+
+def within_reach(layout: Layout, world: WorldState, cells: tuple[Pos, ...]) -> tuple[Pos, ...]:
+    """The ``cells`` the robot can reach (or has reached) without passing the person's cell."""
     pose = (world.robot.pos, world.robot.facing)
-    return any(distance(layout, pose, c) == 0 or detour_moves(layout, pose, c, world.human.pos) for c in cells)
+    return tuple(c for c in cells
+                 if distance(layout, pose, c) == 0 or detour_moves(layout, pose, c, world.human.pos))
 
 
 def advance(state: Standoff, layout: Layout, before: AgentState | None, world: WorldState,
