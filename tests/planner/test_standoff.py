@@ -19,7 +19,7 @@ from planner.perception import FOV_ANGLE, KB_DELAY
 from planner.planner_config import PlannerConfig
 from planner.robots import make_robot
 from planner.rules import Rules
-from planner.standoff import take_over
+from planner.standoff import take_over, within_reach
 from planner.state import AgentState, WorldState, initial_state
 from planner.step import step
 from planner.subtasks import Subtask
@@ -111,6 +111,17 @@ def test_the_person_s_stalled_errand_is_taken_over_when_the_robot_can_do_it():
     choices = (Subtask.PICKUP_ONION, Subtask.PICKUP_PLATE)
     assert take_over(Subtask.PICKUP_ONION, choices) is Subtask.PICKUP_ONION
     assert take_over(Subtask.PICKUP_MEAT, choices) is None
+
+
+def test_a_target_only_the_person_s_cell_gives_on_to_is_not_within_reach():
+    # In a team stall the robot heads only for such targets: the plate the person keeps putting down in
+    # front of itself is not one (else the robot turns toward it whenever it lies there).
+    start = initial_state(CORNER, RULES)
+    world = replace(start, robot=AgentState((4, 2), Direction.WEST), human=AgentState((1, 2), Direction.NORTH))
+    assert within_reach(CORNER, world, ((1, 1), (6, 1), (1, 3))) == ((6, 1),)
+    moved = replace(world, human=AgentState((2, 2), Direction.WEST))
+    assert within_reach(CORNER, moved, ((1, 1), (6, 1))) == ((6, 1),), "the person still bars the corridor"
+    assert within_reach(CORNER, replace(world, human=AgentState((6, 2), Direction.NORTH)), ((1, 1),)) == ((1, 1),)
 
 
 def play_with_person(layout: Layout, world: WorldState, kb: KnowledgeBase, config: PlannerConfig,
