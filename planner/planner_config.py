@@ -29,8 +29,12 @@ class PlannerConfig:
     (:mod:`planner.abstract`) ``abstract_depth`` transitions deep, discounted ``abstract_discount`` per
     transition. Rewards are the reference implementation's shaping (docs/domain.md §5, step 4).
     ``standoff_ticks``: ticks without progress while the person blocks the robot's target before the robot
-    re-plans around them (:mod:`planner.standoff`). ``reuse_rollouts``: keep a rollout whose first tick came
-    true for the next tick's decision (:mod:`planner.reuse`; only with ``rollout_samples`` 1).
+    re-plans around them (:mod:`planner.standoff`). ``stall_ticks``: ticks without team progress (the shaping
+    potential unchanged) before the robot takes the person's stalled work over (:mod:`planner.standoff`, team
+    stalls); above most quiet stretches of finished trials (a trial's longest: p90 24 ticks, max 56, on the
+    shipped and generator-seed 0–9 kitchens; docs/domain.md §5, "Standoffs"). ``reuse_rollouts``: keep a
+    rollout whose first tick came true for the next tick's decision (:mod:`planner.reuse`; only with
+    ``rollout_samples`` 1).
     ``rollout_budget``: simulated ticks one decision may spend on new rollouts (0: no limit; 336 is eight
     rollouts of the full 42 ticks). A decision that would need more (the person just chose anew, so three
     hypotheses × every robot option × the exploration's candidates) shortens the lookahead of all its
@@ -62,6 +66,7 @@ class PlannerConfig:
     exploration_samples: int = 16
     abstract_discount: float = 0.8
     standoff_ticks: int = 5
+    stall_ticks: int = 30
     reuse_rollouts: bool = False
     rollout_budget: int = 0
 

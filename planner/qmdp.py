@@ -54,11 +54,11 @@ from planner.layout import Layout
 from planner.paths import Pose, best_moves, distance, next_pose
 from planner.planner_config import PlannerConfig
 from planner.reuse import Trace, follow, traced
-from planner.rollout import Rollout, RobotTasker
+from planner.rollout import Rollout, RobotTasker, potential
 from planner.rules import Rules
 from planner.state import AgentState, WorldState
-from planner.standoff import (Standoff, advance, alternatives, give_up, hold_aside, in_the_way, step_aside,
-                              take_over)
+from planner.standoff import (Standoff, advance, alternatives, committed, give_up, hold_aside, in_the_way,
+                              step_aside, take_over, unaided, within_reach)
 from planner.subtasks import Subtask
 
 TICKS_PER_SUBTASK = 6
@@ -124,10 +124,12 @@ class QmdpRobot:
         self.human_still = 0 if moved else self.human_still + 1
         self.last_human = world.human
         target = self.tasker.targets(self.current, world) if self.current is not None else ()
-        self.standoff = advance(self.standoff, self.layout, self.robot_before, world, target, moved)
+        self.standoff = advance(self.standoff, self.layout, self.robot_before, world, target, moved,
+                                potential(world, self.cfg))
         self.robot_before = world.robot
+        judged = unaided(world) if self.standoff.stalled(self.cfg.stall_ticks) else world
         if self.current is not None and (self.tasker.done(self.current, self.held_before, world)
-                                         or self.current not in self.tasker.options(world, self.current)):
+                                         or self.current not in self.tasker.options(judged, self.current)):
             self.current = None
         self.held_before = world.robot.held
 
@@ -207,7 +209,9 @@ class QmdpRobot:
         stalled work (taken over: the move toward it), else a step aside when the robot is in the person's
         way, else the other reachable options, else a step aside (the action). While a given-up subtask is avoided the options are the reachable others
         (:func:`planner.standoff.alternatives`); when there are none the robot holds its place (stays) until
-        the person moves."""
+        the person moves. In a team stall (no progress for ``stall_ticks``) the options are judged without
+        the person's load and the robot keeps its subtask (:func:`planner.standoff.committed`), moving toward
+        the targets it can reach without passing the person when some cannot be (the move)."""
         assert self.belief is not None
         cells = self.tasker.targets
         if self.standoff.stuck >= self.cfg.standoff_ticks:
@@ -227,6 +231,15 @@ class QmdpRobot:
             return choices
         if world.tick < self.standoff.hold_until:
             return Action.STAY
+        if self.standoff.stalled(self.cfg.stall_ticks):
+            options = committed(self.tasker.options(unaided(world), self.current), self.current)
+            if options == (self.current,):
+                targets = self.tasker.targets(options[0], world)
+                clear = within_reach(self.layout, world, targets)
+                if clear and clear != targets:
+                    pose = (world.robot.pos, world.robot.facing)
+                    return self.rollout.robot_model.move_toward(pose, clear, world.human.pos,
+                                                                partner_parked=self.human_still >= 2)[0]
         avoided = self.standoff.avoided(world.tick)
         if avoided is None or avoided not in options:
             return options

@@ -21,6 +21,23 @@ person's cell**, it re-plans around the person, in this order:
 The blocked subtask is then avoided until the person moves or ``2 × standoff_ticks`` ticks pass; after a step
 aside the robot also holds still for ``2 × standoff_ticks`` ticks (else it steps back into the way as soon as
 the person comes closer).
+
+**Team stalls.** The person can also stall the team without blocking anyone: the simulated person whose
+out-of-date KB says the sink is busy shuttles its dirty plate between a counter and its hands for the rest of
+the trial, and the robot, which counts on that plate reaching the sink, has no option left that it keeps
+(fetching a plate is not offered while the person holds one, so the robot's options flicker with the
+person's hands and it steps back and forth between two subtasks). So, whether or not its target is blocked:
+when the **team** has made no progress, i.e. the shaping potential Φ (orders, steaks on grills, boards and
+sinks in use, clean plates, plated steaks and dishes: :func:`planner.rollout.potential`) has not changed for
+``stall_ticks`` consecutive ticks, the robot **takes the person's stalled work over**: it judges its options
+as if the person's hands were empty (:func:`unaided`: what the person carries and has not brought is no
+longer counted on, so the robot fetches and washes its own plate, brings its own meat or onion) and keeps
+the subtask it chooses until it is done (:func:`committed`), heading only for the targets it can reach
+without passing the person (:func:`within_reach`: a plate the person keeps putting down on a counter that
+only the person's cell gives on to is not one; heading for it whenever it lies there turned the robot back
+and forth as well); ordinary planning resumes as soon as Φ changes.
+The blocked-target rule above comes first.
+
 State is an immutable :class:`Standoff`, advanced once per observed tick by :func:`advance`.
 """
 
@@ -47,9 +64,17 @@ class Standoff:
     avoid_until: int = -1
     hold_until: int = -1
     """After a step aside the robot holds still until this tick, so the person can pass."""
+    phi: float | None = None
+    """The team's shaping potential Φ at the last observed tick."""
+    quiet: int = 0
+    """Consecutive ticks without team progress (Φ unchanged)."""
 
     def avoided(self, tick: int) -> Subtask | None:
         return self.avoid if tick < self.avoid_until else None
+
+    def stalled(self, ticks: int) -> bool:
+        """Whether the team has made no progress for ``ticks`` ticks (a team stall)."""
+        return self.quiet >= ticks
 
 
 def blocked(layout: Layout, world: WorldState, cells: tuple[Pos, ...]) -> bool:
@@ -77,14 +102,22 @@ def _blocked(layout: Layout, agent: AgentState, other: Pos, cells: tuple[Pos, ..
 
 def reachable(layout: Layout, world: WorldState, cells: tuple[Pos, ...]) -> bool:
     """Whether one of ``cells`` can be reached (or is reached) without passing the person's cell."""
+    return bool(within_reach(layout, world, cells))
+
+
+def within_reach(layout: Layout, world: WorldState, cells: tuple[Pos, ...]) -> tuple[Pos, ...]:
+    """The ``cells`` the robot can reach (or has reached) without passing the person's cell."""
     pose = (world.robot.pos, world.robot.facing)
-    return any(distance(layout, pose, c) == 0 or detour_moves(layout, pose, c, world.human.pos) for c in cells)
+    return tuple(c for c in cells
+                 if distance(layout, pose, c) == 0 or detour_moves(layout, pose, c, world.human.pos))
 
 
 def advance(state: Standoff, layout: Layout, before: AgentState | None, world: WorldState,
-            target: tuple[Pos, ...], human_moved: bool) -> Standoff:
+            target: tuple[Pos, ...], human_moved: bool, phi: float) -> Standoff:
     """The standoff after the robot observed ``world`` (``before``: the robot one tick earlier; ``target``:
-    the cells of the robot's current subtask)."""
+    the cells of the robot's current subtask; ``phi``: the shaping potential of ``world``)."""
+    quiet = state.quiet + 1 if state.phi is not None and phi == state.phi else 0
+    state = replace(state, phi=phi, quiet=quiet)
     if human_moved:
         state = replace(state, avoid=None, avoid_until=-1)
     progressed = before is None or before.pos != world.robot.pos or before.held != world.robot.held
@@ -95,7 +128,7 @@ def advance(state: Standoff, layout: Layout, before: AgentState | None, world: W
 
 def give_up(state: Standoff, subtask: Subtask | None, tick: int, ticks: int) -> Standoff:
     """Avoid ``subtask`` for ``2 × ticks`` ticks; the count starts again."""
-    return Standoff(stuck=0, avoid=subtask, avoid_until=tick + 2 * ticks)
+    return replace(state, stuck=0, avoid=subtask, avoid_until=tick + 2 * ticks, hold_until=-1)
 
 
 def hold_aside(state: Standoff, tick: int, ticks: int) -> Standoff:
@@ -111,6 +144,17 @@ def alternatives(layout: Layout, world: WorldState, options: tuple[Subtask, ...]
         else ()
     return tuple(s for s in options + extra
                  if s is not blocked_subtask and reachable(layout, world, targets(s, world)))
+
+
+def unaided(world: WorldState) -> WorldState:
+    """``world`` as the robot judges its options in a team stall: the person's hands empty, so nothing the
+    person carries is counted on."""
+    return replace(world, human=replace(world.human, held=None))
+
+
+def committed(options: tuple[Subtask, ...], current: Subtask | None) -> tuple[Subtask, ...]:
+    """In a team stall: the robot's current subtask alone while it is among ``options``, else ``options``."""
+    return (current,) if current in options else options
 
 
 def take_over(human_subtask: Subtask | None, choices: tuple[Subtask, ...]) -> Subtask | None:

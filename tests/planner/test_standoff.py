@@ -1,6 +1,7 @@
-"""Standoffs (planner.standoff, issue 18 part 1): a person who blocks the robot's target and does not move
-no longer freezes the robot. Each scenario is also played with the rule switched off
-(``standoff_ticks`` out of reach), to show the robot would otherwise wait for the rest of the trial."""
+"""Standoffs (planner.standoff, issue 18 part 1): a person who blocks the robot's target and does not move,
+or who stalls the team without blocking anyone, no longer freezes the robot. Each scenario is also played
+with the rule switched off (``standoff_ticks`` / ``stall_ticks`` out of reach), to show the robot would
+otherwise wait for the rest of the trial."""
 
 from __future__ import annotations
 
@@ -10,12 +11,15 @@ from dataclasses import replace
 import numpy as np
 
 from planner.geometry import Action, Direction
+from planner.human import HumanMemory, HumanModel
+from planner.kb import KnowledgeBase, initial_kb, update_kb
 from planner.layout import Layout, parse_layout
 from planner.paths import best_moves, distance
+from planner.perception import FOV_ANGLE, KB_DELAY
 from planner.planner_config import PlannerConfig
 from planner.robots import make_robot
 from planner.rules import Rules
-from planner.standoff import take_over
+from planner.standoff import take_over, within_reach
 from planner.state import AgentState, WorldState, initial_state
 from planner.step import step
 from planner.subtasks import Subtask
@@ -38,6 +42,17 @@ X    1 2  X
 XBWSX XXXPX
 XXXXXXXXXXX
 """, name="corridor")
+# The person's corridor (y = 2) lies above the robot's room (y = 4–5), joined at (8,3). The person stands at
+# (5,2) facing the counter (5,1); the plates (6,3) are reached from either side, the onions (7,1) from
+# (7,2), east of the person; the sink (0,5) is out of the person's view.
+SHUTTLE = parse_layout("""XXXXXXXXXX
+XXXXXXXOXX
+X    2   X
+XXXXBXDX X
+X 1      X
+W        P
+XXXMXXSXXX
+""", name="shuttle")
 Human = Callable[[WorldState], Action]
 
 
@@ -96,3 +111,51 @@ def test_the_person_s_stalled_errand_is_taken_over_when_the_robot_can_do_it():
     choices = (Subtask.PICKUP_ONION, Subtask.PICKUP_PLATE)
     assert take_over(Subtask.PICKUP_ONION, choices) is Subtask.PICKUP_ONION
     assert take_over(Subtask.PICKUP_MEAT, choices) is None
+
+
+def test_a_target_only_the_person_s_cell_gives_on_to_is_not_within_reach():
+    # In a team stall the robot heads only for such targets: the plate the person keeps putting down in
+    # front of itself is not one (else the robot turns toward it whenever it lies there).
+    start = initial_state(CORNER, RULES)
+    world = replace(start, robot=AgentState((4, 2), Direction.WEST), human=AgentState((1, 2), Direction.NORTH))
+    assert within_reach(CORNER, world, ((1, 1), (6, 1), (1, 3))) == ((6, 1),)
+    moved = replace(world, human=AgentState((2, 2), Direction.WEST))
+    assert within_reach(CORNER, moved, ((1, 1), (6, 1))) == ((6, 1),), "the person still bars the corridor"
+    assert within_reach(CORNER, replace(world, human=AgentState((6, 2), Direction.NORTH)), ((1, 1),)) == ((1, 1),)
+
+
+def play_with_person(layout: Layout, world: WorldState, kb: KnowledgeBase, config: PlannerConfig,
+                     ticks: int) -> WorldState:
+    """The baseline robot with the simulated person (docs/domain.md §4), whose KB starts as ``kb``."""
+    robot = make_robot("baseline", layout, RULES, config)
+    robot.reset(world)
+    person, memory = HumanModel(layout, RULES), HumanMemory()
+    person_rng, robot_rng = np.random.default_rng(0).spawn(2)
+    events: tuple = ()
+    for _ in range(ticks):
+        human_action, memory = person.act(world, kb, memory, person_rng)
+        action = robot.decide(world, events, robot_rng).action
+        world, events = step(layout, world, {"human": human_action, "robot": action}, RULES)
+        kb = update_kb(kb, layout, world, angle=FOV_ANGLE, kb_delay=KB_DELAY,
+                       own_events=[e for e in events if e.agent == "human"])
+        if world.orders_left == 0:
+            break
+    return world
+
+
+def test_a_person_shuttling_a_plate_does_not_stall_the_baseline_robot():
+    # The generated kitchens' stall (gen_1040_peninsula seed 3, gen_1066_split seed 0, gen_1087_peninsula
+    # seed 3): one order left, the steak ready, board and sink empty. The person's KB is out of date (a
+    # plate in the sink, a garnish on the board), so it has nothing to do but pick up the dirty plate on
+    # its counter and, the sink "busy", put it back, for ever. Fetching a plate is an option for the robot
+    # only while the person's hands are empty, so the robot turned between the plates and the onions every
+    # tick and the team never moved again.
+    start = initial_state(SHUTTLE, RULES)
+    world = replace(start, human=AgentState((5, 2), Direction.NORTH), robot=AgentState((2, 4), Direction.SOUTH),
+                    objects=(((5, 1), "dirty_plate"),), grills=(RULES.cook_time,), orders_left=1)
+    stale = replace(initial_kb(world), boards=(RULES.chop_time,), sinks=(0,))
+    stalled = play_with_person(SHUTTLE, world, stale, replace(ON, stall_ticks=10**6), ticks=150)
+    assert (stalled.orders_left, stalled.boards, stalled.sinks) == (1, (None,), (None,))
+    moving = play_with_person(SHUTTLE, world, stale, ON, ticks=150)
+    assert moving.orders_left == 0, "the robot should have made and served the dish itself"
+    assert moving.human.pos == (5, 2), "the person never moved: the robot did the work"
