@@ -111,3 +111,17 @@ class ConfigEcho(Counting):
 
 def config_echo(name: str, layout: Any, rules: Any, config: PlannerConfig) -> ConfigEcho:
     return ConfigEcho(config)
+
+
+class GcProbe(Counting):
+    """Answers with the number of objects its process has frozen out of the cyclic garbage collector."""
+
+    def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,
+               deadline: float | None = None) -> Decision:
+        import gc
+
+        return Decision(Action.STAY, q_values={"frozen": float(gc.get_freeze_count())})
+
+
+def gc_probe(name: str, layout: Any, rules: Any, config: Any = None) -> GcProbe:
+    return GcProbe()

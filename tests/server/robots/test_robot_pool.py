@@ -134,3 +134,18 @@ def test_workers_yield_the_cpu_to_the_game_loop():
             await pool.shutdown()
 
     assert asyncio.run(run()) >= os.getpriority(os.PRIO_PROCESS, 0) + 5
+
+
+def test_a_worker_keeps_what_its_planners_built_out_of_full_collections():
+    """A full garbage collection of a worker's grown planner caches held decisions up past their deadline:
+    a worker freezes what exists once a trial opens (and every ``FREEZE_EVERY`` requests)."""
+    async def run():
+        pool = ProcessRobots(1, "steakhouse_test_robots:gc_probe")
+        await pool.start()
+        try:
+            await pool.open(1, "any", LAYOUT, RULES, CONFIG, WORLD, KB)
+            return (await decide(pool, 1)).info["q_values"]["frozen"]
+        finally:
+            await pool.shutdown()
+
+    assert asyncio.run(run()) > 1000
