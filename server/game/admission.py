@@ -28,21 +28,26 @@ from dataclasses import dataclass, field
 HISTORY = 20
 DEFAULT_MAX_WAIT_S = 600.0
 """How long a participant may wait for a slot before being screened out (``STEAKHOUSE_ADMISSION_MAX_WAIT_S``)."""
-TRIAL_CORE_SHARE = 0.068
+TRIAL_CORE_SHARE = 0.0206
 """CPU one live trial costs, as a share of one core: the server's and the robot workers' CPU over the trials
-of ``benchmarks/load/capacity.py`` at the largest N whose robot kept (nearly) every decision on time
-(docs/operations.md §2, measured 2026-12-02 on the quiet 2-core reference machine: N = 10,
-(17.6 % + 50.7 %) / 10 ≈ 6.8 % of a core with the FOV-aware robot at 5 Hz; 2 of 2,991 decisions late)."""
-USABLE_CORE_SHARE = 0.45
-"""Share of the machine's cores that live trials may use and keep robot decisions on time: N = 10 used 68 % of
-200 % (0.07 % of decisions late), N = 15 120 % (0.6 % late), N = 20 151 % (5.5 % late, past the invalid-trial
-threshold); planner decisions queue behind each other well before the cores are full."""
+of ``benchmarks/load/capacity.py`` at the largest N it passed (docs/operations.md §2, measured 2026-12-02
+05:37 UTC on the quiet 2-core reference machine: N = 60, (46.1 % + 77.5 %) / 60 ≈ 2.06 % of a core with the
+FOV-aware robot at 5 Hz; p99 tick lateness 13.5 ms, no decision late after the warm-up)."""
+SERVER_CORE_SHARE = 0.0077
+"""The server process's part of it (46.1 % / 60): one process runs its game loops on one core, whatever the
+machine has."""
+USABLE_CORE_SHARE = 0.618
+"""Share of a core that live trials may use and stay on time: what N = 60 used on the reference machine
+(123.6 % of 200 %). Past it nothing was measured to pass, so the default goes no further."""
 
 
 def default_capacity(cpu_count: int | None = None) -> int:
-    """``floor(cores × USABLE_CORE_SHARE / TRIAL_CORE_SHARE)``, at least 1 (13 on 2 cores)."""
+    """``floor(cores × USABLE_CORE_SHARE / TRIAL_CORE_SHARE)``, but no more than one core's worth of game loops
+    (``USABLE_CORE_SHARE / SERVER_CORE_SHARE``); at least 1. 60 on 2 cores, 30 on 1, 80 from 3 cores up."""
     cores = cpu_count if cpu_count is not None else (os.cpu_count() or 1)
-    return max(1, math.floor(cores * USABLE_CORE_SHARE / TRIAL_CORE_SHARE + 1e-9))
+    machine = math.floor(cores * USABLE_CORE_SHARE / TRIAL_CORE_SHARE + 1e-9)
+    one_loop = math.floor(USABLE_CORE_SHARE / SERVER_CORE_SHARE + 1e-9)
+    return max(1, min(machine, one_loop))
 
 
 @dataclass(eq=False)
