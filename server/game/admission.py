@@ -28,22 +28,24 @@ from dataclasses import dataclass, field
 HISTORY = 20
 DEFAULT_MAX_WAIT_S = 600.0
 """How long a participant may wait for a slot before being screened out (``STEAKHOUSE_ADMISSION_MAX_WAIT_S``)."""
-TRIAL_CORE_SHARE = 0.0206
+TRIAL_CORE_SHARE = 0.0205
 """CPU one live trial costs, as a share of one core: the server's and the robot workers' CPU over the trials
-of ``benchmarks/load/capacity.py`` at the largest N it passed (docs/operations.md §2, measured 2026-12-02
-05:37 UTC on the quiet 2-core reference machine: N = 60, (46.1 % + 77.5 %) / 60 ≈ 2.06 % of a core with the
-FOV-aware robot at 5 Hz; p99 tick lateness 13.5 ms, no decision late after the warm-up)."""
+of ``benchmarks/load/capacity.py`` (docs/operations.md §2, measured 2026-12-02 05:37 UTC on the quiet 2-core
+reference machine, FOV-aware robot at 5 Hz: N = 40, (30.9 % + 51.2 %) / 40 ≈ 2.05 % of a core; N = 60 cost
+the same per trial)."""
 SERVER_CORE_SHARE = 0.0077
-"""The server process's part of it (46.1 % / 60): one process runs its game loops on one core, whatever the
+"""The server process's part of it (30.9 % / 40): one process runs its game loops on one core, whatever the
 machine has."""
-USABLE_CORE_SHARE = 0.618
-"""Share of a core that live trials may use and stay on time: what N = 60 used on the reference machine
-(123.6 % of 200 %). Past it nothing was measured to pass, so the default goes no further."""
+USABLE_CORE_SHARE = 0.4105
+"""Share of a core that live trials may use with no trial invalid: what N = 40 used on the reference machine
+(82.1 % of 200 %). At twice a cap of 40 (80 seats, 30 s trials) no trial of 205 passed the invalid-trial
+threshold; at twice a cap of 60, 13 of 298 did (trials start and end all the time there, and each start's
+first decisions are its costliest), although 60 long trials at once passed ``capacity.py``."""
 
 
 def default_capacity(cpu_count: int | None = None) -> int:
     """``floor(cores × USABLE_CORE_SHARE / TRIAL_CORE_SHARE)``, but no more than one core's worth of game loops
-    (``USABLE_CORE_SHARE / SERVER_CORE_SHARE``); at least 1. 60 on 2 cores, 30 on 1, 80 from 3 cores up."""
+    (``USABLE_CORE_SHARE / SERVER_CORE_SHARE``); at least 1. 40 on 2 cores, 20 on 1, 53 from 3 cores up."""
     cores = cpu_count if cpu_count is not None else (os.cpu_count() or 1)
     machine = math.floor(cores * USABLE_CORE_SHARE / TRIAL_CORE_SHARE + 1e-9)
     one_loop = math.floor(USABLE_CORE_SHARE / SERVER_CORE_SHARE + 1e-9)

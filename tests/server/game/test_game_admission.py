@@ -10,9 +10,9 @@ from server.game.admission import Admission, default_capacity
 
 
 def test_the_default_capacity_follows_the_cores_up_to_one_core_of_game_loops():
-    assert default_capacity(1) == 30
-    assert default_capacity(2) == 60
-    assert default_capacity(4) == default_capacity(8) == 80
+    assert default_capacity(1) == 20
+    assert default_capacity(2) == 40
+    assert default_capacity(4) == default_capacity(8) == 53
 
 
 def test_slots_up_to_the_capacity_then_a_line_in_arrival_order():
