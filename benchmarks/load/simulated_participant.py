@@ -19,6 +19,7 @@ from typing import Any
 
 import httpx
 from websockets.asyncio.client import ClientConnection, connect
+from websockets.exceptions import ConnectionClosedOK
 
 HEARTBEAT_S = 1.0
 
@@ -122,9 +123,15 @@ class Game:
         self.transcript: Transcript | None = None
 
     async def send(self, type_: str, **fields: Any) -> int:
+        """Send a message. When the server has just closed the socket (it ends a trial with ``trial_end`` and a
+        normal close) the message is dropped: what the server sent before closing is still to be read, and
+        :meth:`play` reads it (a heartbeat due at that moment is not a failure of the trial)."""
         self.seq += 1
         self.sent_at[self.seq] = time.monotonic()
-        await self.ws.send(json.dumps({"v": 1, "seq": self.seq, "type": type_, **fields}))
+        try:
+            await self.ws.send(json.dumps({"v": 1, "seq": self.seq, "type": type_, **fields}))
+        except ConnectionClosedOK:
+            self.sent_at.pop(self.seq, None)
         return self.seq
 
     async def play(self) -> bool:
