@@ -237,9 +237,7 @@ class QmdpRobot:
                 targets = self.tasker.targets(options[0], world)
                 clear = within_reach(self.layout, world, targets)
                 if clear and clear != targets:
-                    pose = (world.robot.pos, world.robot.facing)
-                    return self.rollout.robot_model.move_toward(pose, clear, world.human.pos,
-                                                                partner_parked=self.human_still >= 2)[0]
+                    return self.rollout.move_to(world, clear, self.human_still >= 2)
         avoided = self.standoff.avoided(world.tick)
         if avoided is None or avoided not in options:
             return options

@@ -193,7 +193,10 @@ class Rollout:
 
     def robot_move(self, world: WorldState, subtask: Subtask, human_parked: bool = False) -> Action:
         """The robot's next move toward ``subtask`` (walking around a human parked for two ticks)."""
+        return self.move_to(world, self.tasker.targets(subtask, world), human_parked)
+
+    def move_to(self, world: WorldState, cells: tuple[Pos, ...], human_parked: bool = False) -> Action:
+        """The robot's next move toward the nearest of ``cells`` (as :meth:`robot_move`)."""
         pose = (world.robot.pos, world.robot.facing)
-        action, _ = self.robot_model.move_toward(pose, self.tasker.targets(subtask, world), world.human.pos,
-                                                 partner_parked=human_parked)
+        action, _ = self.robot_model.move_toward(pose, cells, world.human.pos, partner_parked=human_parked)
         return action

@@ -102,14 +102,17 @@ def _blocked(layout: Layout, agent: AgentState, other: Pos, cells: tuple[Pos, ..
 
 def reachable(layout: Layout, world: WorldState, cells: tuple[Pos, ...]) -> bool:
     """Whether one of ``cells`` can be reached (or is reached) without passing the person's cell."""
-    return bool(within_reach(layout, world, cells))
+    return any(_clear(layout, world, c) for c in cells)
 
 
 def within_reach(layout: Layout, world: WorldState, cells: tuple[Pos, ...]) -> tuple[Pos, ...]:
     """The ``cells`` the robot can reach (or has reached) without passing the person's cell."""
+    return tuple(c for c in cells if _clear(layout, world, c))
+
+
+def _clear(layout: Layout, world: WorldState, cell: Pos) -> bool:
     pose = (world.robot.pos, world.robot.facing)
-    return tuple(c for c in cells
-                 if distance(layout, pose, c) == 0 or detour_moves(layout, pose, c, world.human.pos))
+    return distance(layout, pose, cell) == 0 or bool(detour_moves(layout, pose, cell, world.human.pos))
 
 
 def advance(state: Standoff, layout: Layout, before: AgentState | None, world: WorldState,
