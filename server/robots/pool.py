@@ -7,7 +7,14 @@ that dies (its planner crashed the interpreter, it was killed) fails its pending
 ``error = "worker_lost"``; the next ``open`` of an affected trial starts a fresh process.
 
 Processes are started with ``spawn`` (no fork of a running event loop). Replies are read by one thread per
-worker and handed to the event loop, so nothing blocks the loop.
+worker and handed to the event loop, so nothing blocks the loop. (Not ``loop.add_reader``: uvloop makes a
+watched file descriptor non-blocking, and the requests go out on the same one.)
+
+A decision is judged on when the worker **sent** it (its ``time.monotonic()``, the same clock on one
+machine), not on when the game loop got round to reading it: a full garbage collection of the server holds
+all its threads for tens of ms at 60 trials, and an answer sent in time sits in the pipe meanwhile while the
+tick it is for has not been applied yet. So when the deadline passes unanswered, the loop waits at most
+``READ_GRACE_S`` for a reply already on its way, and takes it if it was sent by the deadline.
 """
 
 from __future__ import annotations
@@ -19,7 +26,7 @@ import logging
 import multiprocessing
 import threading
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from typing import Any, Protocol
 
 from planner.decision import RobotFactory
@@ -36,6 +43,8 @@ from server.robots.worker import worker_main
 
 log = logging.getLogger(__name__)
 OPEN_TIMEOUT_S = 60.0
+READ_GRACE_S = 0.02
+"""How long past an unanswered deadline the loop waits for a reply the worker may have sent in time."""
 
 
 class RobotPool(Protocol):
@@ -59,7 +68,7 @@ class _Worker:
     def __init__(self, index: int, factory_path: str) -> None:
         self.index, self.factory_path = index, factory_path
         self.trials: set[int] = set()
-        self.pending: dict[int, asyncio.Future[tuple[str, Any]]] = {}
+        self.pending: dict[int, asyncio.Future[tuple[str, Any, float]]] = {}
         self.alive = False
         self.process: Any = None
         self.conn: Any = None
@@ -80,20 +89,20 @@ class _Worker:
     def _read(self, loop: asyncio.AbstractEventLoop, conn: Any) -> None:
         while True:
             try:
-                req, status, payload = conn.recv()
+                req, status, payload, sent = conn.recv()
             except (EOFError, OSError):
                 break
             try:
-                loop.call_soon_threadsafe(self._resolve, req, status, payload)
+                loop.call_soon_threadsafe(self._resolve, req, status, payload, sent)
             except RuntimeError:
                 return
         with contextlib.suppress(RuntimeError):
             loop.call_soon_threadsafe(self._lost, conn)
 
-    def _resolve(self, req: int, status: str, payload: Any) -> None:
+    def _resolve(self, req: int, status: str, payload: Any, sent: float) -> None:
         future = self.pending.pop(req, None)
         if future is not None and not future.done():
-            future.set_result((status, payload))
+            future.set_result((status, payload, sent))
 
     def _lost(self, conn: Any) -> None:
         if conn is not self.conn:
@@ -103,16 +112,17 @@ class _Worker:
         self.alive = False
         for future in self.pending.values():
             if not future.done():
-                future.set_result(("lost", "worker_lost"))
+                future.set_result(("lost", "worker_lost", time.monotonic()))
         self.pending.clear()
 
-    def request(self, op: str, *args: Any) -> asyncio.Future[tuple[str, Any]]:
-        """Send ``(op, req, *args)``; the future gets ``(status, payload)`` (``"lost"`` if the worker died)."""
+    def request(self, op: str, *args: Any) -> asyncio.Future[tuple[str, Any, float]]:
+        """Send ``(op, req, *args)``; the future gets ``(status, payload, sent)`` (``"lost"`` if the worker
+        died), ``sent`` being the ``time.monotonic()`` at which the worker sent its reply."""
         req = next(self._ids)
         message = (op, req, *args)
-        future: asyncio.Future[tuple[str, Any]] = asyncio.get_running_loop().create_future()
+        future: asyncio.Future[tuple[str, Any, float]] = asyncio.get_running_loop().create_future()
         if not self.alive:
-            future.set_result(("lost", "worker_lost"))
+            future.set_result(("lost", "worker_lost", time.monotonic()))
             return future
         self.pending[req] = future
         try:
@@ -120,7 +130,7 @@ class _Worker:
                 self.conn.send(message)
         except (BrokenPipeError, OSError):
             self.pending.pop(req, None)
-            future.set_result(("lost", "worker_lost"))
+            future.set_result(("lost", "worker_lost", time.monotonic()))
         return future
 
     def stop(self) -> None:
@@ -170,7 +180,7 @@ class ProcessRobots:
         worker = min(self._workers, key=lambda w: (len(w.trials), w.index))
         worker.trials.add(trial_id)
         self._pins[trial_id] = worker
-        status, payload = await asyncio.wait_for(
+        status, payload, _ = await asyncio.wait_for(
             worker.request("open", trial_id, robot, layout, rules, config, world, kb), OPEN_TIMEOUT_S)
         if status != "ok":
             worker.trials.discard(trial_id)
@@ -184,12 +194,16 @@ class ProcessRobots:
             return RobotChoice(Action.STAY, error="worker_lost")
         start = time.perf_counter()
         future = worker.request("decide", trial_id, world, tuple(events), seed, tick, deadline)
-        try:
-            status, payload = await asyncio.wait_for(asyncio.shield(future),
-                                                     max(deadline - time.monotonic(), 0.0))
-        except TimeoutError:
-            return RobotChoice(Action.STAY, decision_ms=(time.perf_counter() - start) * 1000, missed=True)
-        return choice_from_reply(status, payload, (time.perf_counter() - start) * 1000)
+        with contextlib.suppress(TimeoutError):
+            await asyncio.wait_for(asyncio.shield(future), max(deadline - time.monotonic(), 0.0))
+        if not future.done():
+            with contextlib.suppress(TimeoutError):
+                await asyncio.wait_for(asyncio.shield(future), READ_GRACE_S)
+        elapsed_ms = (time.perf_counter() - start) * 1000
+        if not future.done() or future.result()[2] > deadline:
+            return RobotChoice(Action.STAY, decision_ms=elapsed_ms, missed=True)
+        status, payload, _ = future.result()
+        return choice_from_reply(status, payload, elapsed_ms)
 
     async def close_trial(self, trial_id: int) -> None:
         worker = self._pins.pop(trial_id, None)

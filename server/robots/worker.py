@@ -3,9 +3,10 @@
 Requests (pickled tuples): ``("open", req, trial_id, robot, layout, rules, config, world, kb)`` builds the
 planner with the factory (``factory(robot, layout, rules, config)``) and resets it on the world and the
 person's modelled KB the trial starts or resumes from; ``("decide", req, trial_id, world, events, seed, tick,
-deadline)`` answers the action; ``("close", req, trial_id)`` drops the planner; ``("stop",)`` ends the process. Replies are
-``(req, "ok", payload)`` or ``(req, "error", message)``. Requests are served one at a time, so a trial's
-planner is never used concurrently. The process ignores SIGINT (the server shuts it down) and exits when
+deadline)`` answers the action; ``("close", req, trial_id)`` drops the planner; ``("stop",)`` ends the
+process. Replies are ``(req, "ok", payload, sent)`` or ``(req, "error", message, sent)``, ``sent`` being the
+``time.monotonic()`` just before the reply is written (the server judges deadlines on it). Requests are
+served one at a time, so a trial's planner is never used concurrently. The process ignores SIGINT (the server shuts it down) and exits when
 the pipe closes (the server died). It runs at a lower CPU priority than the server (``WORKER_NICE``): when
 the machine is busy the game loop's ticks and websocket frames go first — a late tick is felt by every
 participant at once, while a decision has most of the tick period (80 %) to arrive.
@@ -16,6 +17,7 @@ from __future__ import annotations
 import gc
 import os
 import signal
+import time
 from multiprocessing.connection import Connection
 from typing import Any
 
@@ -51,7 +53,7 @@ def worker_main(conn: Connection, factory_path: str) -> None:
         else:
             reply = (req, "ok", payload)
         try:
-            conn.send(reply)
+            conn.send((*reply, time.monotonic()))
         except (BrokenPipeError, OSError):
             break
         served += 1

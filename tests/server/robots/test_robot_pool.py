@@ -149,3 +149,33 @@ def test_a_worker_keeps_what_its_planners_built_out_of_full_collections():
             await pool.shutdown()
 
     assert asyncio.run(run()) > 1000
+
+
+def test_an_answer_sent_in_time_counts_when_the_server_was_held_past_the_deadline():
+    """A full garbage collection of the server holds its interpreter (every thread of it) for tens of ms at
+    60 trials. An answer the worker sent before the deadline is in the pipe when the server comes back, and
+    the tick it is for has not been applied yet: it counts, rather than being judged on when the server got
+    round to reading it."""
+    import sys
+
+    async def run():
+        pool = ProcessRobots(1, "steakhouse_test_robots:counting")
+        await pool.start()
+        interval = sys.getswitchinterval()
+        try:
+            await pool.open(1, "any", LAYOUT, RULES, CONFIG, WORLD, KB)
+            pending = asyncio.create_task(decide(pool, 1, budget=0.15))
+            await asyncio.sleep(0)  # the request is on its way
+            sys.setswitchinterval(10.0)  # like a collection: no other thread of the server runs meanwhile
+            held_until = time.monotonic() + 0.6
+            while time.monotonic() < held_until:
+                pass
+            sys.setswitchinterval(interval)
+            return await pending
+        finally:
+            sys.setswitchinterval(interval)
+            await pool.shutdown()
+
+    choice = asyncio.run(run())
+    assert not choice.missed and choice.action is Action.NORTH
+    assert choice.decision_ms > 150, "the server was held past the deadline"
