@@ -69,13 +69,26 @@ class BatchWriter:
             if not ticks and not events:
                 return
             self._ticks, self._events = [], []
+            write = asyncio.ensure_future(asyncio.to_thread(write_batch, self.store, ticks, events))
             try:
-                await asyncio.to_thread(write_batch, self.store, ticks, events)
-            except BaseException:
-                self.failures += 1
-                self._ticks[:0] = ticks
-                self._events[:0] = events
+                await asyncio.shield(write)
+            except asyncio.CancelledError:
+                # The thread cannot be stopped: its transaction commits or fails whatever happens to this
+                # task. Putting the rows back before it is done wrote them twice at shutdown (the writer
+                # cancelled mid-flush, then ``close`` flushing them again).
+                await asyncio.wait({write})
+                self._settle(write, ticks, events)
                 raise
+            except Exception:
+                self._settle(write, ticks, events)
+                raise
+
+    def _settle(self, write: asyncio.Future[None], ticks: list[Row], events: list[Row]) -> None:
+        """After a finished write: if it failed, put its rows back in front of what came since."""
+        if write.cancelled() or write.exception() is not None:
+            self.failures += 1
+            self._ticks[:0] = ticks
+            self._events[:0] = events
 
     async def close(self) -> None:
         if self._task is not None:

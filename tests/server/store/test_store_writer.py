@@ -133,3 +133,43 @@ def test_a_trial_ends_once(store, loaded):
         row = session.get(TrialRow, trial_id)
         assert (row.status, row.end_reason, row.ticks, row.score) == ("finished", "delivered", 9, 20)
         assert row.ended_at is not None
+
+
+def test_a_flush_cut_short_by_shutdown_is_written_once(store, loaded, monkeypatch, caplog):
+    """The writer's task is cancelled mid-flush when the server stops, and ``close`` flushes again: the rows
+    the cancelled flush was committing are not written a second time (which logged dropped duplicates)."""
+    _, trial_id = new_trial(store, loaded)
+    import threading
+
+    import server.store.writer as writer_module
+
+    real = writer_module.write_batch
+    writing, release = threading.Event(), threading.Event()
+    batches: list[list[int]] = []
+
+    def slow(store_: Any, ticks: Any, events: Any) -> None:
+        batches.append([row["tick"] for row in ticks])
+        writing.set()
+        release.wait(5)
+        real(store_, ticks, events)
+
+    monkeypatch.setattr(writer_module, "write_batch", slow)
+
+    async def run() -> None:
+        writer = BatchWriter(store, interval=10)
+        writer.add_tick(tick_row(trial_id, 1))
+        flushing = asyncio.create_task(writer.flush())
+        await asyncio.to_thread(writing.wait, 5)
+        flushing.cancel()
+        writer.add_tick(tick_row(trial_id, 2))
+        await asyncio.sleep(0.05)
+        release.set()
+        with contextlib.suppress(asyncio.CancelledError):
+            await flushing
+        await writer.close()
+
+    with caplog.at_level("WARNING", logger="server.store.writer"):
+        asyncio.run(run())
+    assert stored(store, trial_id) == [1, 2]
+    assert batches == [[1], [2]]
+    assert not caplog.records
