@@ -6,16 +6,16 @@ person's modelled KB the trial starts or resumes from; ``("decide", req, trial_i
 deadline)`` answers the action; ``("close", req, trial_id)`` drops the planner; ``("stop",)`` ends the
 process. Replies are ``(req, "ok", payload, sent)`` or ``(req, "error", message, sent)``, ``sent`` being the
 ``time.monotonic()`` just before the reply is written (the server judges deadlines on it). Requests are
-served one at a time, so a trial's planner is never used concurrently. The process ignores SIGINT (the server shuts it down) and exits when
-the pipe closes (the server died). It runs at a lower CPU priority than the server (``WORKER_NICE``): when
-the machine is busy the game loop's ticks and websocket frames go first — a late tick is felt by every
-participant at once, while a decision has most of the tick period (80 %) to arrive.
+served one at a time, so a trial's planner is never used concurrently. The process ignores SIGINT (the
+server shuts it down) and exits when the pipe closes (the server died). It runs at the server's CPU
+priority: at a lower one (nice +5) the game loop's ticks went first on a saturated machine, but the workers
+then starved whenever the server and other work were busy together (trial ends and starts), and decisions
+missed their deadlines in bursts (docs/operations.md §2).
 """
 
 from __future__ import annotations
 
 import gc
-import os
 import signal
 import time
 from multiprocessing.connection import Connection
@@ -25,16 +25,12 @@ from planner.decision import Robot, RobotFactory
 from server.robots.choice import load_factory, run_decision
 
 
-WORKER_NICE = 5
-"""Added to the worker process's niceness (Linux: about a third of the server's CPU share when both want it)."""
 FREEZE_EVERY = 100
 """Requests between two ``gc.freeze()`` calls (see :func:`worker_main`)."""
 
 
 def worker_main(conn: Connection, factory_path: str) -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    if hasattr(os, "nice"):
-        os.nice(WORKER_NICE)
     factory = load_factory(factory_path)
     policies: dict[int, Robot] = {}
     served = 0

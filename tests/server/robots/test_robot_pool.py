@@ -119,23 +119,6 @@ def test_the_in_process_pool_has_the_same_rules(factory, expect):
         assert choice.error == "ValueError: planner bug"
 
 
-def test_workers_yield_the_cpu_to_the_game_loop():
-    """On a busy machine the server's ticks go before planning: the workers run at a lower priority."""
-    import os
-
-    async def run():
-        pool = ProcessRobots(1, "steakhouse_test_robots:counting")
-        await pool.start()
-        try:
-            await pool.open(1, "any", LAYOUT, RULES, CONFIG, WORLD, KB)
-            pid = (await decide(pool, 1)).info["q_values"]["pid"]
-            return os.getpriority(os.PRIO_PROCESS, int(pid))
-        finally:
-            await pool.shutdown()
-
-    assert asyncio.run(run()) >= os.getpriority(os.PRIO_PROCESS, 0) + 5
-
-
 def test_a_worker_keeps_what_its_planners_built_out_of_full_collections():
     """A full garbage collection of a worker's grown planner caches held decisions up past their deadline:
     a worker freezes what exists once a trial opens (and every ``FREEZE_EVERY`` requests)."""
