@@ -1,7 +1,7 @@
 """Robot planners in the server process, on one dedicated thread (``robot_workers = 0``; tests, debugging).
 
-Same semantics as the worker processes: requests are served one at a time in order, a late decision is
-discarded at its deadline (the thread finishes it in the background, so the next request waits for it).
+Same semantics as the worker processes: requests are served one at a time in order, a decision finished
+after its deadline is discarded (the thread finishes it in the background, so the next request waits for it).
 """
 
 from __future__ import annotations
@@ -14,14 +14,13 @@ from typing import Any
 
 from planner.decision import Robot, RobotFactory
 from planner.events import Event
-from planner.geometry import Action
 from planner.kb import KnowledgeBase
 from planner.layout import Layout
 from planner.planner_config import PlannerConfig
 from planner.rules import Rules
 from planner.state import WorldState
 from server.robots.choice import RobotChoice, run_decision
-from server.robots.reply import choice_from_reply
+from server.robots.reply import Reply, await_reply
 
 
 class InProcessRobots:
@@ -55,23 +54,17 @@ class InProcessRobots:
 
     async def decide(self, trial_id: int, world: WorldState, events: Sequence[Event], seed: int, tick: int,
                      deadline: float) -> RobotChoice:
-        def call() -> tuple[str, Any]:
+        def call() -> Reply:
             policy = self._policies.get(trial_id)
             if policy is None:
-                return ("lost", f"trial {trial_id} has no planner")
+                return ("lost", f"trial {trial_id} has no planner", time.monotonic())
             try:
-                return ("ok", run_decision(policy, world, tuple(events), seed, tick, deadline))
+                return ("ok", run_decision(policy, world, tuple(events), seed, tick, deadline), time.monotonic())
             except Exception as exc:  # noqa: BLE001 - a planner failure makes the robot stay
-                return ("error", f"{type(exc).__name__}: {exc}")
+                return ("error", f"{type(exc).__name__}: {exc}", time.monotonic())
 
         start = time.perf_counter()
-        future = self._run(call)
-        try:
-            status, payload = await asyncio.wait_for(asyncio.shield(future), max(deadline - time.monotonic(), 0.0))
-        except TimeoutError:
-            return RobotChoice(Action.STAY,
-                               decision_ms=(time.perf_counter() - start) * 1000, missed=True)
-        return choice_from_reply(status, payload, (time.perf_counter() - start) * 1000)
+        return await await_reply(self._run(call), deadline, start)
 
     async def close_trial(self, trial_id: int) -> None:
         self._policies.pop(trial_id, None)

@@ -9,12 +9,7 @@ that dies (its planner crashed the interpreter, it was killed) fails its pending
 Processes are started with ``spawn`` (no fork of a running event loop). Replies are read by one thread per
 worker and handed to the event loop, so nothing blocks the loop. (Not ``loop.add_reader``: uvloop makes a
 watched file descriptor non-blocking, and the requests go out on the same one.)
-
-A decision is judged on when the worker **sent** it (its ``time.monotonic()``, the same clock on one
-machine), not on when the game loop got round to reading it: a full garbage collection of the server holds
-all its threads for tens of ms at 60 trials, and an answer sent in time sits in the pipe meanwhile while the
-tick it is for has not been applied yet. So when the deadline passes unanswered, the loop waits at most
-``READ_GRACE_S`` for a reply already on its way, and takes it if it was sent by the deadline.
+Deadlines are judged on when the worker sent its answer (:mod:`server.robots.reply`).
 """
 
 from __future__ import annotations
@@ -38,13 +33,11 @@ from planner.planner_config import PlannerConfig
 from planner.rules import Rules
 from planner.state import WorldState
 from server.robots.choice import RobotChoice
-from server.robots.reply import choice_from_reply
+from server.robots.reply import Reply, await_reply
 from server.robots.worker import worker_main
 
 log = logging.getLogger(__name__)
 OPEN_TIMEOUT_S = 60.0
-READ_GRACE_S = 0.02
-"""How long past an unanswered deadline the loop waits for a reply the worker may have sent in time."""
 
 
 class RobotPool(Protocol):
@@ -68,7 +61,7 @@ class _Worker:
     def __init__(self, index: int, factory_path: str) -> None:
         self.index, self.factory_path = index, factory_path
         self.trials: set[int] = set()
-        self.pending: dict[int, asyncio.Future[tuple[str, Any, float]]] = {}
+        self.pending: dict[int, asyncio.Future[Reply]] = {}
         self.alive = False
         self.process: Any = None
         self.conn: Any = None
@@ -115,12 +108,12 @@ class _Worker:
                 future.set_result(("lost", "worker_lost", time.monotonic()))
         self.pending.clear()
 
-    def request(self, op: str, *args: Any) -> asyncio.Future[tuple[str, Any, float]]:
+    def request(self, op: str, *args: Any) -> asyncio.Future[Reply]:
         """Send ``(op, req, *args)``; the future gets ``(status, payload, sent)`` (``"lost"`` if the worker
         died), ``sent`` being the ``time.monotonic()`` at which the worker sent its reply."""
         req = next(self._ids)
         message = (op, req, *args)
-        future: asyncio.Future[tuple[str, Any, float]] = asyncio.get_running_loop().create_future()
+        future: asyncio.Future[Reply] = asyncio.get_running_loop().create_future()
         if not self.alive:
             future.set_result(("lost", "worker_lost", time.monotonic()))
             return future
@@ -194,16 +187,7 @@ class ProcessRobots:
             return RobotChoice(Action.STAY, error="worker_lost")
         start = time.perf_counter()
         future = worker.request("decide", trial_id, world, tuple(events), seed, tick, deadline)
-        with contextlib.suppress(TimeoutError):
-            await asyncio.wait_for(asyncio.shield(future), max(deadline - time.monotonic(), 0.0))
-        if not future.done():
-            with contextlib.suppress(TimeoutError):
-                await asyncio.wait_for(asyncio.shield(future), READ_GRACE_S)
-        elapsed_ms = (time.perf_counter() - start) * 1000
-        if not future.done() or future.result()[2] > deadline:
-            return RobotChoice(Action.STAY, decision_ms=elapsed_ms, missed=True)
-        status, payload, _ = future.result()
-        return choice_from_reply(status, payload, elapsed_ms)
+        return await await_reply(future, deadline, start)
 
     async def close_trial(self, trial_id: int) -> None:
         worker = self._pins.pop(trial_id, None)
