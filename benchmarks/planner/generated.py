@@ -112,7 +112,7 @@ def read_rows(path: Path) -> list[dict[str, Any]]:
 
 def run(specs: list[TrialSpec], jobs: int, out: Path, done: set[tuple[str, str, int]]) -> Iterator[dict[str, object]]:
     """Run the specs not yet in ``done`` and append each row to ``out`` as it finishes."""
-    todo = [s for s in specs if (s.layout_name, s.robot, s.seed) not in done]
+    todo = [s for s in specs if (s.layout.name, s.robot, s.seed) not in done]
     fresh = not out.exists()
     with out.open("a", newline="") as handle:
         writer = csv.DictWriter(handle, fieldnames=COLUMNS)
