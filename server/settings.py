@@ -20,6 +20,17 @@ from study_config import STUDY_DIR
 DEFAULT_DATABASE_URL = "sqlite:///./data/steakhouse.sqlite3"
 DEFAULT_STUDIES = (STUDY_DIR / "demo.yaml", STUDY_DIR / "demo_first_person.yaml", STUDY_DIR / "paper_study.yaml")
 _REPO_STATIC = Path(__file__).resolve().parents[1] / "static"
+WORKERS_PER_CORE = 2
+"""Robot workers per CPU. A worker serves its trials' decisions one at a time, so one slow decision holds up
+every other trial pinned to it; with twice as many workers as cores the operating system shares the cores
+between them and a slow decision holds up half as many trials. At 60 trials on 2 cores, ``capacity.py
+--counts 60 --all`` passed 7 of 7 runs with 4 workers and 10 of 12 with 2 (docs/operations.md §2); each worker
+costs ~70 MB."""
+
+
+def default_workers() -> int:
+    """Robot worker processes when ``robot_workers`` is not set: ``WORKERS_PER_CORE`` per CPU."""
+    return WORKERS_PER_CORE * (os.cpu_count() or 1)
 
 
 class Settings(BaseSettings):
@@ -41,7 +52,8 @@ class Settings(BaseSettings):
     admin_token: SecretStr | None = None
     """Bearer token of the admin API; when unset a random one is generated at start and logged."""
     robot_workers: int | None = Field(default=None, ge=0, le=256)
-    """Robot planner worker processes (default: the CPU count); 0 runs planners in the server process."""
+    """Robot planner worker processes (default: ``WORKERS_PER_CORE`` per CPU); 0 runs planners in the server
+    process."""
     robot_factory: str = "planner.robots:make_robot"
     """``module:function`` building a robot policy from ``(name, layout, rules)`` (tests and benchmarks)."""
     decision_deadline_fraction: float = Field(default=0.8, gt=0.0, le=1.0)
@@ -98,7 +110,7 @@ class Settings(BaseSettings):
     @property
     def workers(self) -> int:
         """The number of robot worker processes actually used."""
-        return self.robot_workers if self.robot_workers is not None else (os.cpu_count() or 1)
+        return self.robot_workers if self.robot_workers is not None else default_workers()
 
     @property
     def live_trial_capacity(self) -> int:

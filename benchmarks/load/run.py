@@ -40,6 +40,8 @@ from simulated_participant import run_load  # noqa: E402
 from admission_metrics import admission_metrics  # noqa: E402
 from store_metrics import percentile, store_metrics  # noqa: E402
 
+from server.settings import default_workers  # noqa: E402
+
 STUDY_ID = "load"
 
 
@@ -132,7 +134,8 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--tick-rate", type=float, default=5.0)
     p.add_argument("--horizon", type=int, default=400)
     p.add_argument("--orders", type=int, default=2)
-    p.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="robot worker processes")
+    p.add_argument("--workers", type=int, default=default_workers(),
+                   help="robot worker processes (default: the server's, two per CPU)")
     p.add_argument("--database", choices=("sqlite", "postgresql"), default="sqlite")
     p.add_argument("--postgres-url", default=os.environ.get("TEST_POSTGRES_URL", DEFAULT_POSTGRES),
                    help="server on which the run's PostgreSQL database is created and dropped")

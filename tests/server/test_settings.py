@@ -23,7 +23,7 @@ def test_defaults():
     settings = Settings()
     assert (settings.host, settings.port, settings.database_url) == ("127.0.0.1", 8000, DEFAULT_DATABASE_URL)
     assert [p.name for p in settings.study_files] == ["demo.yaml", "demo_first_person.yaml", "paper_study.yaml"]
-    assert settings.workers == (os.cpu_count() or 1) and settings.decision_deadline_fraction == 0.8
+    assert settings.workers == 2 * (os.cpu_count() or 1) and settings.decision_deadline_fraction == 0.8
 
 
 def test_environment_with_prefix_and_database_url(monkeypatch):
