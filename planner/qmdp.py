@@ -207,11 +207,13 @@ class QmdpRobot:
     def around_standoff(self, world: WorldState, options: tuple[Subtask, ...]) -> tuple[Subtask, ...] | Action:
         """:mod:`planner.standoff`: after ``standoff_ticks`` without progress behind the person, the person's
         stalled work (taken over: the move toward it), else a step aside when the robot is in the person's
-        way, else the other reachable options, else a step aside (the action). While a given-up subtask is avoided the options are the reachable others
-        (:func:`planner.standoff.alternatives`); when there are none the robot holds its place (stays) until
-        the person moves. In a team stall (no progress for ``stall_ticks``) the options are judged without
-        the person's load and the robot keeps its subtask (:func:`planner.standoff.committed`), moving toward
-        the targets it can reach without passing the person when some cannot be (the move)."""
+        way, else the other reachable options, else a step aside (the action). A person who has not moved for
+        ``visit_ticks`` is then visited (:meth:`visit_still_person`). While a given-up subtask is avoided the
+        options are the reachable others (:func:`planner.standoff.alternatives`); when there are none the robot
+        holds its place (stays) until the person moves. In a team stall (no progress for ``stall_ticks``) the
+        options are judged without the person's load and the robot keeps its subtask
+        (:func:`planner.standoff.committed`), moving toward the targets it can reach without passing the
+        person when some cannot be (the move)."""
         assert self.belief is not None
         cells = self.tasker.targets
         if self.standoff.stuck >= self.cfg.standoff_ticks:
