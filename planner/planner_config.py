@@ -32,7 +32,9 @@ class PlannerConfig:
     re-plans around them (:mod:`planner.standoff`). ``stall_ticks``: ticks without team progress (the shaping
     potential unchanged) before the robot takes the person's stalled work over (:mod:`planner.standoff`, team
     stalls); above most quiet stretches of finished trials (a trial's longest: p90 24 ticks, max 56, on the
-    shipped and generator-seed 0–9 kitchens; docs/domain.md §5, "Standoffs"). ``reuse_rollouts``: keep a
+    shipped and generator-seed 0–9 kitchens; docs/domain.md §5, "Standoffs"). ``visit_ticks``: ticks the
+    person stands in one cell before the robot goes to stand beside it for ``standoff_ticks`` ticks, once
+    until the person moves (:mod:`planner.standoff`, still person). ``reuse_rollouts``: keep a
     rollout whose first tick came true for the next tick's decision (:mod:`planner.reuse`; only with
     ``rollout_samples`` 1).
     ``rollout_budget``: simulated ticks one decision may spend on new rollouts (0: no limit; 336 is eight
@@ -67,6 +69,7 @@ class PlannerConfig:
     abstract_discount: float = 0.8
     standoff_ticks: int = 5
     stall_ticks: int = 30
+    visit_ticks: int = 30
     reuse_rollouts: bool = False
     rollout_budget: int = 0
 

@@ -57,8 +57,8 @@ from planner.reuse import Trace, follow, traced
 from planner.rollout import Rollout, RobotTasker, potential
 from planner.rules import Rules
 from planner.state import AgentState, WorldState
-from planner.standoff import (Standoff, advance, alternatives, committed, give_up, hold_aside, in_the_way,
-                              step_aside, take_over, unaided, within_reach)
+from planner.standoff import (Standoff, advance, alternatives, arrive, beside, committed, give_up, hold_aside,
+                              in_the_way, step_aside, take_over, unaided, visit_done, within_reach)
 from planner.subtasks import Subtask
 
 TICKS_PER_SUBTASK = 6
@@ -207,11 +207,13 @@ class QmdpRobot:
     def around_standoff(self, world: WorldState, options: tuple[Subtask, ...]) -> tuple[Subtask, ...] | Action:
         """:mod:`planner.standoff`: after ``standoff_ticks`` without progress behind the person, the person's
         stalled work (taken over: the move toward it), else a step aside when the robot is in the person's
-        way, else the other reachable options, else a step aside (the action). While a given-up subtask is avoided the options are the reachable others
-        (:func:`planner.standoff.alternatives`); when there are none the robot holds its place (stays) until
-        the person moves. In a team stall (no progress for ``stall_ticks``) the options are judged without
-        the person's load and the robot keeps its subtask (:func:`planner.standoff.committed`), moving toward
-        the targets it can reach without passing the person when some cannot be (the move)."""
+        way, else the other reachable options, else a step aside (the action). A person who has not moved for
+        ``visit_ticks`` is then visited (:meth:`visit_still_person`). While a given-up subtask is avoided the
+        options are the reachable others (:func:`planner.standoff.alternatives`); when there are none the robot
+        holds its place (stays) until the person moves. In a team stall (no progress for ``stall_ticks``) the
+        options are judged without the person's load and the robot keeps its subtask
+        (:func:`planner.standoff.committed`), moving toward the targets it can reach without passing the
+        person when some cannot be (the move)."""
         assert self.belief is not None
         cells = self.tasker.targets
         if self.standoff.stuck >= self.cfg.standoff_ticks:
@@ -231,6 +233,9 @@ class QmdpRobot:
             return choices
         if world.tick < self.standoff.hold_until:
             return Action.STAY
+        visit = self.visit_still_person(world)
+        if visit is not None:
+            return visit
         if self.standoff.stalled(self.cfg.stall_ticks):
             options = committed(self.tasker.options(unaided(world), self.current), self.current)
             if options == (self.current,):
@@ -243,6 +248,24 @@ class QmdpRobot:
             return options
         rest = alternatives(self.layout, world, options, avoided, cells)
         return rest if rest else Action.STAY
+
+    def visit_still_person(self, world: WorldState) -> Action | None:
+        """:mod:`planner.standoff`, still person: once the person has stood in one cell for ``visit_ticks``
+        ticks, the robot walks to a cell beside it (around it) and holds there ``standoff_ticks`` ticks, once
+        until the person moves again; ``None`` when no visit is under way."""
+        if self.human_still < self.cfg.visit_ticks or self.standoff.visited:
+            return None
+        if beside(world):
+            self.standoff = arrive(self.standoff, world.tick, self.cfg.standoff_ticks)
+            if world.tick < self.standoff.beside_until:
+                return Action.STAY
+            self.standoff = visit_done(self.standoff)
+            return None
+        move = self.rollout.move_to(world, (world.human.pos,), True)
+        if move in (Action.STAY, Action.INTERACT):
+            self.standoff = visit_done(self.standoff)
+            return None
+        return move
 
     def averaged(self, subtask: Subtask, value: float) -> float:
         """``value`` folded into the running average of ``subtask``'s rollout value (``value_smoothing``)."""

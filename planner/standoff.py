@@ -38,6 +38,16 @@ only the person's cell gives on to is not one; heading for it whenever it lies t
 and forth as well); ordinary planning resumes as soon as Φ changes.
 The blocked-target rule above comes first.
 
+**Still person.** Where the plates and the person's counter are reached only from the person's own cell
+(generated kitchen ``gen_1048_corridor``), the shuttling person stalls the team beyond the robot's reach: it
+changes its mind only on what it sees, and it faces its counter. So, whatever else holds, once the person
+has stood in one cell for ``visit_ticks`` ticks the robot walks to a cell beside the person (around it) and
+holds there ``standoff_ticks`` ticks, once until the person moves again (:func:`beside`, :func:`arrive`,
+:func:`visit_done`). This models nothing of what the person sees (for the baseline, whose person sees
+everything, it is only a pause); it is a last resort that gives a person who looks about, and the simulated
+person, whose view always takes in the cells to its left and right (docs/domain.md §2), the chance to see the
+robot and what it carries. It comes after the blocked-target rule and before the team-stall rule.
+
 State is an immutable :class:`Standoff`, advanced once per observed tick by :func:`advance`.
 """
 
@@ -68,6 +78,10 @@ class Standoff:
     """The team's shaping potential Φ at the last observed tick."""
     quiet: int = 0
     """Consecutive ticks without team progress (Φ unchanged)."""
+    visited: bool = False
+    """The robot has stood beside the person since the person last moved (a still person is visited once)."""
+    beside_until: int = -1
+    """While visiting a still person: the robot holds beside the person until this tick."""
 
     def avoided(self, tick: int) -> Subtask | None:
         return self.avoid if tick < self.avoid_until else None
@@ -122,7 +136,7 @@ def advance(state: Standoff, layout: Layout, before: AgentState | None, world: W
     quiet = state.quiet + 1 if state.phi is not None and phi == state.phi else 0
     state = replace(state, phi=phi, quiet=quiet)
     if human_moved:
-        state = replace(state, avoid=None, avoid_until=-1)
+        state = replace(state, avoid=None, avoid_until=-1, visited=False, beside_until=-1)
     progressed = before is None or before.pos != world.robot.pos or before.held != world.robot.held
     if progressed or not target or not blocked(layout, world, target):
         return replace(state, stuck=0)
@@ -147,6 +161,21 @@ def alternatives(layout: Layout, world: WorldState, options: tuple[Subtask, ...]
         else ()
     return tuple(s for s in options + extra
                  if s is not blocked_subtask and reachable(layout, world, targets(s, world)))
+
+
+def beside(world: WorldState) -> bool:
+    """Whether the robot stands on a cell next to the person's."""
+    return manhattan(world.robot.pos, world.human.pos) == 1
+
+
+def arrive(state: Standoff, tick: int, ticks: int) -> Standoff:
+    """Beside the still person: hold there ``ticks`` ticks (from the first tick beside it)."""
+    return state if state.beside_until >= 0 else replace(state, beside_until=tick + ticks)
+
+
+def visit_done(state: Standoff) -> Standoff:
+    """The visit is over (held its ticks, or no cell beside the person can be reached)."""
+    return replace(state, visited=True, beside_until=-1)
 
 
 def unaided(world: WorldState) -> WorldState:

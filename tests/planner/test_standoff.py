@@ -1,7 +1,7 @@
 """Standoffs (planner.standoff, issue 18 part 1): a person who blocks the robot's target and does not move,
 or who stalls the team without blocking anyone, no longer freezes the robot. Each scenario is also played
-with the rule switched off (``standoff_ticks`` / ``stall_ticks`` out of reach), to show the robot would
-otherwise wait for the rest of the trial."""
+with the rule switched off (``standoff_ticks`` / ``stall_ticks`` / ``visit_ticks`` out of reach, or the branch
+taken away), to show the robot would otherwise wait for the rest of the trial."""
 
 from __future__ import annotations
 
@@ -16,6 +16,7 @@ from planner.kb import KnowledgeBase, initial_kb, update_kb
 from planner.layout import Layout, parse_layout
 from planner.paths import best_moves, distance
 from planner.perception import FOV_ANGLE, KB_DELAY
+from planner.play import run_trial
 from planner.planner_config import PlannerConfig
 from planner.robots import make_robot
 from planner.rules import Rules
@@ -53,6 +54,24 @@ X 1      X
 W        P
 XXXMXXSXXX
 """, name="shuttle")
+# A one-cell corridor (y = 2): the meat crate (5,1), grill and board on the left, the plate crate (10,1) alone on
+# the right.
+ERRANDS = parse_layout("""XXXXXXXXXXXX
+XOWXXMXXXXDX
+X  2    1  X
+XBSPXXXXXXXX
+XXXXXXXXXXXX
+""", name="errands")
+# gen_1048_corridor (planner.layout_gen, generator seed 1048): the plate crate (9,1) and the counter (8,0) are
+# reached only from (8,1).
+NOOK = parse_layout("""XXXXXXXOXX
+S2       D
+X     1  X
+X  XXWX  X
+X  XXXX  X
+P  MXXB  X
+XXXXXXXXXX
+""", name="nook")
 Human = Callable[[WorldState], Action]
 
 
@@ -113,6 +132,27 @@ def test_the_person_s_stalled_errand_is_taken_over_when_the_robot_can_do_it():
     assert take_over(Subtask.PICKUP_MEAT, choices) is None
 
 
+def test_behind_a_still_person_the_robot_takes_over_the_person_s_errand():
+    # The person stands in the corridor facing the robot and never moves. As the robot models its KB (grill
+    # and board last seen busy), the only thing it can want is a plate, from the crate behind the robot; the
+    # robot wants the meat behind the person. After the standoff the robot fetches the plate itself; without
+    # the take-over it steps aside, waits, and comes back for the meat it cannot reach.
+    start = initial_state(ERRANDS, RULES)
+    world = replace(start, robot=AgentState((7, 2), Direction.WEST), human=AgentState((6, 2), Direction.EAST))
+    robot = make_robot("fov_aware", ERRANDS, RULES, ON)
+    robot.reset(world, replace(initial_kb(world), grills=(3,), boards=(0,)))
+    rng = np.random.default_rng(0)
+    events: tuple = ()
+    held = []
+    for _ in range(16):
+        action = robot.decide(world, events, rng).action
+        world, events = step(ERRANDS, world, {"human": Action.STAY, "robot": action}, RULES)
+        held.append(world.robot.held)
+    assert held[:ON.standoff_ticks] == [None] * ON.standoff_ticks, "the robot first waits behind the person"
+    assert world.robot.held == "dirty_plate", "the robot should have fetched the person's plate"
+    assert world.human.pos == (6, 2)
+
+
 def test_a_target_only_the_person_s_cell_gives_on_to_is_not_within_reach():
     # In a team stall the robot heads only for such targets: the plate the person keeps putting down in
     # front of itself is not one (else the robot turns toward it whenever it lies there).
@@ -154,8 +194,22 @@ def test_a_person_shuttling_a_plate_does_not_stall_the_baseline_robot():
     world = replace(start, human=AgentState((5, 2), Direction.NORTH), robot=AgentState((2, 4), Direction.SOUTH),
                     objects=(((5, 1), "dirty_plate"),), grills=(RULES.cook_time,), orders_left=1)
     stale = replace(initial_kb(world), boards=(RULES.chop_time,), sinks=(0,))
-    stalled = play_with_person(SHUTTLE, world, stale, replace(ON, stall_ticks=10**6), ticks=150)
+    stalled = play_with_person(SHUTTLE, world, stale, replace(ON, stall_ticks=10**6, visit_ticks=10**6), ticks=150)
     assert (stalled.orders_left, stalled.boards, stalled.sinks) == (1, (None,), (None,))
     moving = play_with_person(SHUTTLE, world, stale, ON, ticks=150)
     assert moving.orders_left == 0, "the robot should have made and served the dish itself"
     assert moving.human.pos == (5, 2), "the person never moved: the robot did the work"
+
+
+def test_the_robot_visits_a_person_who_stands_still_so_the_team_finishes():
+    # no_stall.py's last stalls (baseline robot, gen_1048_corridor seeds 0 and 3). The person took the last
+    # plate from the crate while its KB said the sink was busy, so it puts the plate on the counter in front
+    # of itself and picks it up again for ever, facing that counter; plates and counter are reached only
+    # from its cell. The baseline robot served the first dish and, after that, nothing it did reached the
+    # person: the person changes its mind only on what it sees. Standing beside the person once it has not
+    # moved for ``visit_ticks`` ticks (the robot then carried the dish) lets the person see the dish, go for
+    # an onion, see the empty sink on the way and wash its plate.
+    finished = run_trial(NOOK, 0, robot=make_robot("baseline", NOOK, RULES, ON))
+    assert finished.finished
+    stalled = run_trial(NOOK, 0, robot=make_robot("baseline", NOOK, RULES, replace(ON, visit_ticks=10**6)))
+    assert not stalled.finished and stalled.final.human.pos == (8, 1)
