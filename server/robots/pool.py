@@ -33,7 +33,7 @@ from planner.planner_config import PlannerConfig
 from planner.rules import Rules
 from planner.state import WorldState
 from server.robots.choice import RobotChoice
-from server.robots.reply import Reply, await_reply
+from server.robots.reply import Reply, await_reply, lost
 from server.robots.worker import worker_main
 
 log = logging.getLogger(__name__)
@@ -105,7 +105,7 @@ class _Worker:
         self.alive = False
         for future in self.pending.values():
             if not future.done():
-                future.set_result(("lost", "worker_lost", time.monotonic()))
+                future.set_result(lost())
         self.pending.clear()
 
     def request(self, op: str, *args: Any) -> asyncio.Future[Reply]:
@@ -115,7 +115,7 @@ class _Worker:
         message = (op, req, *args)
         future: asyncio.Future[Reply] = asyncio.get_running_loop().create_future()
         if not self.alive:
-            future.set_result(("lost", "worker_lost", time.monotonic()))
+            future.set_result(lost())
             return future
         self.pending[req] = future
         try:
@@ -123,7 +123,7 @@ class _Worker:
                 self.conn.send(message)
         except (BrokenPipeError, OSError):
             self.pending.pop(req, None)
-            future.set_result(("lost", "worker_lost", time.monotonic()))
+            future.set_result(lost())
         return future
 
     def stop(self) -> None:

@@ -23,6 +23,11 @@ Reply = tuple[str, Any, float]
 """``(status, payload, sent)``: ``sent`` is the ``time.monotonic()`` at which the answer was sent."""
 
 
+def lost() -> Reply:
+    """The reply of a worker that is gone (dead, or never reached), as of now."""
+    return ("lost", "worker_lost", time.monotonic())
+
+
 async def await_reply(future: asyncio.Future[Reply], deadline: float, start: float) -> RobotChoice:
     """The choice ``future`` brings by ``deadline`` (absolute ``time.monotonic()``); ``start`` is the
     ``time.perf_counter()`` of the request, for the round trip the loop saw."""

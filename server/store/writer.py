@@ -70,17 +70,14 @@ class BatchWriter:
                 return
             self._ticks, self._events = [], []
             write = asyncio.ensure_future(asyncio.to_thread(write_batch, self.store, ticks, events))
+            # The thread cannot be stopped: its transaction commits or fails whatever happens to this task, so
+            # the rows go back (on failure) when it ends, not when this task is cancelled. Putting them back
+            # at the cancel wrote them twice at shutdown (``close`` flushing them again).
+            write.add_done_callback(lambda done: self._settle(done, ticks, events))
             try:
                 await asyncio.shield(write)
             except asyncio.CancelledError:
-                # The thread cannot be stopped: its transaction commits or fails whatever happens to this
-                # task. Putting the rows back before it is done wrote them twice at shutdown (the writer
-                # cancelled mid-flush, then ``close`` flushing them again).
                 await asyncio.wait({write})
-                self._settle(write, ticks, events)
-                raise
-            except Exception:
-                self._settle(write, ticks, events)
                 raise
 
     def _settle(self, write: asyncio.Future[None], ticks: list[Row], events: list[Row]) -> None:
