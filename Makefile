@@ -1,5 +1,7 @@
 # Steakhouse Study: `make run` sets up and starts the platform; `make test` sets up and runs every test.
 VENV ?= .venv
+# Tests run in one worker process per CPU (pytest-xdist); PYTEST_WORKERS=0 runs them in this process.
+PYTEST_WORKERS ?= auto
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed-$(shell cat pyproject.toml | cksum | cut -d' ' -f1)
 
@@ -25,4 +27,4 @@ postgres:
 
 test: setup browser postgres
 	@bash tests/tools/ensure_nginx.sh
-	$(PY) -m pytest $(PYTEST_ARGS)
+	$(PY) -m pytest -n $(PYTEST_WORKERS) $(PYTEST_ARGS)
