@@ -66,7 +66,8 @@ def analyze_measure(df: pd.DataFrame, measure: str, within: Sequence[str], subje
     pairwise = pairwise_comparisons(clean, measure, within, subject)
     notes += [f"{row.effect}: {row.note}" for row in anova.itertuples() if row.note]
     notes += [f"simple effect of {row.factor} at {row.at}: {row.note}" for row in simple.itertuples() if row.note]
-    notes += [f"{row.level_1} vs {row.level_2}: {row.note}" for row in pairwise.itertuples() if row.note]
+    notes += [f"{row.level_1} vs {row.level_2}{f' at {row.at}' if row.at else ''}: {row.note}"
+              for row in pairwise.itertuples() if row.note]
     ranks = rank_tests(clean, measure, within, subject) if info.rating else _empty(RANK_TEST_COLUMNS)
     result = MeasureResult(
         **base, anova=anova[ANOVA_RESULT_COLUMNS], simple_effects=simple, pairwise=pairwise, rank_tests=ranks,

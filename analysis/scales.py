@@ -12,7 +12,8 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -41,6 +42,16 @@ def score_scales(cells: pd.DataFrame, items: Sequence[RatingItem], scales: Seque
         scored = pd.concat([reversed_values(out[c].astype(float), by_column[c]) for c in present], axis=1)
         out[scale.column] = scored.mean(axis=1, skipna=False)
     return out
+
+
+def response_scores(values: Mapping[str, Any], items: Sequence[RatingItem], scales: Sequence[ScaleSpec]
+                    ) -> dict[str, float | None]:
+    """The scores of one response (``values``: item column → answer, absent or ``None`` when not answered), scored
+    as :func:`score_scales` scores a table; ``None`` for a scale missing an item."""
+    answers = pd.DataFrame([{c: values.get(c) for scale in scales for c in scale.items}], dtype=float)
+    scored = score_scales(answers, items, scales)
+    return {s.column: None if pd.isna(scored[s.column].iloc[0]) else float(scored[s.column].iloc[0])
+            for s in scales}
 
 
 def scale_reliability(cells: pd.DataFrame, items: Sequence[RatingItem], scales: Sequence[ScaleSpec],
