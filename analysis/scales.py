@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from analysis.cells import cell_label
+from analysis.cells import cell_label, design_cells
 from analysis.study_design import RatingItem, ScaleSpec
 
 RELIABILITY_COLUMNS = ["scale", "condition", "n", "items", "alpha", "ci95_low", "ci95_high", "note"]
@@ -69,7 +69,7 @@ def scale_reliability(cells: pd.DataFrame, items: Sequence[RatingItem], scales: 
         rows.append({"scale": scale.column, "condition": ALL_RESPONSES, **cronbach(scored)})
         if within:
             labels = [cell_label(within, tuple(r)) for r in cells[list(within)].itertuples(index=False)]
-            for label in dict.fromkeys(labels):
+            for label in (cell_label(within, cell) for cell in design_cells(cells, within)):
                 mask = np.array([x == label for x in labels])
                 rows.append({"scale": scale.column, "condition": label, **cronbach(scored[mask])})
     return pd.DataFrame(rows, columns=RELIABILITY_COLUMNS)

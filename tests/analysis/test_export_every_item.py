@@ -17,6 +17,7 @@ from steakhouse_testing import ThreadServer, write_study
 
 from analysis.dataset import FILES
 from analysis.export import DICTIONARY_FILES, export_study
+from analysis.spss import SAV_FILE
 from server.catalog import load_one
 from server.cli import main
 from server.flow import service
@@ -25,7 +26,7 @@ from server.store.studies import sync_study
 
 STUDY = "every_item"
 AFTER_TRIAL = {"id": "post", "items": [
-    {"id": "fluency", "text": "Fluent.", "scale": {"min": 1, "max": 7}},
+    {"id": "fluency", "text": "Fluent.", "scale": {"min": 1, "max": 7, "labels": {1: "Not at all", 7: "Very"}}},
     {"id": "effort", "text": "Effort.", "scale": {"min": 1, "max": 7}, "reverse": True},
     {"id": "hand", "type": "choice", "text": "Hand?", "options": ["Left", "Right"]},
     {"id": "comment", "type": "text", "text": "Anything?", "required": False},
@@ -99,6 +100,25 @@ def test_export_writes_every_file_with_every_column_in_the_dictionary(stored, tm
     assert result.dataset.columns["wide.csv"][-1].name == "end.experience"
 
 
+def test_spss_users_get_wide_sav_with_variable_and_value_labels(stored, tmp_path):
+    import pyreadstat
+
+    url, _ = stored
+    result = export_study(url, STUDY, tmp_path)
+    assert tmp_path / SAV_FILE in result.files
+    sav, meta = pyreadstat.read_sav(str(tmp_path / SAV_FILE))
+    wide = pd.read_csv(tmp_path / "wide.csv")
+    assert list(sav.columns) == list(wide.columns)
+    pd.testing.assert_frame_equal(sav.drop(columns="participant"), wide.drop(columns="participant").astype(float))
+    assert sav["participant"].tolist() == wide["participant"].astype(str).tolist()
+    assert meta.variable_value_labels["post.hand__stay__practice"] == {0.0: "Left", 1.0: "Right"}
+    assert meta.variable_value_labels["post.fluency__baseline__practice"] == {1.0: "Not at all", 7.0: "Very"}
+    assert meta.variable_value_labels["end.device"] == {0.0: "Mouse", 1.0: "Trackpad", 2.0: "Other"}
+    assert meta.variable_value_labels["complete"] == {0.0: "no", 1.0: "yes"}
+    labels = dict(zip(meta.column_names, meta.column_labels, strict=True))
+    assert labels["end.experience"].startswith("scale score “Experience”")
+
+
 def test_analyze_runs_on_the_study_and_analyses_the_after_trial_scale(stored, tmp_path, capsys):
     url, _ = stored
     out = tmp_path / "results"
@@ -120,7 +140,7 @@ def test_the_admin_zip_holds_the_same_export(stored, tmp_path):
                               headers={"Authorization": "Bearer admin-secret"})
     assert response.status_code == 200, response.text
     archive = zipfile.ZipFile(io.BytesIO(response.content))
-    assert set(archive.namelist()) == {f"{STUDY}_export/{n}" for n in (*FILES, *DICTIONARY_FILES)}
+    assert set(archive.namelist()) == {f"{STUDY}_export/{n}" for n in (*FILES, SAV_FILE, *DICTIONARY_FILES)}
     direct = export_study(url, STUDY, tmp_path / "direct")
     for name in ("cells.csv", "wide.csv", "answers.csv"):
         zipped = pd.read_csv(archive.open(f"{STUDY}_export/{name}"))
