@@ -42,9 +42,36 @@ def factor_levels(df: pd.DataFrame, factor: str) -> list[Any]:
     return list(pd.unique(column.dropna()))
 
 
+def design_cells(df: pd.DataFrame, within: Sequence[str]) -> list[Cell]:
+    """Every cell of the within design in design order (the first factor varies slowest, levels in
+    :func:`factor_levels` order: the study's)."""
+    return list(itertools.product(*(factor_levels(df, f) for f in within)))
+
+
 def cell_label(within: Sequence[str], cell: Cell) -> str:
     """``robot=baseline, kitchen=mid_2`` for ``within=("robot", "kitchen")``."""
     return ", ".join(f"{factor}={level}" for factor, level in zip(within, cell, strict=True))
+
+
+NAMED_VALUES = 3
+"""How many offending values a message quotes."""
+
+
+def non_numeric_values(df: pd.DataFrame, dv: str, within: Sequence[str], subject: str) -> str:
+    """Empty when ``dv`` is numeric (or holds only numbers written as text and empty cells); else which rows hold
+    what: ``2 values are not numbers: row 7 (participant P03, robot=baseline, kitchen=mid_2): 'n/a'; …`` (rows
+    counted from 1, the header not counted)."""
+    if pd.api.types.is_numeric_dtype(df[dv]) or dv not in df.columns:
+        return ""
+    coerced = pd.to_numeric(df[dv], errors="coerce")
+    bad = df[df[dv].notna() & coerced.isna() & (df[dv].astype(str).str.strip() != "")]
+    if bad.empty:
+        return ""
+    named = [f"row {position + 1} ({subject} {row[subject]}, {cell_label(within, tuple(row[f] for f in within))}): "
+             f"{row[dv]!r}" for position, (_, row) in zip(
+                 (df.index.get_loc(i) for i in bad.index), bad.iterrows(), strict=True)][:NAMED_VALUES]
+    more = f"; and {len(bad) - NAMED_VALUES} more" if len(bad) > NAMED_VALUES else ""
+    return (f"{len(bad)} value(s) of {dv} are not numbers: " + "; ".join(named) + more)
 
 
 def validate_design(df: pd.DataFrame, dv: str, within: Sequence[str], subject: str) -> None:

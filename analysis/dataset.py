@@ -24,9 +24,11 @@ from analysis.dictionary import (
 )
 from analysis.measures import GAP_COMPONENTS, TRIAL_MEASURES, trial_measures
 from analysis.roster import Used, excluded_row, participant_row, used_trials
+from analysis.scales import response_scores
 from analysis.store_reader import (
     StoredParticipant, StoredTick, StoredTrial, iso_time, read_events, read_study, read_ticks,
 )
+from analysis.study_design import ScaleSpec
 from analysis.work import redundant_action_flags, subtask_switch_flags
 
 FILES = ("ticks.csv", "trials.csv", "cells.csv", "wide.csv", "answers.csv", "participants.csv", "excluded.csv")
@@ -71,19 +73,9 @@ def build_dataset(conn: Connection, study_id: str, include_invalid: bool = False
         tick_rows += _tick_rows(people[trial.participant_id].public_id, trial, ticks)
     used = used_trials(data.trials, people, include_invalid)
     answers = _answers_by_participant(data.answers)
+    columns = export_columns(design)
     cell_rows = [row for p in data.participants if p.id in used
                  for row in _cell_rows(p, used[p.id], measures, answers.get(p.id, {}), design)]
-    wide_cols = tuple(wide_columns([*(c for c in CELL_COLUMNS if c.name in TRIAL_MEASURES),
-                                    *design.trial_item_columns], design.conditions, design.end_item_columns))
-    columns: dict[str, tuple[Column, ...]] = {
-        "ticks.csv": TICK_COLUMNS,
-        "trials.csv": TRIAL_COLUMNS,
-        "cells.csv": (*CELL_COLUMNS, *design.trial_item_columns),
-        "wide.csv": wide_cols,
-        "answers.csv": ANSWER_COLUMNS,
-        "participants.csv": PARTICIPANT_COLUMNS,
-        "excluded.csv": EXCLUDED_COLUMNS,
-    }
     trial_rows = [_trial_row(people[t.participant_id], t, measures[t.id], stored[t.id], used) for t in data.trials]
     rows = {
         "ticks.csv": tick_rows,
@@ -97,6 +89,21 @@ def build_dataset(conn: Connection, study_id: str, include_invalid: bool = False
     }
     tables = {name: _frame(rows[name], columns[name]) for name in FILES}
     return Dataset(study_id, design, tables, columns, data.config)
+
+
+def export_columns(design: Design) -> dict[str, tuple[Column, ...]]:
+    """The columns of every exported file, in order: the one definition both the tables and the data dictionary
+    are built from (the questionnaire columns are :attr:`Design.trial_value_columns` / ``end_value_columns``)."""
+    per_cell = [*(c for c in CELL_COLUMNS if c.name in TRIAL_MEASURES), *design.trial_value_columns]
+    return {
+        "ticks.csv": TICK_COLUMNS,
+        "trials.csv": TRIAL_COLUMNS,
+        "cells.csv": (*CELL_COLUMNS, *design.trial_value_columns),
+        "wide.csv": tuple(wide_columns(per_cell, design.conditions, design.end_value_columns)),
+        "answers.csv": ANSWER_COLUMNS,
+        "participants.csv": PARTICIPANT_COLUMNS,
+        "excluded.csv": EXCLUDED_COLUMNS,
+    }
 
 
 def _frame(rows: list[dict[str, Any]], columns: Sequence[Column]) -> pd.DataFrame:
@@ -171,10 +178,17 @@ def _cell_rows(p: StoredParticipant, used: dict[int, StoredTrial], measures: dic
         row: dict[str, Any] = {"participant": p.public_id, "robot": trial.robot, "kitchen": trial.kitchen,
                                "view": trial.view, "condition": trial.condition, "trial_id": trial.id, "position": index + 1}
         row.update({m: measures[trial.id][m] for m in TRIAL_MEASURES})
-        given = answers.get(index, {})
-        row.update({name: given.get(name) for name in design.item_names(design.trial_items)})
+        row.update(_questionnaire_values(answers.get(index, {}), design.trial_items, design.trial_scales, design))
         rows.append(row)
     return rows
+
+
+def _questionnaire_values(given: Mapping[str, int | None], items: tuple[tuple[str, str, str], ...],
+                          scales: tuple[ScaleSpec, ...], design: Design) -> dict[str, Any]:
+    """The questionnaire columns of one response: each rating or choice item of ``items`` as answered, then each
+    scale's score (free-text answers are not among them: they are in ``answers.csv``)."""
+    values: dict[str, Any] = {name: given.get(name) for name in design.item_names(items)}
+    return {**values, **response_scores(values, design.ratings, scales)} if scales else values
 
 
 def _trial_row(p: StoredParticipant, trial: StoredTrial, measures: dict[str, Any], stored: int,
@@ -197,7 +211,7 @@ def _trial_row(p: StoredParticipant, trial: StoredTrial, measures: dict[str, Any
 
 def _wide_rows(participants: Sequence[StoredParticipant], cell_rows: list[dict[str, Any]],
                answers: dict[int, dict[int | None, dict[str, int | None]]], design: Design) -> list[dict[str, Any]]:
-    values = [*TRIAL_MEASURES, *design.item_names(design.trial_items)]
+    values = [*TRIAL_MEASURES, *(c.name for c in design.trial_value_columns)]
     by_participant: dict[str, list[dict[str, Any]]] = {}
     for cell_row in cell_rows:
         by_participant.setdefault(cell_row["participant"], []).append(cell_row)
@@ -213,7 +227,8 @@ def _wide_rows(participants: Sequence[StoredParticipant], cell_rows: list[dict[s
             levels = design.cell_of(cell["robot"], cell["kitchen"], cell["view"])
             for name in values:
                 row[wide_column(name, *levels)] = cell[name]
-        row.update(answers.get(p.id, {}).get(None, {}))
+        row.update(_questionnaire_values(answers.get(p.id, {}).get(None, {}), design.end_items, design.end_scales,
+                                         design))
         out.append(row)
     return out
 

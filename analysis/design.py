@@ -5,6 +5,12 @@ varies slowest, as in ``server.study.conditions``; condition ids are ``robot@kit
 A condition's cell is the tuple of its levels: ``(robot, kitchen)``, or ``(robot, kitchen, view)``. Questionnaire items are split into those
 answered after each main trial (one value per condition: measures of the cell) and those answered once at
 the end of the study (one value per participant).
+
+The columns of ``cells.csv`` and ``wide.csv`` that come from the questionnaires are defined here once
+(:attr:`Design.trial_value_columns`, :attr:`Design.end_value_columns`): the export fills exactly these columns and
+the data dictionary documents exactly these, so a study that validates always exports. Free-text items are not
+among them (their answers are in ``answers.csv``); rating and choice items are, and so is every named scale's
+score (:mod:`analysis.scales`), for questionnaires after each trial and at the end of the study alike.
 """
 
 from __future__ import annotations
@@ -13,7 +19,8 @@ import itertools
 from dataclasses import dataclass
 from typing import Any
 
-from analysis.dictionary import Column, item_column, item_columns
+from analysis.dictionary import NUM, Column, item_column, item_columns
+from analysis.study_design import RatingItem, ScaleSpec, rating_specs
 
 
 @dataclass(frozen=True, slots=True)
@@ -26,6 +33,12 @@ class Design:
     """(questionnaire, item, text) answered after each main trial."""
     end_items: tuple[tuple[str, str, str], ...]
     """(questionnaire, item, text) answered once at the end of the study."""
+    ratings: tuple[RatingItem, ...] = ()
+    """Every rating item, both positions (the scales' reversal reads them)."""
+    trial_scales: tuple[ScaleSpec, ...] = ()
+    """Named scales of the questionnaires after each trial (a score per cell)."""
+    end_scales: tuple[ScaleSpec, ...] = ()
+    """Named scales of the end-of-study questionnaires (a score per participant)."""
 
     @classmethod
     def from_config(cls, config: dict[str, Any]) -> Design:
@@ -48,7 +61,11 @@ class Design:
                 if item.get("type") == "text":
                     continue  # free text is exported in answers.csv only
                 target.append((str(questionnaire["id"]), str(item["id"]), str(item.get("text", ""))))
-        return cls(robots, kitchens, conditions, tuple(trial_items), tuple(end_items))
+        questionnaires = config.get("questionnaires") or ()
+        trial_ratings, trial_scales = rating_specs(questionnaires, "after_each_trial")
+        end_ratings, end_scales = rating_specs(questionnaires, "end_of_study")
+        return cls(robots, kitchens, conditions, tuple(trial_items), tuple(end_items),
+                   trial_ratings + end_ratings, trial_scales, end_scales)
 
     def condition_of(self, condition_id: str) -> tuple[str, str] | None:
         """``(robot, kitchen)`` of a condition id (``robot@kitchen``, or ``robot@kitchen@view`` in a study with
@@ -65,12 +82,23 @@ class Design:
         return (robot, kitchen, view) if self.view_is_factor else (robot, kitchen)
 
     @property
-    def trial_item_columns(self) -> list[Column]:
-        return item_columns(self.trial_items)
+    def trial_value_columns(self) -> list[Column]:
+        """Questionnaire columns of ``cells.csv`` (and per condition of ``wide.csv``): the rating and choice
+        items answered after each trial, then their scales' scores."""
+        return item_columns(self.trial_items) + scale_columns(self.trial_scales)
 
     @property
-    def end_item_columns(self) -> list[Column]:
-        return item_columns(self.end_items)
+    def end_value_columns(self) -> list[Column]:
+        """Questionnaire columns of ``wide.csv`` answered once: end-of-study rating and choice items, then their
+        scales' scores."""
+        return item_columns(self.end_items) + scale_columns(self.end_scales)
 
     def item_names(self, items: tuple[tuple[str, str, str], ...]) -> list[str]:
         return [item_column(q, i) for q, i, _ in items]
+
+
+def scale_columns(scales: tuple[ScaleSpec, ...]) -> list[Column]:
+    """One column per named scale: its score (see :mod:`analysis.scales`)."""
+    return [Column(s.column, NUM, f"scale score “{s.title}”: mean of {', '.join(s.items)} after reversing "
+                                  "reverse-coded items (min + max − value); empty when an item is missing")
+            for s in scales]

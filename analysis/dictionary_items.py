@@ -4,13 +4,19 @@ study configuration stored with the study; and how participant-typed text is wri
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 from typing import Any
 
 def item_key(questionnaire: str, item: str) -> str:
     """``<questionnaire id>.<item id>``: an item's (or a scale's) column name in the exports."""
     return f"{questionnaire}.{item}"
+
+
+def scale_key(questionnaire: str, scale: str, item_ids: Collection[str]) -> str:
+    """A named scale's column: ``<questionnaire id>.<scale id>``, with ``_scale`` appended when an item of the
+    questionnaire has the scale's id."""
+    return item_key(questionnaire, scale) + ("_scale" if scale in item_ids else "")
 
 
 def md_cell(text: str) -> str:
@@ -71,12 +77,13 @@ def questionnaire_scales(config: Mapping[str, Any]) -> list[ScaleInfo]:
     for questionnaire in config.get("questionnaires", ()):
         qid = str(questionnaire["id"])
         reversed_items = {str(i["id"]) for i in questionnaire.get("items", ()) if i.get("reverse")}
+        item_ids = {str(i["id"]) for i in questionnaire.get("items", ())}
         for scale in questionnaire.get("scales", ()):
             items = tuple(str(i) for i in scale.get("items", ()))
             flipped = tuple(i for i in items if i in reversed_items)
             description = (f"{scale.get('title') or scale['id']}: mean of {', '.join(items)}"
                            + (f" after reversing {', '.join(flipped)} (min + max − value)" if flipped else ""))
-            out.append(ScaleInfo(item_key(qid, str(scale["id"])), str(scale.get("title", "")), items, flipped,
+            out.append(ScaleInfo(scale_key(qid, str(scale["id"]), item_ids), str(scale.get("title", "")), items, flipped,
                                  description))
     return out
 
@@ -87,8 +94,9 @@ def questionnaire_markdown(config: Mapping[str, Any]) -> list[str]:
     if not items:
         return []
     lines = ["## Questionnaire items and scales", "",
-             "Every item as the participant saw it. answers.csv has one row per answer; cells.csv and wide.csv a "
-             "column per rating or choice item. Ratings are exported as given: reverse them (min + max − value) "
+             "Every item as the participant saw it. answers.csv has one row per answer; cells.csv (after each "
+             "trial) and wide.csv (per condition, and once for the end of study) a column per rating or choice "
+             "item and per named scale (its score); free-text answers are in answers.csv only. Ratings are exported as given: reverse them (min + max − value) "
              "before combining them.", "", "| item | type | wording and coding |", "|---|---|---|"]
     lines += [f"| {i.column} | {i.kind} | {md_cell(i.description)} |" for i in items]
     lines.append("")

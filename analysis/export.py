@@ -6,6 +6,7 @@ Files (columns in ``data_dictionary.md`` / ``data_dictionary.csv``, written alon
     trials.csv        one row per trial attempt (practice and main) with its measures
     cells.csv         participant × condition: the repeated-measures ANOVA input
     wide.csv          one row per participant, <measure>__<robot>__<kitchen> columns (JASP / SPSS)
+    wide.sav          the same as an SPSS file, with variable and value labels (analysis.spss)
     answers.csv       questionnaire answers
     participants.csv  every participant with flags and progress
     excluded.csv      participants not in the complete-case analysis, with the reason
@@ -31,6 +32,7 @@ from sqlalchemy.exc import OperationalError
 from analysis.dataset import FILES, Dataset, build_dataset
 from analysis.dictionary import render_markdown, rows
 from analysis.dictionary_items import spreadsheet_safe
+from analysis.spss import SAV_FILE, write_sav
 from analysis.store_reader import StoreReadError, open_engine
 
 DICTIONARY_FILES = ("data_dictionary.md", "data_dictionary.csv")
@@ -85,6 +87,8 @@ def write_dataset(dataset: Dataset, out_dir: Path | str) -> ExportResult:
         writer = csv.DictWriter(handle, fieldnames=["file", "column", "type", "unit", "description"])
         writer.writeheader()
         writer.writerows(rows(dataset.columns, dataset.config))
+    files.insert(files.index(out / "wide.csv") + 1, write_sav(dataset.tables["wide.csv"], dataset.columns["wide.csv"],
+                                                               dataset.config, out / SAV_FILE))
     files += [out / name for name in DICTIONARY_FILES]
     return ExportResult(dataset, out, tuple(files))
 

@@ -5,7 +5,9 @@ In a robot × kitchen design that is the robot effect in each kitchen *and* the 
 effect is a one-way repeated-measures ANOVA on the participants' values in that slice (its own error term,
 Maxwell & Delaney 2004, ch. 12), with the same sphericity columns and reading rule as the omnibus table
 (:mod:`analysis.anova`). The p values read are Holm-adjusted (Holm 1979) within each family: the simple effects
-of one factor across the levels of the others.
+of one factor across the levels of the others. A factor with two levels has one comparison per slice: its row
+also gives the mean difference level_1 − level_2 with its 95 % CI and Cohen's d_z with its CI (as
+:mod:`analysis.pairwise` computes them), so a two-level simple effect reads like a pairwise comparison.
 """
 
 from __future__ import annotations
@@ -15,12 +17,14 @@ from collections.abc import Sequence
 import pandas as pd
 
 from analysis.anova import rm_anova
-from analysis.cells import slices
+from analysis.cells import factor_levels, slices
 
 SIMPLE_EFFECT_COLUMNS = [
     "factor", "at", "df1", "df2", "MSE", "F", "p", "ges", "eps_gg", "eps_hf", "correction",
-    "df1_read", "df2_read", "p_read", "p_holm", "note",
+    "df1_read", "df2_read", "p_read", "p_holm", "level_1", "level_2", "mean_diff", "ci95_low", "ci95_high", "dz",
+    "dz_ci_low", "dz_ci_high", "note",
 ]
+TWO_LEVEL_COLUMNS = ("mean_diff", "ci95_low", "ci95_high", "dz", "dz_ci_low", "dz_ci_high")
 
 
 def simple_effects(df: pd.DataFrame, dv: str, within: Sequence[str], subject: str) -> pd.DataFrame:
@@ -34,8 +38,15 @@ def simple_effects(df: pd.DataFrame, dv: str, within: Sequence[str], subject: st
             row = rm_anova(part, dv, [factor], subject).iloc[[0]].copy()
             row.insert(0, "factor", factor)
             row.insert(1, "at", label)
+            levels = factor_levels(part, factor)
+            if len(levels) == 2:
+                from analysis.pairwise import paired_difference
+
+                wide = part.pivot_table(index=subject, columns=factor, values=dv, observed=True)[levels]
+                diff = paired_difference(wide[levels[0]].to_numpy(float), wide[levels[1]].to_numpy(float))
+                row = row.assign(level_1=levels[0], level_2=levels[1], **{c: diff[c] for c in TWO_LEVEL_COLUMNS})
             family.append(row)
-        block = pd.concat(family, ignore_index=True)
+        block = pd.concat(family, ignore_index=True).reindex(columns=SIMPLE_EFFECT_COLUMNS)
         block["p_holm"] = holm(block["p_read"])
         rows.append(block)
     if not rows:

@@ -20,6 +20,8 @@ from analysis.dictionary import FLAG, INT, MEASURES, UNITS
 from analysis.measures import GAP_COMPONENTS
 
 
+MAX_DIVISOR = 24
+"""Resolutions looked for: 1/k for k = 1..MAX_DIVISOR (a rating item: 1; the mean of k items: 1/k)."""
 DISCRETE_VALUES = 15
 """A whole-number measure with at most this many distinct values is on a discrete scale (its points are jittered)."""
 
@@ -32,6 +34,9 @@ class MeasureInfo:
     upper: float = math.inf
     rating: bool = False
     discrete: bool = False
+    resolution: float | None = None
+    """The step of a rating measure's values (1 for an item, 1/k for a scale of k items), found in the data;
+    ``None`` when its values are on no such grid (rank tests then round to 9 decimals)."""
 
     @property
     def label(self) -> str:
@@ -52,7 +57,7 @@ def measure_info(name: str, values: pd.Series, horizon: int | None = None,
     discrete = bool(len(finite)) and bool(np.all(np.mod(finite, 1) == 0)) and finite.nunique() <= DISCRETE_VALUES
     if ratings is not None and name in ratings:
         low, high = ratings[name]
-        return MeasureInfo(name, "rating", low, high, rating=True, discrete=discrete)
+        return MeasureInfo(name, "rating", low, high, rating=True, discrete=discrete, resolution=resolution(finite))
     unit = UNITS.get(name, "")
     column = MEASURES.get(name)
     lower, upper = -math.inf, math.inf
@@ -67,3 +72,12 @@ def measure_info(name: str, values: pd.Series, horizon: int | None = None,
     elif column is not None and column.type == INT or unit == "ms":
         lower = 0.0
     return MeasureInfo(name, unit, lower, upper, discrete=discrete)
+
+
+def resolution(values: pd.Series) -> float | None:
+    """The coarsest step 1/k (k ≤ :data:`MAX_DIVISOR`) of which every value is a multiple (to 1e-6), or ``None``."""
+    x = values.dropna().to_numpy(dtype=float)
+    for k in range(1, MAX_DIVISOR + 1):
+        if np.all(np.abs(x * k - np.round(x * k)) < 1e-6):
+            return 1.0 / k
+    return None

@@ -15,7 +15,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import pandas as pd
 
-from analysis.anova import ANOVA_COLUMNS, anova_table, ges_bootstrap
+from analysis.anova import ANOVA_COLUMNS, anova_table, effect_name, effects_of, ges_bootstrap
 from analysis.cells import complete_cases, factor_levels, wide_matrix
 from analysis.censoring import censoring_note
 from analysis.descriptives import DESCRIPTIVE_STATS, cell_descriptives
@@ -48,12 +48,13 @@ def analyze_measure(df: pd.DataFrame, measure: str, within: Sequence[str], subje
                   n_used >= MIN_SUBJECTS else
                   f"not testable: {n_used} participant(s) have a value in every cell of {' × '.join(within)}; "
                   f"at least {MIN_SUBJECTS} are needed")
-        empty = MeasureResult(**base, anova=_empty(ANOVA_RESULT_COLUMNS), simple_effects=_empty(
+        empty = MeasureResult(**base, anova=untestable_rows(within, levels_of(df, within), n_used, reason),
+            simple_effects=_empty(
             SIMPLE_EFFECT_COLUMNS), pairwise=_empty(PAIRWISE_COLUMNS), rank_tests=_empty(RANK_TEST_COLUMNS),
             descriptives=cell_descriptives(clean, measure, within, subject) if n_used >= MIN_SUBJECTS and not any(
                 len(factor_levels(clean, f)) < 2 for f in within) else _empty([*within, *DESCRIPTIVE_STATS]),
             normality=Normality(0, note=reason),
-            order=OrderCheck(measure, n_used, 0, note=reason), notes=(reason, *filter(None, notes)))
+            order=OrderCheck(measure, n_used, 0, note=reason), notes=(reason, *filter(None, notes)), tested=False)
         return empty, clean
     values, _ = wide_matrix(clean, measure, within, subject)
     levels = [len(factor_levels(clean, f)) for f in within]
@@ -66,14 +67,46 @@ def analyze_measure(df: pd.DataFrame, measure: str, within: Sequence[str], subje
     pairwise = pairwise_comparisons(clean, measure, within, subject)
     notes += [f"{row.effect}: {row.note}" for row in anova.itertuples() if row.note]
     notes += [f"simple effect of {row.factor} at {row.at}: {row.note}" for row in simple.itertuples() if row.note]
-    notes += [f"{row.level_1} vs {row.level_2}: {row.note}" for row in pairwise.itertuples() if row.note]
-    ranks = rank_tests(clean, measure, within, subject) if info.rating else _empty(RANK_TEST_COLUMNS)
+    notes += [f"{row.level_1} vs {row.level_2}{f' at {row.at}' if row.at else ''}: {row.note}"
+              for row in pairwise.itertuples() if row.note]
+    ranks = rank_tests(clean, measure, within, subject, info.resolution) if info.rating else _empty(RANK_TEST_COLUMNS)
     result = MeasureResult(
         **base, anova=anova[ANOVA_RESULT_COLUMNS], simple_effects=simple, pairwise=pairwise, rank_tests=ranks,
         descriptives=cell_descriptives(clean, measure, within, subject),
         normality=residual_normality(values),
         order=order_check(clean, measure, within, subject, options.position), notes=tuple(filter(None, notes)))
     return result, clean
+
+
+def unreadable_measure(df: pd.DataFrame, measure: str, within: Sequence[str], subject: str, problem: str
+                       ) -> MeasureResult:
+    """The result of a measure whose column holds values that are not numbers (``problem`` names them): a row per
+    effect with the reason, nothing computed."""
+    within = tuple(within)
+    reason = f"not testable: {problem}"
+    n_total = int(df[subject].nunique())
+    return MeasureResult(
+        measure=measure, within=within, subject=subject, info=MeasureInfo(measure), n_used=0, n_total=n_total,
+        excluded=_empty(["subject", "reason"]), anova=untestable_rows(within, levels_of(df, within), 0, reason),
+        simple_effects=_empty(SIMPLE_EFFECT_COLUMNS), pairwise=_empty(PAIRWISE_COLUMNS),
+        rank_tests=_empty(RANK_TEST_COLUMNS), descriptives=_empty([*within, *DESCRIPTIVE_STATS]),
+        normality=Normality(0, note=reason), order=OrderCheck(measure, 0, 0, note=reason), notes=(reason,),
+        tested=False)
+
+
+def levels_of(df: pd.DataFrame, within: Sequence[str]) -> list[int]:
+    return [len(factor_levels(df, f)) for f in within]
+
+
+def untestable_rows(within: Sequence[str], levels: Sequence[int], n: int, reason: str) -> pd.DataFrame:
+    """One ANOVA row per effect with empty statistics and ``reason`` as its note (docs/analysis.md: nothing a
+    study produces stops the analysis)."""
+    rows = []
+    for effect in effects_of(within):
+        df1 = int(np.prod([max(levels[f] - 1, 0) for f in effect])) if levels else 0
+        rows.append({"effect": effect_name(within, effect), "df1": df1, "df2": df1 * max(n - 1, 0),
+                     "correction": "none", "note": reason})
+    return pd.DataFrame(rows, columns=ANOVA_RESULT_COLUMNS)
 
 
 def _empty(columns: list[str]) -> pd.DataFrame:

@@ -7,6 +7,12 @@ factors' cells): the Wilcoxon signed-rank test for two levels, the Friedman test
 positive differences (level_1 − level_2), the p value is exact below 50 pairs without ties or zeros and
 otherwise from the normal approximation with tie and continuity corrections (scipy). Effect sizes: the
 matched-pairs rank-biserial correlation (Kerby 2014) for Wilcoxon, Kendall's W for Friedman (both pingouin).
+
+Ranks are taken of values rounded to the measure's resolution: a marginal mean of m cells of a measure whose values
+are multiples of r (1 for a rating item, 1/k for the mean of k items) is a multiple of r/m, and is rounded to that
+grid before ranking: the tests run on the whole number of grid steps (the item sums, up to a constant factor,
+which changes no rank). Otherwise floating-point noise (4.833333333333334 against 4.833333333333333, two orders of
+summing the same answers) would rank as a difference and break ties (:func:`on_grid`).
 """
 
 from __future__ import annotations
@@ -17,25 +23,38 @@ import numpy as np
 import pandas as pd
 from scipy import stats
 
-from analysis.cells import cell_label, factor_levels
+from analysis.cells import cell_label, design_cells, factor_levels
 
 RANK_TEST_COLUMNS = ["factor", "test", "levels", "n", "statistic", "df", "p", "effect_size", "effect_size_name",
                      "note"]
 ALL_CONDITIONS = "all conditions"
 
 
-def rank_tests(df: pd.DataFrame, dv: str, within: Sequence[str], subject: str) -> pd.DataFrame:
-    """One row per factor (and one for all conditions when there are several factors). ``df`` is complete."""
+def rank_tests(df: pd.DataFrame, dv: str, within: Sequence[str], subject: str,
+               resolution: float | None = None) -> pd.DataFrame:
+    """One row per factor (and one for all conditions when there are several factors). ``df`` is complete;
+    ``resolution`` is the step of the measure's values (see the module docstring)."""
     within = list(within)
     rows = []
+    n_cells = int(np.prod([len(factor_levels(df, f)) for f in within]))
     for factor in within:
         means = df.groupby([subject, factor], observed=True)[dv].mean().unstack(factor)[factor_levels(df, factor)]
-        rows.append({"factor": factor, **_test(means)})
+        averaged = n_cells // means.shape[1]
+        rows.append({"factor": factor, **_test(on_grid(means, resolution, averaged))})
     if len(within) > 1:
+        order = [cell_label(within, cell) for cell in design_cells(df, within)]
         cells = df.assign(_cell=[cell_label(within, tuple(r)) for r in df[within].itertuples(index=False)])
-        wide = cells.pivot_table(index=subject, columns="_cell", values=dv, observed=True, sort=False)
-        rows.append({"factor": ALL_CONDITIONS, **_test(wide)})
+        wide = cells.pivot_table(index=subject, columns="_cell", values=dv, observed=True)[order]
+        rows.append({"factor": ALL_CONDITIONS, **_test(on_grid(wide, resolution, 1))})
     return pd.DataFrame(rows, columns=RANK_TEST_COLUMNS)
+
+
+def on_grid(wide: pd.DataFrame, resolution: float | None, averaged: int) -> pd.DataFrame:
+    """``wide`` (means of ``averaged`` values each) as whole numbers of steps ``resolution / averaged`` (every
+    statistic here depends on ranks only), or rounded to 9 decimals when the resolution is unknown."""
+    if resolution is None:
+        return wide.round(9)
+    return (wide * (averaged / resolution)).round()
 
 
 def _test(wide: pd.DataFrame) -> dict[str, object]:

@@ -82,6 +82,9 @@ def order_check(df: pd.DataFrame, dv: str, within: Sequence[str], subject: str, 
         return OrderCheck(dv, n, positions, note="fewer than 3 participants or 2 positions")
     if data[dv].nunique() < 2:
         return OrderCheck(dv, n, positions, note="the measure does not vary")
+    confounded = _confounding(data, within, position)
+    if confounded:
+        return OrderCheck(dv, n, positions, note=confounded)
     names = {col: f"f{i}" for i, col in enumerate(within)}
     data = data.rename(columns={**names, dv: "y", position: "pos", subject: "subject"})
     data["y"] = data["y"].astype(float)
@@ -93,12 +96,27 @@ def order_check(df: pd.DataFrame, dv: str, within: Sequence[str], subject: str, 
             slope, se = float(base.params["pos"]), float(base.bse["pos"])
             lr = _carryover(data, conditions, list(names.values()))
     except (ValueError, ArithmeticError, IndexError, KeyError) as exc:
-        return OrderCheck(dv, n, positions, note=f"the model could not be fitted ({exc})")
+        singular = "singular" in str(exc).lower()
+        return OrderCheck(dv, n, positions, note=(
+            "position is confounded with the conditions (it is a linear combination of them), so an order effect "
+            "cannot be told apart from the condition effects" if singular else
+            f"the model could not be fitted ({exc})"))
     if not (math.isfinite(slope) and math.isfinite(se) and se > 0):
         return OrderCheck(dv, n, positions, note="the model could not estimate the position effect")
     z = slope / se
     return OrderCheck(dv, n, positions, slope, se, z, float(2 * stats.norm.sf(abs(z))), *lr,
                       note=_fit_note([str(w.message) for w in caught]))
+
+
+def _confounding(data: pd.DataFrame, within: Sequence[str], position: str) -> str:
+    """Why position cannot be separated from condition, or empty: when every condition was always played at one
+    position (all participants in one order), position is a function of condition."""
+    per_condition = data.groupby(list(within), observed=True)[position].nunique()
+    if (per_condition <= 1).all():
+        return ("position is confounded with condition: every condition was played at the same position by every "
+                "participant (one order for all), so an order effect cannot be told apart from the condition "
+                "effects; counterbalance the order")
+    return ""
 
 
 def _fit(formula: str, data: pd.DataFrame, reml: bool) -> Any:

@@ -9,9 +9,10 @@ on each, and count how often p < α. Power is that share, with a Wilson 95 % int
 The computation is the analysis's. An effect with one degree of freedom (every effect of a design whose factors
 have two levels) is the contrast form of :func:`analysis.anova.anova_table`: with the participants' contrast
 scores z (``effect_contrasts``), F = n z̄² / (Σ (z − z̄)² / (n − 1)) on (1, n − 1) df, and no sphericity correction
-applies; this path runs on every simulation at once (vectorised). Any other effect runs
-:func:`analysis.anova.anova_table` itself on each sample and reads ``p_read``. ``tests/analysis/test_power.py``
-checks both paths against ``anova_table`` and ``simple_effects``. A resample in which a test cannot be computed (no
+applies. Any other effect computes what :func:`analysis.anova.anova_table` computes for ``p_read`` (F, ε_GG,
+ε_HF, the reading rule) from the contrast scores' covariance (:func:`read_p`). Both run on every simulation at
+once (numpy over a simulations × n × cells array), as does the Holm adjustment; ``tests/analysis/test_power.py``
+checks them against ``anova_table`` and ``simple_effects``. A resample in which a test cannot be computed (no
 error variance) counts as not significant.
 
 Resampled participants are distinct subjects (a participant drawn twice counts twice), as in a bootstrap of
@@ -22,18 +23,21 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
 from scipy import stats
 
-from analysis.anova import anova_table, effect_name, effects_of
+from analysis.anova import GG_THRESHOLD, effect_name, effects_of
 from analysis.cells import complete_cases, factor_levels, wide_matrix
+from analysis.power_effect import EffectSize, with_effect_size
 from analysis.sphericity import effect_contrasts
 
-POWER_COLUMNS = ["measure", "test", "kind", "n", "simulations", "alpha", "power", "ci_low", "ci_high",
+PILOT = "pilot"
+"""The scenario of the pilot's own effects (the other: a chosen effect size, :mod:`analysis.power_effect`)."""
+POWER_COLUMNS = ["measure", "test", "kind", "scenario", "n", "simulations", "alpha", "power", "ci_low", "ci_high",
                  "pilot_n", "pilot_F", "pilot_p", "pilot_partial_eta2"]
 
 
@@ -47,12 +51,15 @@ class PlannedTest:
     contrast: np.ndarray
     """Columns: the effect's contrasts over the design's cells (cells outside a simple effect's slice are 0)."""
     family: str = ""
+    effect: tuple[int, ...] = ()
+    """An omnibus effect's factor positions."""
 
 
 def planned_tests(within: Sequence[str], levels: Sequence[Sequence[object]]) -> list[PlannedTest]:
     """Every omnibus effect, then every simple effect (each factor at each combination of the others' levels)."""
     counts = [len(lv) for lv in levels]
-    tests = [PlannedTest(effect_name(within, e), "effect", effect_contrasts(counts, e)) for e in effects_of(within)]
+    tests = [PlannedTest(effect_name(within, e), "effect", effect_contrasts(counts, e), effect=e)
+             for e in effects_of(within)]
     if len(within) < 2:
         return tests
     cells = list(itertools.product(*levels))
@@ -81,49 +88,61 @@ def one_df_p(z: np.ndarray) -> np.ndarray:
     return np.asarray(stats.f.sf(f, 1, n - 1))
 
 
+def read_p(z: np.ndarray, total: np.ndarray) -> np.ndarray:
+    """The p ``analyze`` reads for an effect with d > 1 df, on every sample at once: ``z`` is simulations × n × d
+    (the effect's contrast scores), ``total`` each sample's total sum of squares over the cells tested. The
+    statistics of :func:`analysis.anova.anova_table` and :func:`analysis.sphericity.sphericity` (ε_GG, ε_HF, the
+    reading rule, the untestable cases) written for a stack of samples."""
+    _, n, d = z.shape
+    mean = z.mean(axis=1)
+    centred = z - mean[:, None, :]
+    ss = n * (mean ** 2).sum(axis=-1)
+    ss_err = (centred ** 2).sum(axis=(1, 2))
+    cov = np.einsum("snd,sne->sde", centred, centred) / max(n - 1, 1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        gg = np.trace(cov, axis1=1, axis2=2) ** 2 / (d * np.einsum("sde,sed->s", cov, cov))
+        room = n - 1 - d * gg
+        hf = np.where(room > 0, (n * d * gg - 2) / (d * room), np.nan)
+        eps = np.where((gg > GG_THRESHOLD) & np.isfinite(hf), np.minimum(hf, 1.0), gg)
+        f = (ss / d) / (ss_err / (d * (n - 1)))
+        p = stats.f.sf(f, d * eps, d * (n - 1) * eps)
+    tiny = 1e-12 * np.maximum(total, 1.0)
+    testable = (n >= 2) & (total > tiny) & (ss_err > tiny)
+    return np.where(testable, p, np.nan)
+
+
 def holm_matrix(p: np.ndarray) -> np.ndarray:
-    """Holm-adjusted p along the last axis (NaN left out of m and kept NaN), row by row."""
-    out = np.full_like(p, np.nan)
-    for row in range(p.shape[0]):
-        ok = ~np.isnan(p[row])
-        values = p[row, ok]
-        m = len(values)
-        order = np.argsort(values)
-        adjusted = np.empty(m)
-        running = 0.0
-        for rank, i in enumerate(order):
-            running = max(running, min(1.0, (m - rank) * values[i]))
-            adjusted[i] = running
-        out[row, ok] = adjusted
-    return out
+    """Holm-adjusted p along the last axis (NaN left out of m and kept NaN), every row at once."""
+    missing = np.isnan(p)
+    filled = np.where(missing, np.inf, p)
+    order = np.argsort(filled, axis=-1, kind="stable")
+    ranked = np.take_along_axis(filled, order, axis=-1)
+    m = (~missing).sum(axis=-1, keepdims=True)
+    with np.errstate(invalid="ignore"):
+        adjusted = np.maximum.accumulate(np.minimum(1.0, (m - np.arange(p.shape[-1])) * ranked), axis=-1)
+    out = np.empty_like(adjusted)
+    np.put_along_axis(out, order, adjusted, axis=-1)
+    return np.where(missing, np.nan, out)
 
 
 def sample_pvalues(values: np.ndarray, levels: Sequence[int], within: Sequence[str],
-                 tests: Sequence[PlannedTest]) -> np.ndarray:
+                   tests: Sequence[PlannedTest]) -> np.ndarray:
     """p (as ``analyze`` reads it) of every test on every sample: ``values`` is simulations × n × cells;
     the answer simulations × tests."""
     sims = values.shape[0]
     p = np.full((sims, len(tests)), np.nan)
     for t, test in enumerate(tests):
+        z = values @ test.contrast
         if test.contrast.shape[1] == 1:
-            p[:, t] = one_df_p(values @ test.contrast[:, 0])
+            p[:, t] = one_df_p(z[..., 0])
         else:
-            p[:, t] = [_slow_p(sample, levels, within, test) for sample in values]
+            cells = values[..., np.abs(test.contrast).sum(axis=1) > 0]
+            total = ((cells - cells.mean(axis=(1, 2), keepdims=True)) ** 2).sum(axis=(1, 2))
+            p[:, t] = read_p(z, total)
     for family in {t.family for t in tests if t.kind == "simple"}:
         cols = [i for i, t in enumerate(tests) if t.kind == "simple" and t.family == family]
         p[:, cols] = holm_matrix(p[:, cols])
     return p
-
-
-def _slow_p(sample: np.ndarray, levels: Sequence[int], within: Sequence[str], test: PlannedTest) -> float:
-    """``anova_table``'s ``p_read`` for an effect with more than one df (sphericity corrections included)."""
-    if test.kind == "effect":
-        table = anova_table(sample, levels, within)
-        return float(table.loc[table["effect"] == test.name, "p_read"].iloc[0])
-    cols = np.flatnonzero(np.abs(test.contrast).sum(axis=1) > 0)
-    factor_levels_count = test.contrast.shape[1] + 1
-    table = anova_table(sample[:, cols], [factor_levels_count], [test.family])
-    return float(table["p_read"].iloc[0])
 
 
 def wilson(successes: int, trials: int, z: float = 1.959963984540054) -> tuple[float, float]:
@@ -156,28 +175,48 @@ def measure_data(kept: pd.DataFrame, measure: str, within: Sequence[str], subjec
 
 
 def measure_power(data: MeasureData, ns: Sequence[int], simulations: int, alpha: float,
-                  rng: np.random.Generator) -> pd.DataFrame:
-    """Rows of :data:`POWER_COLUMNS` for one measure: every planned test at every n."""
+                  rng: np.random.Generator, effect_size: EffectSize | None = None,
+                  on_step: Callable[[], None] = lambda: None) -> pd.DataFrame:
+    """Rows of :data:`POWER_COLUMNS` for one measure: every planned test at every n with the pilot's effects
+    (scenario ``pilot``), then, with ``effect_size``, every omnibus effect set to that size. ``on_step`` is called
+    after each n of each scenario."""
     counts = [len(lv) for lv in data.levels]
     tests = planned_tests(data.within, data.levels)
     pilot_n = data.values.shape[0]
-    rows = []
     if pilot_n < 2 or any(c < 2 for c in counts):
         return pd.DataFrame(columns=POWER_COLUMNS)
-    pilot_p = sample_pvalues(data.values[None], counts, data.within, tests)[0]
-    pilot_stats = [_pilot_stats(data.values, t) for t in tests]
+    rows = _scenario_rows(data, data.values, tests, PILOT, ns, simulations, alpha, rng, on_step)
+    if effect_size is not None:
+        for test in (t for t in tests if t.kind == "effect"):
+            scaled = with_effect_size(data.values, counts, data.within, test.effect, test.contrast,
+                                      effect_size.eta2g)
+            if scaled is not None:
+                rows += _scenario_rows(data, scaled, [test], effect_size.label, ns, simulations, alpha, rng,
+                                       on_step)
+    return pd.DataFrame(rows, columns=POWER_COLUMNS)
+
+
+def _scenario_rows(data: MeasureData, values: np.ndarray, tests: Sequence[PlannedTest], scenario: str,
+                   ns: Sequence[int], simulations: int, alpha: float, rng: np.random.Generator,
+                   on_step: Callable[[], None]) -> list[dict[str, object]]:
+    counts = [len(lv) for lv in data.levels]
+    pilot_n = values.shape[0]
+    pilot_p = sample_pvalues(values[None], counts, data.within, tests)[0]
+    pilot_stats = [_pilot_stats(values, t) for t in tests]
+    rows: list[dict[str, object]] = []
     for n in ns:
         idx = rng.integers(pilot_n, size=(simulations, n))
-        p = sample_pvalues(data.values[idx], counts, data.within, tests)
+        p = sample_pvalues(values[idx], counts, data.within, tests)
         for t, test in enumerate(tests):
             hits = int(np.sum(np.nan_to_num(p[:, t], nan=1.0) < alpha))
             low, high = wilson(hits, simulations)
             f, eta = pilot_stats[t]
-            rows.append({"measure": data.measure, "test": test.name, "kind": test.kind, "n": n,
-                         "simulations": simulations, "alpha": alpha, "power": hits / simulations, "ci_low": low,
-                         "ci_high": high, "pilot_n": pilot_n, "pilot_F": f, "pilot_p": pilot_p[t],
+            rows.append({"measure": data.measure, "test": test.name, "kind": test.kind, "scenario": scenario,
+                         "n": n, "simulations": simulations, "alpha": alpha, "power": hits / simulations,
+                         "ci_low": low, "ci_high": high, "pilot_n": pilot_n, "pilot_F": f, "pilot_p": pilot_p[t],
                          "pilot_partial_eta2": eta})
-    return pd.DataFrame(rows, columns=POWER_COLUMNS)
+        on_step()
+    return rows
 
 
 def _pilot_stats(values: np.ndarray, test: PlannedTest) -> tuple[float, float]:
@@ -193,10 +232,11 @@ def _pilot_stats(values: np.ndarray, test: PlannedTest) -> tuple[float, float]:
 
 
 def n_reaching(table: pd.DataFrame, target: float) -> pd.DataFrame:
-    """Per measure and test: the smallest n of the grid whose power reaches ``target`` (empty when none does)."""
+    """Per measure, scenario and test: the smallest n of the grid whose power reaches ``target`` (empty when none
+    does)."""
     rows = []
-    for (measure, test), part in table.groupby(["measure", "test"], sort=False):
+    for (measure, scenario, test), part in table.groupby(["measure", "scenario", "test"], sort=False):
         reached = part[part["power"] >= target]
-        rows.append({"measure": measure, "test": test,
+        rows.append({"measure": measure, "scenario": scenario, "test": test,
                      f"n_{int(target * 100)}": int(reached["n"].min()) if len(reached) else None})
     return pd.DataFrame(rows)

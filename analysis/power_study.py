@@ -30,7 +30,8 @@ from analysis.errors import AnalysisInputError
 from analysis.exclusions import apply_exclusions
 from analysis.export import export_study
 from analysis.levels import apply_level_order
-from analysis.power import POWER_COLUMNS, MeasureData, measure_data, measure_power, n_reaching
+from analysis.power import PILOT, POWER_COLUMNS, MeasureData, measure_data, measure_power, n_reaching
+from analysis.power_effect import EffectSize
 from analysis.scales import score_scales
 from analysis.study import DATA_DIR, DEFAULT_MEASURES, SUBJECT, attach_trial_columns
 from analysis.study_design import StudyDesign
@@ -71,16 +72,29 @@ def pilot_table(source: Engine | str, study_id: str, out: Path,
     return kept, within, design, len(pilots)
 
 
-def _one(args: tuple[MeasureData, tuple[int, ...], int, float, int, int]) -> pd.DataFrame:
-    data, ns, simulations, alpha, seed, index = args
-    return measure_power(data, ns, simulations, alpha, np.random.default_rng([seed, index]))
+Task = tuple[MeasureData, tuple[int, ...], int, float, int, int, EffectSize | None]
+
+
+def _one(args: Task, on_step: Callable[[], None] = lambda: None) -> pd.DataFrame:
+    data, ns, simulations, alpha, seed, index, effect_size = args
+    return measure_power(data, ns, simulations, alpha, np.random.default_rng([seed, index]), effect_size, on_step)
+
+
+def steps_per_measure(within: Sequence[str], ns: Sequence[int], effect_size: EffectSize | None) -> int:
+    """Progress steps of one measure: one per n, for the pilot's effects and for each omnibus effect at the chosen
+    size."""
+    return len(ns) * (1 + (2 ** len(within) - 1 if effect_size is not None else 0))
 
 
 def power_study(source: Engine | str, study_id: str, out_dir: Path | str, ns: Sequence[int], *,
                 simulations: int = 1000, alpha: float = 0.05, jobs: int = 1, seed: int = 0,
                 measures: Sequence[str] | None = None, include: frozenset[str] = frozenset(),
                 on_measure: Callable[[str], None] = lambda name: None, plots: bool = True,
-                on_start: Callable[[int], None] = lambda measures: None) -> PowerResult:
+                on_start: Callable[[int], None] = lambda steps: None, on_step: Callable[[int], None] = lambda k: None,
+                effect_size: EffectSize | None = None) -> PowerResult:
+    """Power of every planned test of ``measures`` at each of ``ns`` (see the module docstring); ``on_start``
+    gets the number of progress steps, ``on_step`` is called with each step count done, ``on_measure`` with each
+    measure done."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     kept, within, design, n_pilots = pilot_table(source, study_id, out, include)
@@ -89,17 +103,19 @@ def power_study(source: Engine | str, study_id: str, out_dir: Path | str, ns: Se
     if missing:
         raise AnalysisInputError(f"no column {', '.join(missing)} in the pilot's cells")
     datas = [measure_data(kept, m, within, SUBJECT) for m in chosen]
-    on_start(len(datas))
-    tasks = [(d, tuple(ns), simulations, alpha, seed, i) for i, d in enumerate(datas)]
+    per_measure = steps_per_measure(within, ns, effect_size)
+    on_start(len(datas) * per_measure)
+    tasks: list[Task] = [(d, tuple(ns), simulations, alpha, seed, i, effect_size) for i, d in enumerate(datas)]
     frames: list[pd.DataFrame] = []
     if jobs > 1 and len(tasks) > 1:
         with ProcessPoolExecutor(max_workers=jobs) as pool:
             for data, frame in zip(datas, pool.map(_one, tasks), strict=True):
                 frames.append(frame)
+                on_step(per_measure)
                 on_measure(data.measure)
     else:
         for task in tasks:
-            frames.append(_one(task))
+            frames.append(_one(task, lambda: on_step(1)))
             on_measure(task[0].measure)
     table = pd.concat([f for f in frames if not f.empty] or [pd.DataFrame(columns=POWER_COLUMNS)],
                       ignore_index=True)
@@ -115,9 +131,9 @@ def power_study(source: Engine | str, study_id: str, out_dir: Path | str, ns: Se
 
 def _needed(table: pd.DataFrame) -> pd.DataFrame:
     if table.empty:
-        return pd.DataFrame(columns=["measure", "test", "n_80", "n_90"])
+        return pd.DataFrame(columns=["measure", "scenario", "test", "n_80", "n_90"])
     a, b = (n_reaching(table, t) for t in TARGETS)
-    return a.merge(b, on=["measure", "test"])
+    return a.merge(b, on=["measure", "scenario", "test"])
 
 
 def _plot(table: pd.DataFrame, path: Path, alpha: float) -> Path:
@@ -132,8 +148,9 @@ def _plot(table: pd.DataFrame, path: Path, alpha: float) -> Path:
     fig, axes = plt.subplots(rows, cols, figsize=(5 * cols, 3.6 * rows), squeeze=False)
     for ax, measure in zip(axes.flat, measures, strict=False):
         part = table[table["measure"] == measure]
-        for test, line in part.groupby("test", sort=False):
-            ax.plot(line["n"], line["power"], marker="o", label=test)
+        for (scenario, test), line in part.groupby(["scenario", "test"], sort=False):
+            label = test if scenario == PILOT else f"{test} ({scenario})"
+            ax.plot(line["n"], line["power"], marker="o", label=label, linestyle="-" if scenario == PILOT else ":")
             ax.fill_between(line["n"], line["ci_low"], line["ci_high"], alpha=0.15)
         for target in TARGETS:
             ax.axhline(target, color="grey", linewidth=0.7, linestyle="--")
@@ -158,12 +175,16 @@ def _report(table: pd.DataFrame, needed: pd.DataFrame, path: Path, study_id: str
              "(simple effects Holm-adjusted). Power is the share of resamples with p < α; the interval is its "
              "Wilson 95 % Monte-Carlo interval. A pilot of simulated participants estimates power for people who "
              "behave like the simulation; treat the numbers as a rehearsal.", "",
-             "| measure | test | pilot F | pilot partial η² | n for 80 % | n for 90 % |", "|---|---|---|---|---|---|"]
-    first = table.drop_duplicates(["measure", "test"]).set_index(["measure", "test"])
+             "Rows whose effect size is `eta2g=…` set that omnibus effect's generalized η² to the chosen value "
+             "(`--effect`), keeping the pilot's pattern of means and its error terms; their F and partial η² are "
+             "those of the pilot so changed.", "",
+             "| measure | effect size | test | pilot F | pilot partial η² | n for 80 % | n for 90 % |",
+             "|---|---|---|---|---|---|---|"]
+    first = table.drop_duplicates(["measure", "scenario", "test"]).set_index(["measure", "scenario", "test"])
     for row in needed.itertuples(index=False):
-        pilot = first.loc[(row.measure, row.test)]
-        lines.append(f"| {row.measure} | {row.test} | {pilot['pilot_F']:.2f} | {pilot['pilot_partial_eta2']:.3f} | "
-                     f"{_n(row.n_80)} | {_n(row.n_90)} |")
+        pilot = first.loc[(row.measure, row.scenario, row.test)]
+        lines.append(f"| {row.measure} | {row.scenario} | {row.test} | {pilot['pilot_F']:.2f} | "
+                     f"{pilot['pilot_partial_eta2']:.3f} | {_n(row.n_80)} | {_n(row.n_90)} |")
     if n_pilots < SMALL_PILOT:
         lines += ["", f"**Only {n_pilots} pilot participants**: resampling so few people under-represents the "
                       "spread of a population, and the power estimates are too optimistic. Run more "

@@ -7,6 +7,8 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import pandas as pd
+
 from analysis.apa import apa_f_sentence, format_df, format_proportion, p_clause
 from analysis.document import Block, BulletList, Heading, Image, Paragraph
 from analysis.report_tables import (
@@ -42,7 +44,7 @@ def measure_section(result: MeasureResult) -> list[Block]:
         blocks += [Heading(3, "Simple main effects (p Holm-adjusted within each factor)"),
                    simple_table(result.simple_effects)]
     if not result.pairwise.empty:
-        blocks += [Heading(3, "Pairwise comparisons (paired t, Holm within each factor)"),
+        blocks += [Heading(3, "Pairwise comparisons (paired t, Holm within each factor and level of the others)"),
                    pairwise_table(result.pairwise)]
     if not result.rank_tests.empty:
         blocks += [Heading(3, "Rank tests (ordinal ratings)"), rank_table(result.rank_tests)]
@@ -64,13 +66,18 @@ def apa_sentences(result: MeasureResult) -> list[str]:
              f"{apa_f_sentence(row)}." for _, row in result.anova.iterrows()]
     for _, row in result.simple_effects.iterrows():
         holm = "" if math.isnan(float(row["p_holm"])) else f" (Holm-adjusted {p_clause(float(row['p_holm']))})"
-        lines.append(f"Effect of {row['factor']} at {row['at']}: {apa_f_sentence(row)}{holm}.")
+        difference = ""
+        if not pd.isna(row["mean_diff"]):
+            difference = (f"; {row['level_1']} − {row['level_2']}: M_diff = {number(row['mean_diff'])}, 95% CI "
+                          f"{interval(row['ci95_low'], row['ci95_high'])}, d_z = {float(row['dz']):.2f}")
+        lines.append(f"Effect of {row['factor']} at {row['at']}: {apa_f_sentence(row)}{holm}{difference}.")
     for _, row in result.pairwise.iterrows():
+        where = f" at {row['at']}" if row["at"] else ""
         if row["note"]:
-            lines.append(f"{row['level_1']} vs {row['level_2']}: {row['note']}.")
+            lines.append(f"{row['level_1']} vs {row['level_2']}{where}: {row['note']}.")
             continue
         lines.append(
-            f"{row['level_1']} vs {row['level_2']}: M_diff = {number(row['mean_diff'])}, 95% CI "
+            f"{row['level_1']} vs {row['level_2']}{where}: M_diff = {number(row['mean_diff'])}, 95% CI "
             f"{interval(row['ci95_low'], row['ci95_high'])}, t({format_df(float(row['df']))}) = "
             f"{float(row['t']):.2f}, {p_clause(float(row['p']))} (Holm-adjusted {p_clause(float(row['p_holm']))}), "
             f"d_z = {float(row['dz']):.2f}, 95% CI {interval(row['dz_ci_low'], row['dz_ci_high'], digits=2)}.")

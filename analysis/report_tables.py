@@ -59,22 +59,32 @@ def sphericity_table(anova: pd.DataFrame) -> Block | None:
 
 
 def simple_table(simple: pd.DataFrame) -> Block:
-    columns = ("effect of", "at", "df", "MSE", "F", "p", "p (Holm)", "read", "η²G")
+    columns = ("effect of", "at", "df", "MSE", "F", "p", "p (Holm)", "read", "η²G", "difference [95% CI]",
+               "d_z [95% CI]")
     rows = [(str(r["factor"]), str(r["at"]), f"{format_df(float(r['df1_read']))}, {format_df(float(r['df2_read']))}",
              number(r["MSE"]), number(r["F"], 2), format_p(float(r["p_read"])), format_p(float(r["p_holm"])),
-             READ.get(str(r["correction"]), ""), format_proportion(float(r["ges"]), 3))
+             READ.get(str(r["correction"]), ""), format_proportion(float(r["ges"]), 3), *_difference(r))
             for _, r in simple.iterrows()]
     return table(columns, rows)
 
 
 def pairwise_table(pairwise: pd.DataFrame) -> Block:
-    columns = ("factor", "comparison", "mean difference [95% CI]", "t", "df", "p", "p (Holm)", "d_z [95% CI]")
-    rows = [(str(r["factor"]), f"{r['level_1']} − {r['level_2']}",
+    columns = ("factor", "at", "comparison", "mean difference [95% CI]", "t", "df", "p", "p (Holm)",
+               "d_z [95% CI]")
+    rows = [(str(r["factor"]), str(r["at"]) if r["at"] else "averaged", f"{r['level_1']} − {r['level_2']}",
              f"{number(r['mean_diff'])} {interval(r['ci95_low'], r['ci95_high'])}".strip(), number(r["t"], 2),
              format_df(float(r["df"])), format_p(float(r["p"])), format_p(float(r["p_holm"])),
              f"{number(r['dz'], 2)} {interval(r['dz_ci_low'], r['dz_ci_high'], digits=2)}".strip())
             for _, r in pairwise.iterrows()]
     return table(columns, rows)
+
+
+def _difference(r: pd.Series) -> tuple[str, str]:
+    """``level_1 − level_2: mean difference [CI]`` and ``d_z [CI]`` of a two-level simple effect (else empty)."""
+    if pd.isna(r.get("mean_diff")):
+        return ("", "")
+    return (f"{r['level_1']} − {r['level_2']}: {number(r['mean_diff'])} {interval(r['ci95_low'], r['ci95_high'])}",
+            f"{number(r['dz'], 2)} {interval(r['dz_ci_low'], r['dz_ci_high'], digits=2)}".strip())
 
 
 def rank_table(ranks: pd.DataFrame) -> Block:

@@ -43,11 +43,13 @@ class MeasureResult:
     order: OrderCheck
     notes: tuple[str, ...] = ()
     plots: tuple[str, ...] = ()
+    tested: bool = True
+    """Whether the ANOVA could be run at all (at least two complete participants, a measure that varies, numeric
+    values); when not, ``anova`` has a row per effect with the reason as its note."""
 
     @property
     def testable(self) -> bool:
-        """Whether the ANOVA could be run at all (at least two complete participants)."""
-        return not self.anova.empty
+        return self.tested
 
 
 @dataclass(frozen=True, slots=True, eq=False)

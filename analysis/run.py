@@ -38,13 +38,13 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from analysis.cells import require_columns, validate_design
+from analysis.cells import non_numeric_values, require_columns, validate_design
 from analysis.censoring import censoring_table, finished_tests
 from analysis.errors import AnalysisInputError
 from analysis.exclusions import RULES, apply_exclusions, missing_reasons
 from analysis.levels import apply_level_order
 from analysis.measure_info import measure_info
-from analysis.measure_run import analyze_measure
+from analysis.measure_run import analyze_measure, unreadable_measure
 from analysis.normality import NORMALITY_COLUMNS
 from analysis.options import AnalysisOptions
 from analysis.order_check import ORDER_COLUMNS
@@ -70,8 +70,10 @@ def analyze_long(df: pd.DataFrame, measures: Sequence[str], within: Sequence[str
     within = _check_arguments(df, measures, within, subject, options)
     table = apply_level_order(df, within, options.levels, options.strict_levels)
     table = score_scales(table, options.items, options.scales) if options.scales else table
+    unreadable = {m: non_numeric_values(table, m, within, subject) for m in measures}
     for measure in measures:
-        validate_design(table, measure, within, subject)
+        validate_design(table.assign(**{measure: pd.to_numeric(table[measure], errors="coerce")})
+                        if unreadable[measure] else table, measure, within, subject)
     kept, exclusions = apply_exclusions(table, within, subject, options.include)
     has_finished = options.finished in kept.columns
     censoring = censoring_table(kept, within, options.finished) if has_finished else None
@@ -80,6 +82,9 @@ def analyze_long(df: pd.DataFrame, measures: Sequence[str], within: Sequence[str
     results: list[MeasureResult] = []
     files: list[Path] = []
     for measure, stem in zip(measures, _file_stems(measures), strict=True):
+        if unreadable[measure]:
+            results.append(unreadable_measure(kept, measure, within, subject, unreadable[measure]))
+            continue
         info = measure_info(measure, kept[measure], options.horizon, options.ratings)
         result, clean = analyze_measure(kept, measure, within, subject, info, options, missing_reasons(exclusions),
                                         censoring)

@@ -12,12 +12,13 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import pandas as pd
 
-from analysis.cells import cell_label
+from analysis.cells import cell_label, design_cells
 from analysis.study_design import RatingItem, ScaleSpec
 
 RELIABILITY_COLUMNS = ["scale", "condition", "n", "items", "alpha", "ci95_low", "ci95_high", "note"]
@@ -43,6 +44,16 @@ def score_scales(cells: pd.DataFrame, items: Sequence[RatingItem], scales: Seque
     return out
 
 
+def response_scores(values: Mapping[str, Any], items: Sequence[RatingItem], scales: Sequence[ScaleSpec]
+                    ) -> dict[str, float | None]:
+    """The scores of one response (``values``: item column → answer, absent or ``None`` when not answered), scored
+    as :func:`score_scales` scores a table; ``None`` for a scale missing an item."""
+    answers = pd.DataFrame([{c: values.get(c) for scale in scales for c in scale.items}], dtype=float)
+    scored = score_scales(answers, items, scales)
+    return {s.column: None if pd.isna(scored[s.column].iloc[0]) else float(scored[s.column].iloc[0])
+            for s in scales}
+
+
 def scale_reliability(cells: pd.DataFrame, items: Sequence[RatingItem], scales: Sequence[ScaleSpec],
                       within: Sequence[str]) -> pd.DataFrame:
     """α of every scale with at least two items: pooled over all responses, then per condition."""
@@ -58,7 +69,7 @@ def scale_reliability(cells: pd.DataFrame, items: Sequence[RatingItem], scales: 
         rows.append({"scale": scale.column, "condition": ALL_RESPONSES, **cronbach(scored)})
         if within:
             labels = [cell_label(within, tuple(r)) for r in cells[list(within)].itertuples(index=False)]
-            for label in dict.fromkeys(labels):
+            for label in (cell_label(within, cell) for cell in design_cells(cells, within)):
                 mask = np.array([x == label for x in labels])
                 rows.append({"scale": scale.column, "condition": label, **cronbach(scored[mask])})
     return pd.DataFrame(rows, columns=RELIABILITY_COLUMNS)

@@ -64,27 +64,36 @@ class Sphericity:
 def sphericity(scores: np.ndarray, n_cells: int) -> Sphericity:
     """Sphericity of the effect whose contrast scores (n subjects × d) are ``scores``."""
     n, d = scores.shape
+    if d == 1 or n < 2:
+        return covariance_sphericity(np.zeros((d, d)), max(n - 1, 0), n_cells)
+    return covariance_sphericity(np.atleast_2d(np.cov(scores, rowvar=False, ddof=1)), n - 1, n_cells)
+
+
+def covariance_sphericity(m: np.ndarray, dof: int, n_cells: int) -> Sphericity:
+    """Sphericity from the d × d error covariance ``m`` of an effect's contrast scores on ``dof`` degrees of freedom
+    (n − 1 with n participants in one group; N − G with G groups of a mixed design, the pooled within-group
+    covariance, as R's ``car``/``afex`` compute it). The formulas above with n − 1 = ``dof``."""
+    d = m.shape[0]
     nan = float("nan")
     if d == 1:
         return Sphericity(1, nan, nan, nan, nan, 1.0, 1.0)
-    if n < 2:
+    if dof < 1:
         return Sphericity(d, nan, nan, nan, nan, nan, nan, "fewer than 2 participants")
-    m = np.cov(scores, rowvar=False, ddof=1)
     trace = float(np.trace(m))
     if trace <= 0:
         return Sphericity(d, nan, nan, nan, nan, nan, nan, "no error variance")
     gg = trace**2 / (d * float(np.trace(m @ m)))
-    hf = (n * d * gg - 2) / (d * (n - 1 - d * gg)) if n - 1 - d * gg > 0 else nan
-    if n - 1 < d:
+    hf = ((dof + 1) * d * gg - 2) / (d * (dof - d * gg)) if dof - d * gg > 0 else nan
+    if dof < d:
         return Sphericity(d, nan, nan, nan, nan, gg, hf,
                           f"Mauchly's test needs more participants than the effect's {d} df")
     sign, logdet = np.linalg.slogdet(m)
     log_w = logdet - d * math.log(trace / d) if sign > 0 else -math.inf
-    rho = 1 - (2 * d**2 + d + 2) / (6 * d * (n - 1))
-    chi2 = -(n - 1) * rho * log_w
+    rho = 1 - (2 * d**2 + d + 2) / (6 * d * dof)
+    chi2 = -dof * rho * log_w
     df = d * (d + 1) / 2 - 1
     omega2 = ((d + 2) * (d - 1) * (d - 2) * (2 * d**3 + 6 * d**2 + 3 * n_cells + 2)
-              / (288 * ((n - 1) * d * rho) ** 2))
+              / (288 * (dof * d * rho) ** 2))
     p1, p2 = stats.chi2.sf(chi2, df), stats.chi2.sf(chi2, df + 4)
     p = float(min(1.0, max(0.0, p1 + omega2 * (p2 - p1))))
     return Sphericity(d, math.exp(log_w), float(chi2), float(df), p, gg, hf)

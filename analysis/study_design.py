@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from analysis.dictionary import item_column
+from analysis.dictionary_items import scale_key
 
 LEVEL_KEYS = {"robot": ("robots", "robot"), "kitchen": ("kitchens", "kitchen"), "view": ("views", "view")}
 """Config keys listing a factor's levels, then the key of its single level."""
@@ -61,7 +62,7 @@ class StudyDesign:
         factors = tuple(f for f in declared if len(levels[f]) > 1)
         world = config.get("world") or {}
         horizon = world.get("horizon") if isinstance(world, Mapping) else None
-        items, scales = _questionnaires(config.get("questionnaires") or ())
+        items, scales = rating_specs(config.get("questionnaires") or (), "after_each_trial")
         return cls(factors, {f: levels[f] for f in factors}, tuple(f for f in declared if f not in factors),
                    int(horizon) if horizon is not None else None, items, scales)
 
@@ -79,11 +80,13 @@ def factor_levels(config: Mapping[str, Any], factor: str) -> tuple[str, ...]:
     return tuple(str(v["name"]) if isinstance(v, Mapping) else str(v) for v in values)
 
 
-def _questionnaires(questionnaires: Any) -> tuple[tuple[RatingItem, ...], tuple[ScaleSpec, ...]]:
+def rating_specs(questionnaires: Any, when: str) -> tuple[tuple[RatingItem, ...], tuple[ScaleSpec, ...]]:
+    """The rating items and named scales of the questionnaires shown ``when`` (``after_each_trial`` or
+    ``end_of_study``), in study order."""
     items: list[RatingItem] = []
     scales: list[ScaleSpec] = []
     for q in questionnaires:
-        if q.get("when", "after_each_trial") != "after_each_trial":
+        if q.get("when", "after_each_trial") != when:
             continue
         qid = str(q["id"])
         mine = {}
@@ -95,10 +98,9 @@ def _questionnaires(questionnaires: Any) -> tuple[tuple[RatingItem, ...], tuple[
                                 bool(item.get("reverse", False)))
             mine[str(item["id"])] = rating
             items.append(rating)
-        taken = {item_column(qid, str(i["id"])) for i in q.get("items", ())}
+        item_ids = {str(i["id"]) for i in q.get("items", ())}
         for spec in q.get("scales", ()) or ():
             members = tuple(mine[i].column for i in spec.get("items", ()) if i in mine)
-            column = item_column(qid, str(spec["id"]))
-            scales.append(ScaleSpec(column + "_scale" if column in taken else column,
-                                    str(spec.get("title") or spec["id"]), members))
+            scales.append(ScaleSpec(scale_key(qid, str(spec["id"]), item_ids), str(spec.get("title") or spec["id"]),
+                                    members))
     return tuple(items), tuple(scales)

@@ -40,6 +40,12 @@ class Progress:
             print(f"{self.label} {self.done}/{self.total} {name} {status} ({elapsed:.0f} s)", file=self.stream,
                   flush=True)
 
+    def advance(self, steps: int = 1) -> None:
+        """``steps`` more units done, without a line of their own (the bar is redrawn on a terminal)."""
+        self.done += steps
+        if self.tty:
+            self.draw()
+
     def draw(self) -> None:
         width = 30
         filled = int(width * self.done / max(self.total, 1))

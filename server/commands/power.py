@@ -1,12 +1,15 @@
 """``steakhouse power``: how many participants a study needs, simulated from its pilot participants.
 
     steakhouse power --study paper_study --n 8,16,28,40,64 --out power/ [--alpha 0.05] [--simulations 1000]
-        [--jobs J] [--seed S] [--dv kb_gap_mean,interrupts] [--include-invalid] [--database-url URL]
+        [--jobs J] [--seed S] [--dv kb_gap_mean,interrupts] [--effect eta2g=0.1] [--include-invalid]
+        [--database-url URL]
 
 For each measure and planned test (main effects, interaction, each factor's simple effects) the pilot
 participants (``steakhouse pilot``) are resampled with replacement at each n and the test ``analyze`` runs is
-run on each sample (:mod:`analysis.power`, :mod:`analysis.power_study`). Writes power.csv, n_needed.csv,
-power.png and power.md to ``--out``.
+run on each sample (:mod:`analysis.power`, :mod:`analysis.power_study`); with ``--effect eta2g=0.1`` also each
+omnibus effect set to that generalized η² (:mod:`analysis.power_effect`). A progress bar (on a terminal) counts
+measure × n steps; otherwise a line per measure. Writes power.csv, n_needed.csv, power.png and power.md to
+``--out``.
 """
 
 from __future__ import annotations
@@ -34,6 +37,9 @@ def register(subparsers: Any) -> None:
     p.add_argument("--jobs", metavar="J", type=int, default=1, help="processes (default 1)")
     p.add_argument("--seed", metavar="S", type=int, default=0, help="seed of the resampling (default 0)")
     p.add_argument("--dv", metavar="COL[,COL...]", help="measures (default: those analyze runs by default)")
+    p.add_argument("--effect", metavar="eta2g=V",
+                   help="also the power of each omnibus effect set to this generalized η² (e.g. eta2g=0.1), "
+                        "beside the pilot's own effect sizes")
     p.add_argument("--include-invalid", action="store_true", help="keep trials the server marked invalid")
     p.add_argument("--no-plots", action="store_true", help="skip power.png")
     p.add_argument("--database-url", metavar="URL",
@@ -60,6 +66,7 @@ def handle(args: argparse.Namespace) -> int:
     if args.jobs < 1:
         raise UsageError("--jobs must be at least 1")
     from analysis.errors import AnalysisInputError
+    from analysis.power_effect import EffectSize
     from analysis.power_study import power_study
     from pilot.progress import Progress
     from server.commands.export import database_url
@@ -68,18 +75,26 @@ def handle(args: argparse.Namespace) -> int:
     if measures is not None and not all(measures):
         raise UsageError(f"--dv {args.dv!r} has an empty column name")
     include = frozenset({"invalid"} if args.include_invalid else ())
-    progress = Progress(len(measures) if measures else 0, "power")
+    try:
+        effect_size = EffectSize.parse(args.effect) if args.effect else None
+    except AnalysisInputError as exc:
+        raise UsageError(str(exc)) from exc
+    progress = Progress(0, "power")
     try:
         result = power_study(database_url(args.database_url), args.study, args.out, ns,
                              simulations=args.simulations, alpha=args.alpha, jobs=args.jobs, seed=args.seed,
                              measures=measures, include=include, plots=not args.no_plots,
-                             on_measure=lambda name: progress.finished(name, True),
+                             effect_size=effect_size, on_step=progress.advance,
+                             on_measure=lambda name: None if progress.tty else print(
+                                 f"power: {name} done ({progress.done}/{progress.total} steps)", file=sys.stderr,
+                                 flush=True),
                              on_start=lambda total: setattr(progress, "total", total))
     except AnalysisInputError as exc:
         raise UsageError(f"study {args.study}: {exc}") from exc
     progress.close()
     for row in result.needed.itertuples(index=False):
-        print(f"{row.measure} / {row.test}: 80 % at n = {_n(row.n_80)}, 90 % at n = {_n(row.n_90)}")
+        size = "" if row.scenario == "pilot" else f" with {row.scenario}"
+        print(f"{row.measure} / {row.test}{size}: 80 % at n = {_n(row.n_80)}, 90 % at n = {_n(row.n_90)}")
     print(f"from {result.pilot_participants} pilot participants; wrote {len(result.files)} files to {args.out}",
           file=sys.stderr)
     return 0

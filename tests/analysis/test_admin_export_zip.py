@@ -17,6 +17,7 @@ from steakhouse_testing import Player, play_to_end
 
 from analysis.dataset import FILES
 from analysis.export import DICTIONARY_FILES, export_study
+from analysis.spss import SAV_FILE
 from server.store.tables import EventRow
 
 ADMIN = {"Authorization": "Bearer admin-secret"}
@@ -70,7 +71,7 @@ def test_with_the_token_the_zip_holds_the_export(server, tmp_path) -> None:
     assert 'filename="two_by_two_export.zip"' in response.headers["content-disposition"]
     assert unknown.status_code == 404 and unknown.json()["detail"]["code"] == "unknown_study"
     archive = zipfile.ZipFile(io.BytesIO(response.content))
-    names = {f"two_by_two_export/{name}" for name in (*FILES, *DICTIONARY_FILES)}
+    names = {f"two_by_two_export/{name}" for name in (*FILES, SAV_FILE, *DICTIONARY_FILES)}
     assert set(archive.namelist()) == names
     url = server.services.store.url.render_as_string(hide_password=False)
     direct = export_study(url, "two_by_two", tmp_path / "direct")

@@ -59,8 +59,11 @@ def test_a_measure_without_variance_is_not_testable_and_the_rest_runs(stored, tm
     captured = capsys.readouterr()
     assert "warning: interrupts: not testable: every value is 0, nothing varies" in captured.err
     anova = pd.read_csv(tmp_path / "anova.csv")
-    assert set(anova["measure"]) == {"kb_gap_mean", "kb_gap_ticks_pct", "ticks", "robot_in_fov_pct"}
+    assert set(anova["measure"]) == {"kb_gap_mean", "kb_gap_ticks_pct", "interrupts", "interrupts_per_selection",
+                                     "ticks", "robot_in_fov_pct"}
     assert (anova.groupby("measure").size() == 3).all()
+    flat = anova[anova["measure"] == "interrupts"]
+    assert set(flat["note"]) == {"not testable: every value is 0, nothing varies"} and flat["F"].isna().all()
     report = (tmp_path / "report.md").read_text()
     assert report.index("## Data quality") < report.index("## Method") < report.index("## kb_gap_mean")
     assert "Study quiet: 3 participants in the store" in report

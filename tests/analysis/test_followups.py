@@ -48,3 +48,20 @@ def test_a_slice_without_variance_is_not_testable_and_holm_skips_it() -> None:
     others = table[(table["factor"] == "Time") & (table["at"] != "Metric=Action")]
     assert others["p_holm"].to_numpy() == pytest.approx(multipletests(others["p_read"], method="holm")[1])
     assert holm(pd.Series([0.01, float("nan"), 0.04])).tolist()[0] == pytest.approx(0.02)
+
+
+def test_a_two_level_simple_effect_gives_its_mean_difference_ci_and_dz() -> None:
+    from scipy import stats
+
+    df = apply_level_order(reacttime_long(), ["noise", "deg"])
+    table = simple_effects(df, "rt", ["noise", "deg"], "subject")
+    for _, row in table[table["factor"] == "noise"].iterrows():
+        part = df[df["deg"] == row["at"].split("=")[1]].pivot(index="subject", columns="noise", values="rt")
+        assert (row["level_1"], row["level_2"]) == ("absent", "present")
+        diff = part["absent"] - part["present"]
+        ci = stats.ttest_rel(part["absent"], part["present"]).confidence_interval(0.95)
+        assert [row["mean_diff"], row["ci95_low"], row["ci95_high"]] == pytest.approx([diff.mean(), ci.low, ci.high])
+        assert row["dz"] == pytest.approx(diff.mean() / diff.std(ddof=1))
+        assert row["dz_ci_low"] < row["dz"] < row["dz_ci_high"]
+    three = table[table["factor"] == "deg"]
+    assert three["mean_diff"].isna().all(), "a three-level simple effect has no single difference"

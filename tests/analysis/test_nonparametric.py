@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 import pytest
+from scipy import stats
 from steakhouse_published import DEPRESSION_X, DEPRESSION_Y, JASP_PROPORTIONS, ROUNDING_TIMES, agrees
 
 from analysis.nonparametric import RANK_TEST_COLUMNS, friedman, rank_tests, wilcoxon_signed_rank
@@ -44,3 +45,46 @@ def test_no_difference_is_not_testable() -> None:
     assert same["note"].startswith("not testable") and np.isnan(same["p"])
     flat = friedman(pd.DataFrame(np.full((4, 3), 2.0)))
     assert flat["note"].startswith("not testable") and np.isnan(flat["statistic"])
+
+
+def test_rank_tests_rank_the_item_sums_not_floating_point_noise() -> None:
+    # A scale of three 1-7 items per cell, robot (3 levels) × kitchen (2): a participant's marginal mean is a
+    # multiple of 1/6, and summing the same answers in another order gives 4.833333333333334 against
+    # 4.833333333333333. Ranked as floats, those are different values and the ties break.
+    rng = np.random.default_rng(0)
+    rows = []
+    for s in range(16):
+        for robot in ("fov", "base", "stay"):
+            for kitchen in ("a", "b"):
+                items = rng.integers(3, 8, size=3)
+                rows.append({"s": s, "robot": robot, "kitchen": kitchen, "y": items.sum() / 3,
+                             "sum": int(items.sum())})
+    df = pd.DataFrame(rows)
+    levels = ["fov", "base", "stay"]
+    float_means = df.groupby(["s", "robot"])["y"].mean().unstack()[levels].to_numpy()
+    sums = df.groupby(["s", "robot"])["sum"].sum().unstack()[levels].to_numpy()
+    exact = stats.friedmanchisquare(*sums.T)
+    noisy = stats.friedmanchisquare(*float_means.T)
+    assert noisy.statistic != pytest.approx(exact.statistic), "the float means do break ties (the test bites)"
+    table = rank_tests(df, "y", ["robot", "kitchen"], "s", resolution=1 / 3).set_index("factor")
+    assert table.loc["robot", "statistic"] == pytest.approx(exact.statistic, rel=1e-12)
+    assert table.loc["robot", "p"] == pytest.approx(exact.pvalue, rel=1e-12)
+    # Wilcoxon (kitchen): the signed ranks of the differences of the item sums, as R's wilcox.test ranks them
+    k_sums = df.groupby(["s", "kitchen"])["sum"].sum().unstack()[["a", "b"]].to_numpy()
+    diff = k_sums[:, 0] - k_sums[:, 1]
+    nonzero = diff[diff != 0]
+    expected_v = stats.rankdata(np.abs(nonzero))[nonzero > 0].sum()
+    assert table.loc["kitchen", "statistic"] == expected_v
+    assert table.loc["kitchen", "p"] == pytest.approx(stats.wilcoxon(k_sums[:, 0], k_sums[:, 1], correction=True,
+                                                                     method="approx").pvalue, rel=1e-9)
+    assert table.loc["all conditions", "levels"].startswith("robot=fov, kitchen=a vs robot=fov, kitchen=b vs "
+                                                            "robot=base"), "conditions in study order"
+
+
+def test_the_resolution_of_a_rating_measure_is_found_in_its_values() -> None:
+    from analysis.measure_info import resolution
+
+    assert resolution(pd.Series([1.0, 4.0, 7.0])) == 1.0
+    assert resolution(pd.Series([1.0, 4 + 1 / 3, 17 / 3])) == pytest.approx(1 / 3)
+    assert resolution(pd.Series([2.5, 1.0])) == 0.5
+    assert resolution(pd.Series([0.123456])) is None

@@ -43,3 +43,12 @@ def test_what_cannot_be_checked_is_said() -> None:
     assert "no 'position' column" in order_check(df.drop(columns="position"), "y", ["robot"], "p").sentence
     assert "does not vary" in order_check(df.assign(y=1.0), "y", ["robot", "kitchen"], "p").sentence
     assert order_check(df[df["p"] < 2], "y", ["robot", "kitchen"], "p").order_effect is None
+
+
+def test_one_order_for_everyone_is_named_as_confounding() -> None:
+    df = sequenced(4, drift=1.0)
+    cells = {("a", "k1"): 1, ("a", "k2"): 2, ("b", "k1"): 3, ("b", "k2"): 4}
+    df["position"] = [cells[(r, k)] for r, k in zip(df["robot"], df["kitchen"], strict=True)]
+    check = order_check(df, "y", ["robot", "kitchen"], "p")
+    assert check.order_effect is None
+    assert "position is confounded with condition" in check.sentence and "singular" not in check.sentence

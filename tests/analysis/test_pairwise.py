@@ -28,6 +28,8 @@ def test_three_levels_in_study_order_with_holm() -> None:
     df = apply_level_order(reacttime_long(), ["noise", "deg"], {"deg": ["8", "4", "0"]})
     table = pairwise_comparisons(df, "rt", ["noise", "deg"], "subject")
     assert list(table.columns) == PAIRWISE_COLUMNS
+    assert list(dict.fromkeys(table["at"])) == ["", "noise=absent", "noise=present"]
+    table = table[table["at"] == ""]
     assert list(zip(table["level_1"], table["level_2"], strict=True)) == [("8", "4"), ("8", "0"), ("4", "0")]
     means = df.groupby(["subject", "deg"], observed=True)["rt"].mean().unstack()
     for _, row in table.iterrows():
@@ -37,6 +39,23 @@ def test_three_levels_in_study_order_with_holm() -> None:
         assert row["dz"] == pytest.approx(diff.mean() / diff.std(ddof=1))
         assert row["se"] == pytest.approx(diff.std(ddof=1) / np.sqrt(10))
     assert table["p_holm"].to_numpy() == pytest.approx(multipletests(table["p"], method="holm")[1])
+
+
+def test_comparisons_within_each_level_of_the_other_factor_are_holm_adjusted_per_level() -> None:
+    df = apply_level_order(reacttime_long(), ["noise", "deg"], {"deg": ["8", "4", "0"]})
+    table = pairwise_comparisons(df, "rt", ["noise", "deg"], "subject")
+    for noise in ("absent", "present"):
+        family = table[table["at"] == f"noise={noise}"]
+        assert list(zip(family["level_1"], family["level_2"], strict=True)) == [("8", "4"), ("8", "0"), ("4", "0")]
+        values = df[df["noise"] == noise].pivot(index="subject", columns="deg", values="rt")
+        for _, row in family.iterrows():
+            ref = stats.ttest_rel(values[row["level_1"]], values[row["level_2"]])
+            ci = ref.confidence_interval(0.95)
+            assert [row["t"], row["p"]] == pytest.approx([ref.statistic, ref.pvalue])
+            assert [row["ci95_low"], row["ci95_high"]] == pytest.approx([ci.low, ci.high])
+            diff = values[row["level_1"]] - values[row["level_2"]]
+            assert [row["mean_diff"], row["dz"]] == pytest.approx([diff.mean(), diff.mean() / diff.std(ddof=1)])
+        assert family["p_holm"].to_numpy() == pytest.approx(multipletests(family["p"], method="holm")[1])
 
 
 def test_two_level_factors_have_no_pairwise_rows_and_equal_differences_are_not_testable() -> None:

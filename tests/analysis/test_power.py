@@ -76,3 +76,64 @@ def test_the_wilson_interval_covers_the_estimate() -> None:
     low, high = wilson(80, 100)
     assert low < 0.8 < high and high - low < 0.2
     assert wilson(0, 50)[0] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_the_vectorised_tests_equal_the_analysis_on_every_resample() -> None:
+    """Many resamples of a 3 × 2 pilot, some read with Greenhouse–Geisser, some with Huynh–Feldt, one with no
+    variance at all: each p equals ``anova_table``'s ``p_read`` / ``simple_effects``' Holm-adjusted p."""
+    rng = np.random.default_rng(8)
+    levels = [["a", "b", "c"], ["k1", "k2"]]
+    within, counts = ["robot", "kitchen"], [3, 2]
+    pilot = rng.normal(size=(10, 6)) * rng.uniform(0.3, 3, size=6) + rng.normal(size=(10, 1)) + np.arange(6) * 0.4
+    samples = pilot[rng.integers(10, size=(40, 10))]
+    samples[0] = 5.0
+    tests = planned_tests(within, levels)
+    p = sample_pvalues(samples, counts, within, tests)
+    readings = set()
+    for sample, row in zip(samples, p, strict=True):
+        table = anova_table(sample, counts, within).set_index("effect")
+        readings |= set(table["correction"])
+        simple = simple_effects(long_table(sample, within, levels), "y", within, "participant")
+        expected = {**table["p_read"].to_dict(), **{f"{r.factor} at {r.at}": r.p_holm for r in simple.itertuples()}}
+        assert row == pytest.approx([expected[t.name] for t in tests], rel=1e-9, abs=1e-12, nan_ok=True)
+    assert {"GG", "HF"} <= readings, "both corrections were exercised"
+    assert np.isnan(p[0]).all(), "a resample without variance is not testable"
+
+
+def test_the_holm_adjustment_of_every_row_at_once_is_statsmodels() -> None:
+    from statsmodels.stats.multitest import multipletests
+
+    from analysis.power import holm_matrix
+
+    p = np.random.default_rng(1).uniform(size=(50, 4)) ** 3
+    p[3, 1] = np.nan
+    adjusted = holm_matrix(p)
+    for row, out in zip(p, adjusted, strict=True):
+        ok = ~np.isnan(row)
+        assert out[ok] == pytest.approx(multipletests(row[ok], method="holm")[1]) and np.isnan(out[~ok]).all()
+
+
+def test_a_chosen_effect_size_sets_that_effects_generalized_eta_squared_and_nothing_else() -> None:
+    from analysis.power_effect import EffectSize, with_effect_size
+
+    rng = np.random.default_rng(2)
+    values = rng.normal(size=(12, 6)) + rng.normal(size=(12, 1)) + np.array([0, 0.2, 0.5, 0.1, 0.3, 0.9])
+    within, counts = ["robot", "kitchen"], [3, 2]
+    before = anova_table(values, counts, within).set_index("effect")
+    robot = planned_tests(within, [["a", "b", "c"], ["k", "l"]])[0]
+    scaled = with_effect_size(values, counts, within, robot.effect, robot.contrast, 0.1)
+    after = anova_table(scaled, counts, within).set_index("effect")
+    assert after.loc["robot", "ges"] == pytest.approx(0.1, rel=1e-9)
+    assert after["SS_error"].to_numpy() == pytest.approx(before["SS_error"].to_numpy(), rel=1e-9)
+    assert after.loc[["kitchen", "robot * kitchen"], "SS"].to_numpy() == pytest.approx(
+        before.loc[["kitchen", "robot * kitchen"], "SS"].to_numpy(), rel=1e-9)
+    flat = with_effect_size(np.tile(values[:, :1], (1, 6)), counts, within, robot.effect, robot.contrast, 0.1)
+    assert flat is None, "no pattern to scale"
+    table = measure_power(MeasureData("y", values, tuple(within), (("a", "b", "c"), ("k", "l"))), [8, 40], 400,
+                          0.05, np.random.default_rng(3), EffectSize.parse("eta2g=0.1"))
+    chosen = table[table["scenario"] == "eta2g=0.1"]
+    assert set(chosen["test"]) == {"robot", "kitchen", "robot * kitchen"}
+    assert chosen.groupby("test")["power"].apply(lambda s: s.iloc[-1] >= s.iloc[0]).all(), "more n, more power"
+    for bad in ("eta2g=1.5", "d=0.3", "eta2g=x"):
+        with pytest.raises(Exception, match="--effect"):
+            EffectSize.parse(bad)

@@ -22,8 +22,9 @@ HEADERS = {
                   "mauchly_p", "eps_gg", "eps_hf", "df1_gg", "df2_gg", "p_gg", "df1_hf", "df2_hf", "p_hf",
                   "correction", "df1_read", "df2_read", "p_read", "note", "ges_ci_low", "ges_ci_high"],
     "simple_effects.csv": ["measure", "factor", "at", "df1", "df2", "MSE", "F", "p", "ges", "eps_gg", "eps_hf",
-                           "correction", "df1_read", "df2_read", "p_read", "p_holm", "note"],
-    "pairwise.csv": ["measure", "factor", "level_1", "level_2", "n", "mean_1", "mean_2", "mean_diff", "se",
+                           "correction", "df1_read", "df2_read", "p_read", "p_holm", "level_1", "level_2",
+                           "mean_diff", "ci95_low", "ci95_high", "dz", "dz_ci_low", "dz_ci_high", "note"],
+    "pairwise.csv": ["measure", "factor", "at", "level_1", "level_2", "n", "mean_1", "mean_2", "mean_diff", "se",
                      "ci95_low", "ci95_high", "t", "df", "p", "p_holm", "dz", "dz_ci_low", "dz_ci_high", "note"],
     "rank_tests.csv": ["measure", "factor", "test", "levels", "n", "statistic", "df", "p", "effect_size",
                        "effect_size_name", "note"],
@@ -69,7 +70,9 @@ def test_one_and_three_factors(cells, tmp_path) -> None:
     three = pd.concat([base.assign(view=v, ticks=base["ticks"] + k) for k, v in enumerate(("a", "b", "c"))])
     result = analyze_long(three, ["ticks"], [*WITHIN, "view"], "participant", tmp_path / "three")
     assert len(result.anova) == 7 and result.anova["effect"].iloc[-1] == "robot * kitchen * view"
-    assert len(result.tables["pairwise.csv"]) == 3  # the three views
+    pairs = result.tables["pairwise.csv"]
+    assert len(pairs) == 3 * (1 + 4)  # the three views: averaged, then in each of the 2 × 2 robot × kitchen cells
+    assert (pairs["at"] == "").sum() == 3 and pairs["at"].nunique() == 5
     assert (tmp_path / "three" / "plots" / "ticks_interaction.svg").is_file()
 
 
@@ -147,3 +150,29 @@ def test_unsafe_measure_names_become_file_names(cells, tmp_path) -> None:
     result = analyze_long(df, ["ticks/trial", "ticks trial"], WITHIN, "participant", tmp_path)
     assert result.measures[0].plots[0] == "plots/ticks_trial_interaction.png"
     assert result.measures[1].plots[0] == "plots/ticks_trial_2_interaction.png"
+
+
+def test_a_constant_measure_has_its_anova_rows_with_the_reason(cells, tmp_path) -> None:
+    df = cells().assign(flat=3.0)
+    result = analyze_long(df, ["flat", "ticks"], WITHIN, "participant", tmp_path, FAST)
+    anova = pd.read_csv(tmp_path / "anova.csv")
+    flat = anova[anova["measure"] == "flat"]
+    assert flat["effect"].tolist() == ["robot", "kitchen", "robot * kitchen"]
+    assert set(flat["note"]) == {"not testable: every value is 3, nothing varies"} and flat["F"].isna().all()
+    assert flat["df1"].tolist() == [1, 1, 1]
+    assert not result.measures[0].testable and np.isfinite(anova.loc[anova["measure"] == "ticks", "F"]).all()
+
+
+def test_a_non_numeric_cell_is_named_and_the_other_measures_still_run(cells, tmp_path) -> None:
+    df = cells()
+    df["ticks"] = df["ticks"].astype(object)
+    df.loc[6, "ticks"] = "n/a"
+    who = df.loc[6, ["participant", "robot", "kitchen"]].tolist()
+    result = analyze_long(df, ["ticks", "interrupts"], WITHIN, "participant", tmp_path, FAST)
+    expected = (f"ticks: not testable: 1 value(s) of ticks are not numbers: row 7 (participant {who[0]}, "
+                f"robot={who[1]}, kitchen={who[2]}): 'n/a'")
+    assert result.warnings == (expected,)
+    anova = pd.read_csv(tmp_path / "anova.csv")
+    assert anova.loc[anova["measure"] == "ticks", "note"].str.contains("row 7").all()
+    assert np.isfinite(anova.loc[anova["measure"] == "interrupts", "F"]).all()
+    assert expected.split(": ", 1)[1] in (tmp_path / "report.md").read_text()

@@ -60,6 +60,11 @@ def test_reliability_pooled_and_per_condition_with_reversed_items() -> None:
     assert list(table.columns) == RELIABILITY_COLUMNS
     assert table["condition"].tolist() == ["all conditions", "robot=fov_aware", "robot=baseline"]
     assert table["n"].tolist() == [24, 12, 12] and (table["items"] == 3).all()
+    from analysis.levels import apply_level_order
+
+    study_order = apply_level_order(cells.iloc[::-1], ["robot"], {"robot": ["fov_aware", "baseline"]})
+    assert scale_reliability(study_order, ITEMS, (SCALE,), ["robot"])["condition"].tolist()[1:] == [
+        "robot=fov_aware", "robot=baseline"], "the study's order, not the rows' order"
     unreversed = scale_reliability(cells, (ITEMS[0], RatingItem("q.b", 1, 7), ITEMS[2]), (SCALE,), ["robot"])
     assert table.loc[0, "alpha"] > 0.6 > unreversed.loc[0, "alpha"]
 

@@ -1,0 +1,106 @@
+"""Mixed (split-plot) ANOVA: one factor between participants, one to three within, with the within part's sphericity.
+
+The participants' cell values Y (N × C, cells in design order) are regressed on the between design X (an intercept
+and G − 1 sum-to-zero codes of the G groups), once per effect on the contrast scores Z = Y L (:mod:`analysis.
+sphericity`). With B = (XᵀX)⁻¹XᵀZ and the residual SSCP matrix E = (Z − XB)ᵀ(Z − XB) on N − G df, a hypothesis
+K B = 0 has the SSCP H = (KB)ᵀ (K(XᵀX)⁻¹Kᵀ)⁻¹ (KB), and the univariate test of the effect is
+
+    F = (tr H / (q d)) / (tr E / ((N − G) d))   on (q d, (N − G) d) df,
+
+q the rows of K, d the columns of L (the univariate tests of R's ``car::Anova`` on a multivariate linear model,
+which ``afex::aov_car`` reports: type III sums of squares, so unequal group sizes are handled as there). The
+effects:
+
+* the between factor: L = 1/√C (the participants' scaled means), K the G − 1 group codes;
+* a within effect W: L = L_W, K = the intercept row;
+* the interaction between × W: L = L_W, K the group codes.
+
+With equal groups these are the textbook split-plot sums of squares (Maxwell & Delaney 2004, ch. 12 and 14;
+``tests/analysis/test_mixed_anova.py`` computes them the textbook way too). Sphericity of a within effect (and its
+interaction with the between factor) comes from the pooled within-group covariance E / (N − G)
+(:func:`analysis.sphericity.covariance_sphericity`), and the reading rule is the one of :mod:`analysis.anova`.
+Generalized η² (Olejnik & Algina 2003, all factors manipulated, as ``afex``): SS_effect / (SS_effect + SS_S/B +
+Σ every within effect's error SS).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+import pandas as pd
+from scipy import stats
+
+from analysis.anova import ANOVA_COLUMNS, _sphericity_columns, _untestable, effect_name, effects_of
+from analysis.effect_sizes import partial_eta2_ci
+from analysis.sphericity import Sphericity, covariance_sphericity, effect_contrasts
+
+
+def group_codes(groups: Sequence[int], n_groups: int) -> np.ndarray:
+    """The N × G design: an intercept and G − 1 sum-to-zero (effect) codes; ``groups[s]`` is 0..G−1."""
+    x = np.zeros((len(groups), n_groups))
+    x[:, 0] = 1.0
+    for s, g in enumerate(groups):
+        if g < n_groups - 1:
+            x[s, 1 + g] = 1.0
+        else:
+            x[s, 1:] = -1.0
+    return x
+
+
+def hypothesis_ss(x: np.ndarray, z: np.ndarray, rows: np.ndarray) -> tuple[float, float, np.ndarray]:
+    """``(tr H, tr E, E)`` of the hypothesis ``rows`` B = 0 for responses ``z`` (N × d) on the design ``x``."""
+    xtx_inv = np.linalg.pinv(x.T @ x)
+    beta = xtx_inv @ x.T @ z
+    residual = z - x @ beta
+    error = residual.T @ residual
+    kb = rows @ beta
+    h = kb.T @ np.linalg.pinv(rows @ xtx_inv @ rows.T) @ kb
+    return float(np.trace(h)), float(np.trace(error)), error
+
+
+def mixed_anova_table(values: np.ndarray, groups: Sequence[int], n_groups: int, levels: Sequence[int],
+                      within: Sequence[str], between: str) -> pd.DataFrame:
+    """The ANOVA rows (``ANOVA_COLUMNS``) of participants × cells ``values`` whose between level is ``groups[s]``:
+    the between effect, then each within effect followed by its interaction with the between factor."""
+    n, n_cells = values.shape
+    x = group_codes(groups, n_groups)
+    intercept, codes = np.eye(n_groups)[:1], np.eye(n_groups)[1:]
+    dof = n - n_groups
+    total = float(((values - values.mean()) ** 2).sum())
+    mean_contrast = effect_contrasts(levels, ())
+    ss_b, ss_sb, _ = hypothesis_ss(x, values @ mean_contrast, codes)
+    within_parts = []
+    for effect in effects_of(within):
+        contrast = effect_contrasts(levels, effect)
+        z = values @ contrast
+        ss_w, ss_err, error = hypothesis_ss(x, z, intercept)
+        ss_bw = hypothesis_ss(x, z, codes)[0]
+        within_parts.append((effect_name(within, effect), contrast.shape[1], ss_w, ss_bw, ss_err, error))
+    error_total = ss_sb + sum(part[4] for part in within_parts)
+    spherical = Sphericity(1, math.nan, math.nan, math.nan, math.nan, 1.0, 1.0)
+    rows = [_row(between, n_groups - 1, dof, ss_b, ss_sb, total, error_total, spherical)]
+    for name, d, ss_w, ss_bw, ss_err, error in within_parts:
+        s = covariance_sphericity(error / dof if dof > 0 else error, dof, n_cells)
+        rows.append(_row(name, d, d * dof, ss_w, ss_err, total, error_total, s))
+        rows.append(_row(f"{between} * {name}", (n_groups - 1) * d, d * dof, ss_bw, ss_err, total, error_total, s))
+    return pd.DataFrame(rows, columns=ANOVA_COLUMNS)
+
+
+def _row(name: str, df1: int, df2: int, ss: float, ss_err: float, total: float, error_total: float,
+         s: Sphericity) -> dict[str, object]:
+    note = "not testable: fewer participants than groups + 1" if df2 <= 0 else _untestable(
+        df2 + 2, ss, ss_err, total)
+    f_value = math.nan if note else (ss / df1) / (ss_err / df2)
+    low, high = partial_eta2_ci(f_value, df1, df2) if not note else (math.nan, math.nan)
+    row: dict[str, object] = {
+        "effect": name, "df1": df1, "df2": df2, "SS": ss, "SS_error": ss_err, "MS": ss / df1,
+        "MSE": ss_err / df2 if df2 > 0 else math.nan, "F": f_value,
+        "p": math.nan if note else float(stats.f.sf(f_value, df1, df2)),
+        "ges": ss / (ss + error_total) if ss + error_total > 0 else math.nan,
+        "partial_eta2": ss / (ss + ss_err) if ss + ss_err > 0 else math.nan,
+        "partial_eta2_ci_low": low, "partial_eta2_ci_high": high, "note": note,
+    }
+    row.update(_sphericity_columns(row, s))
+    return row
