@@ -124,6 +124,8 @@ class LiveGame:
         self.connection = conn
         self.inbound = Inbound(self.deps.max_message_bytes)
         self.times.connected()
+        if not self.engine.controller.has_action():
+            self.times.idle()
         conn.open()
         conn.send(snapshot.hello(self.meta, self.engine, mode=self.mode, rate=self.rate,
                                  resumed=self.resumed or self.engine.tick > 0, limit=self.deps.max_message_bytes))
