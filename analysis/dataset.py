@@ -23,6 +23,7 @@ from analysis.dictionary import (
     Column, item_column, wide_column, wide_columns,
 )
 from analysis.measures import GAP_COMPONENTS, TRIAL_MEASURES, trial_measures
+from analysis.participation import participation_values, trial_status
 from analysis.roster import Used, excluded_row, participant_row, used_trials
 from analysis.scales import response_scores
 from analysis.store_reader import (
@@ -205,7 +206,7 @@ def _trial_row(p: StoredParticipant, trial: StoredTrial, measures: dict[str, Any
         "missed_decisions": trial.missed_decisions,
         "missed_decisions_pct": (round(100.0 * trial.missed_decisions / trial.decisions, 2)
                                  if trial.decisions and trial.missed_decisions is not None else None),
-        "invalid_reason": trial.invalid_reason,
+        "invalid_reason": trial.invalid_reason, **participation_values(trial),
     }
 
 
@@ -247,7 +248,8 @@ def _answer_rows(data: Any, people: dict[int, StoredParticipant], design: Design
         rows.append({
             "participant": p.public_id, "questionnaire": a.questionnaire_id, "item": a.item_id, "value": a.value,
             "text": a.text,
-            "after_trial": a.after_trial, "condition": trial.condition if trial else condition,
+            "after_trial": a.after_trial, "trial_status": trial_status(trial) if trial else None,
+            "condition": trial.condition if trial else condition,
             "robot": robot_kitchen[0] if robot_kitchen else None,
             "kitchen": robot_kitchen[1] if robot_kitchen else None, "trial_id": a.trial_id,
             "answered_at": iso_time(a.created_at), "test_run": int(p.test_run), "excluded": int(p.excluded),

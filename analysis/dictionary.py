@@ -114,6 +114,24 @@ TICK_COLUMNS: tuple[Column, ...] = (
                                  "';' between events; empty for ticks stored before events were kept"),
 )
 
+PARTICIPATION_COLUMNS: tuple[Column, ...] = (
+    Column("trial_status", TEXT, "running, abandoned, low_engagement (finished without the participant taking "
+                                 "part), robot_invalid (finished, robot decisions past their deadline) or finished"),
+    Column("key_actions", INT, "the participant's one-step key actions (moves, stay, interact) among the "
+                               "interrupts (empty: not recorded)"),
+    Column("idle_pct", NUM, "% of the trial's tick periods in which the cook had nothing to do (no task, no key "
+                            "waiting); in wait_for_participant the time the world waited counts at the tick rate"),
+    Column("refused_steps", INT, "the participant's tasks refused or ended because they could not work (what "
+                                 "they needed was gone, taken or busy, often because the robot had done it)"),
+    Column("delivered_by_participant", INT, "dishes the participant's cook delivered"),
+    Column("delivered_by_robot", INT, "dishes the robot delivered"),
+    Column("engagement_reason", TEXT, "why the server marked the main trial low_engagement (fewer participant "
+                                      "actions than validity.min_participant_actions, or idle_pct above "
+                                      "validity.max_idle_pct); such trials are not in cells.csv unless exported "
+                                      "with --include-invalid"),
+)
+"""The participant's part in the trial (:mod:`analysis.participation`)."""
+
 TRIAL_COLUMNS: tuple[Column, ...] = (
     _PARTICIPANT, _TRIAL_ID, *TICK_COLUMNS[2:5],
     Column("condition", TEXT, "condition id robot@kitchen (robot@kitchen@view with a view factor)"), _ROBOT,
@@ -138,6 +156,7 @@ TRIAL_COLUMNS: tuple[Column, ...] = (
     Column("invalid_reason", TEXT, "why the server marked the trial invalid (more missed decisions than the "
                                    "study's validity.max_missed_decisions_pct); empty when valid. Invalid trials "
                                    "are not in cells.csv unless exported with --include-invalid"),
+    *PARTICIPATION_COLUMNS,
 )
 
 CELL_COLUMNS: tuple[Column, ...] = (
@@ -160,6 +179,9 @@ ANSWER_COLUMNS: tuple[Column, ...] = (
                          "+, -, @, a tab or a carriage return is written with a leading ' so that spreadsheets "
                          "show it instead of running it as a formula (the store keeps it as written)"),
     Column("after_trial", INT, "main trial index the questionnaire followed (empty: end of study)"),
+    Column("trial_status", TEXT, "status of that trial (analysis.participation): finished, low_engagement, "
+                                 "robot_invalid, or abandoned for answers stored before the questionnaire after "
+                                 "an abandoned round was skipped"),
     Column("condition", TEXT, "condition of that trial"), _ROBOT, _KITCHEN,
     _TRIAL_ID,
     Column("answered_at", TIME, "when the answer was submitted"),
@@ -193,7 +215,8 @@ PARTICIPANT_COLUMNS: tuple[Column, ...] = (
 EXCLUDED_COLUMNS: tuple[Column, ...] = (
     _PARTICIPANT,
     Column("category", TEXT, "test_run, excluded (by the experimenter), invalid (a main trial the server marked "
-                             "invalid, left out of cells.csv) or incomplete (missing cells)"),
+                             "invalid, left out of cells.csv), low_engagement (a main trial played without the "
+                             "participant taking part) or incomplete (missing cells)"),
     Column("reason", TEXT, "why the participant is not in the complete-case analysis"),
     Column("in_cells", FLAG, "1 when the participant's available cells are still in cells.csv"),
 )

@@ -4,6 +4,8 @@ A rule reads one column of the participant × condition table: a non-empty value
 
 * ``invalid`` — ``invalid_reason``: the server marked the trial invalid (robot decisions missed past the
   study's threshold; the share is in ``missed_decisions_pct``). Kept with ``--include-invalid``.
+* ``low_engagement`` — ``engagement_reason``: the server marked the main trial low-engagement (the participant
+  did not take part; their ``idle_pct`` is added). Kept with ``--include-invalid`` too.
 
 Another rule is one more entry in :data:`RULES` (e.g. simulated pilot participants, kept with
 ``--include-pilot``). A table without a rule's column has nothing to exclude by it (an export made before the
@@ -47,7 +49,9 @@ class ExclusionRule:
 
 INVALID = ExclusionRule("invalid", "invalid_reason", "--include-invalid", "invalid robot trial",
                         "missed_decisions_pct")
-RULES: tuple[ExclusionRule, ...] = (INVALID,)
+LOW_ENGAGEMENT = ExclusionRule("low_engagement", "engagement_reason", "--include-invalid", "low-engagement trial",
+                               "idle_pct")
+RULES: tuple[ExclusionRule, ...] = (INVALID, LOW_ENGAGEMENT)
 
 
 def apply_exclusions(cells: pd.DataFrame, within: Sequence[str], subject: str,

@@ -10,7 +10,7 @@ import pandas as pd
 
 from analysis.apa import format_proportion
 from analysis.document import Block, BulletList, Heading, Paragraph, table
-from analysis.exclusions import INVALID
+from analysis.exclusions import INVALID, LOW_ENGAGEMENT
 from analysis.report_measure import normality_line
 from analysis.results import AnalysisResult
 
@@ -25,6 +25,8 @@ class ReportContext:
     """Participants the export left out of the cells, with the reason."""
     invalid_trials: tuple[str, ...] | None = None
     """Main trials the server marked invalid (``None``: the export does not record robot health)."""
+    low_engagement_trials: tuple[str, ...] | None = None
+    """Main trials the server marked low-engagement (``None``: the export does not record engagement)."""
 
 
 def quality_section(result: AnalysisResult, context: ReportContext | None) -> list[Block]:
@@ -36,6 +38,7 @@ def quality_section(result: AnalysisResult, context: ReportContext | None) -> li
         (r.measure, str(r.n_used), str(r.n_total), str(len(r.excluded))) for r in result.measures]))
     blocks += _left_out(result, context)
     blocks += _invalid(result, context)
+    blocks += _low_engagement(result, context)
     blocks += _censoring(result)
     blocks += [Heading(3, "Order and carry-over"), BulletList(tuple(r.order.sentence for r in result.measures))]
     blocks += [Heading(3, "Residual normality (Shapiro–Wilk on the ANOVA residuals)"),
@@ -77,6 +80,20 @@ def _invalid(result: AnalysisResult, context: ReportContext) -> list[Block]:
     if lines:
         blocks.append(Paragraph(f"Invalid trials are {kept}."))
     return blocks
+
+
+def _low_engagement(result: AnalysisResult, context: ReportContext) -> list[Block]:
+    """One line: how many main trials were played without the participant taking part, and where they went."""
+    marked = result.tables["exclusions.csv"]
+    marked = marked[marked["rule"] == LOW_ENGAGEMENT.name]
+    lines = context.low_engagement_trials
+    if lines is None:
+        lines = tuple(f"participant {r.subject}, {r.cell}: {r.reason}" for r in marked.itertuples())
+    if not lines:
+        return [Paragraph("No main trial was low-engagement (every participant took part in every round).")]
+    kept = "kept (--include-invalid)" if marked["included"].astype(bool).any() else "left out of the analysis"
+    return [Paragraph(f"{len(lines)} main trial(s) were low-engagement (played without the participant taking "
+                      f"part) and are {kept}:"), BulletList(tuple(lines))]
 
 
 def _censoring(result: AnalysisResult) -> list[Block]:

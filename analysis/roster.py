@@ -5,8 +5,9 @@ A cell uses, for each participant and main trial, the latest attempt that ``fini
 or the horizon reached). Participants flagged as test runs or excluded by the experimenter have no cells; a
 participant without a cell in some condition is listed as ``incomplete`` with the reason for each missing
 cell (not played yet, abandoned, still running, not in their order). A main trial the server marked invalid
-(robot decisions past their deadline, ``server.game.health``) has no cell unless the export includes invalid
-trials; its participant is listed as ``invalid`` with the trial's reason.
+(robot decisions past their deadline, ``server.game.health``) or ``low_engagement`` (the participant did not take
+part, ``server.flow.engagement``) has no cell unless the export includes invalid trials; its participant is
+listed as ``invalid`` (``low_engagement`` when that is the only reason) with the trial's reason.
 """
 
 from __future__ import annotations
@@ -20,6 +21,8 @@ from analysis.design import Design
 from analysis.store_reader import StoredParticipant, StoredTrial, iso_time
 
 INVALID_MARK = "invalid"
+LOW_ENGAGEMENT = "low_engagement"
+"""The start of the server's reason for a low-engagement trial (``server.flow.engagement``)."""
 Used = dict[int, dict[int, StoredTrial]]
 """Participant id → main trial index → the attempt in cells.csv."""
 
@@ -74,9 +77,15 @@ def excluded_row(p: StoredParticipant, trials: Sequence[StoredTrial], used: Used
     if not missing:
         return None
     invalid = any(f" {INVALID_MARK}: " in m for m in missing)
-    return {"participant": p.public_id, "category": "invalid" if invalid else "incomplete",
+    return {"participant": p.public_id, "category": _category(missing) if invalid else "incomplete",
             "reason": "; ".join(missing),
             "in_cells": int(bool(used.get(p.id)))}
+
+
+def _category(missing: Sequence[str]) -> str:
+    """``low_engagement`` when every invalid missing cell is a low-engagement trial, else ``invalid``."""
+    marked = [m for m in missing if f" {INVALID_MARK}: " in m]
+    return "low_engagement" if all(f" {INVALID_MARK}: {LOW_ENGAGEMENT}" in m for m in marked) else "invalid"
 
 
 def _missing_cells(p: StoredParticipant, trials: Sequence[StoredTrial], used: Used, design: Design) -> list[str]:
@@ -99,7 +108,7 @@ def _why_missing(p: StoredParticipant, trials: Sequence[StoredTrial], condition:
         return f"main trial {index + 1} not played; participant {p.status}"
     last = max(attempts, key=lambda t: t.attempt)
     if last.status == "finished" and last.invalid:
-        return f"main trial {index + 1} {INVALID_MARK}: {last.invalid_reason}"
+        return f"main trial {index + 1} {INVALID_MARK}: {last.invalid_why}"
     if last.status == "running":
         return f"main trial {index + 1} still running"
     return f"main trial {index + 1} {last.status} ({last.end_reason or 'no reason'})"

@@ -81,10 +81,23 @@ class StoredTrial:
     missed_decisions: int | None = None
     invalid_reason: str | None = None
     """Why the server marked the trial invalid (robot decisions past their deadline); ``None`` when valid."""
+    key_actions: int | None = None
+    idle_pct: float | None = None
+    refused_steps: int | None = None
+    delivered_by_participant: int | None = None
+    delivered_by_robot: int | None = None
+    """The participant's activity the server stored when the trial ended (``None``: not recorded)."""
+    engagement_reason: str | None = None
+    """Why the server marked the main trial ``low_engagement``; ``None`` when the participant took part."""
 
     @property
     def invalid(self) -> bool:
-        return bool(self.invalid_reason)
+        """Not analysable data: the robot's health or the participant's engagement failed."""
+        return bool(self.invalid_reason or self.engagement_reason)
+
+    @property
+    def invalid_why(self) -> str | None:
+        return self.invalid_reason or self.engagement_reason or None
 
 
 @dataclass(frozen=True, slots=True)
@@ -246,7 +259,9 @@ def _trials(conn: Connection, study_id: str, include_pilot: bool) -> tuple[Store
     rows = conn.execute(_real(
         select(t.id, t.participant_id, t.kind, t.index, t.attempt, t.condition_id.label("condition"), t.kitchen,
                t.robot, t.view, t.seed, t.config_hash, t.status, t.end_reason, t.started_at, t.ended_at, t.ticks,
-               t.delivered, t.score, t.initial_state, t.decisions, t.missed_decisions, t.invalid_reason)
+               t.delivered, t.score, t.initial_state, t.decisions, t.missed_decisions, t.invalid_reason,
+               t.key_actions, t.idle_pct, t.refused_steps, t.delivered_by_participant, t.delivered_by_robot,
+               t.engagement_reason)
         .join(ParticipantRow, ParticipantRow.id == t.participant_id)
         .where(t.study_id == study_id), include_pilot)
         .order_by(t.id))

@@ -20,7 +20,7 @@ import pandas as pd
 from sqlalchemy import Engine
 
 from analysis.errors import AnalysisInputError
-from analysis.exclusions import INVALID
+from analysis.exclusions import INVALID, LOW_ENGAGEMENT
 from analysis.export import ExportResult, export_study
 from analysis.options import AnalysisOptions
 from analysis.report_quality import ReportContext
@@ -34,7 +34,7 @@ SUBJECT = "participant"
 PILOT = "pilot"
 """The ``include`` name that keeps simulated pilot participants (``--include-pilot``)."""
 DATA_DIR = "data"
-TRIAL_COLUMNS = (INVALID.column, INVALID.detail_column)
+TRIAL_COLUMNS = (INVALID.column, INVALID.detail_column, LOW_ENGAGEMENT.column, LOW_ENGAGEMENT.detail_column)
 """Columns of ``trials.csv`` the exclusion rules read, joined onto the cells by ``trial_id``."""
 
 
@@ -55,7 +55,8 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
     without it they are left out there and listed in ``excluded.csv``), and ``"pilot"`` in it keeps simulated
     pilot participants (left out of the export otherwise)."""
     out = Path(out_dir)
-    export = export_study(source, study_id, out / DATA_DIR, include_invalid=INVALID.name in include,
+    export = export_study(source, study_id, out / DATA_DIR,
+                          include_invalid=INVALID.name in include or LOW_ENGAGEMENT.name in include,
                           include_pilot=PILOT in include)
     cells = pd.read_csv(out / DATA_DIR / "cells.csv", dtype={SUBJECT: str})
     trials = pd.read_csv(out / DATA_DIR / "trials.csv", dtype={SUBJECT: str})
@@ -106,7 +107,17 @@ def _context(export: ExportResult, trials: pd.DataFrame, study_id: str, design: 
                         & (trials[INVALID.column].astype(str).str.strip() != "")]
         invalid = tuple(f"participant {r.participant}, main trial {int(r.index) + 1} ({r.condition}, attempt "
                         f"{int(r.attempt)}): {getattr(r, INVALID.column)}" for r in marked.itertuples())
-    return ReportContext(summary, left_out, invalid)
+    return ReportContext(summary, left_out, invalid, low_engagement_lines(trials))
+
+
+def low_engagement_lines(trials: pd.DataFrame) -> tuple[str, ...] | None:
+    """One line per low-engagement main trial of ``trials.csv`` (``None``: the export does not record it)."""
+    if LOW_ENGAGEMENT.column not in trials.columns:
+        return None
+    reasons = trials[LOW_ENGAGEMENT.column]
+    marked = trials[(trials["kind"] == "main") & reasons.notna() & (reasons.astype(str).str.strip() != "")]
+    return tuple(f"participant {r.participant}, main trial {int(r.index) + 1} ({r.condition}, attempt "
+                 f"{int(r.attempt)}): {getattr(r, LOW_ENGAGEMENT.column)}" for r in marked.itertuples())
 
 
 def _scale_range(columns: Sequence[str], ratings: dict[str, tuple[float, float]]) -> tuple[float, float]:

@@ -4,12 +4,17 @@ every round over the game websocket, every questionnaire, the end page.
 
 On the websocket it answers every ``state`` frame with exactly one message (a choice, an interrupt or a
 heartbeat; :mod:`pilot.mind`): at the pilot's ``fast`` pace the server steps as soon as that answer and the
-robot's decision are in. It reads nothing but the frames (``hello``, ``state``, ``blocked``, ``trial_end``).
+robot's decision are in. At the ``realtime`` pace it thinks before each choice of a next task, for a
+wall-clock time drawn uniformly from ``think_seconds_min``..``think_seconds_max`` (:mod:`pilot.config`): it goes
+on perceiving the frames that arrive meanwhile (under ``fixed_rate`` the world goes on; under
+``wait_for_participant`` none arrive) and then chooses from what it knows at that moment. It reads nothing but
+the frames (``hello``, ``state``, ``blocked``, ``nudge``, ``trial_end``).
 """
 
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import json
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -172,6 +177,9 @@ class SimulatedParticipant:
     async def play(self) -> None:
         """One trial: answer every ``state`` until ``trial_end``."""
         loaded, config = self.seat.loaded, self.seat.config
+        realtime = self.seat.pace == "realtime"
+        if realtime:
+            config = config.model_copy(update={"decision_latency_ticks": 0})
         rng = trial_rng(self.seed, self.played)
         self.played += 1
         received: list[dict[str, Any]] = []
@@ -184,7 +192,32 @@ class SimulatedParticipant:
         mind = Mind()
         seen: Perception | None = None
         needs: dict[str, str] = {}
+        latest: dict[str, Any] = {}
+        thinking: asyncio.Task[None] | None = None
         self.on_trial(1)
+
+        async def send(ws: Any, body: dict[str, Any]) -> None:
+            nonlocal seq
+            seq += 1
+            if self.seat.keep_frames:
+                sent.append(body)
+            self.outcome.interrupts += body["type"] == "interrupt"
+            self.outcome.selections += body["type"] == "select_subtask"
+            with contextlib.suppress(ConnectionClosed):  # the trial ended meanwhile: its trial_end is still to come
+                await ws.send(json.dumps({"v": 1, "seq": seq, **body}))
+
+        def think_time() -> float:
+            return float(rng.uniform(config.think_seconds_min, config.think_seconds_max))
+
+        async def think_then_choose(ws: Any, seconds: float) -> None:
+            """Wait ``seconds`` of wall-clock time, then choose from the latest frame and what it knows now."""
+            nonlocal mind
+            await asyncio.sleep(seconds)
+            assert seen is not None
+            reply, mind = decide(mind, seen, latest, needs, loaded.rules, config, rng)
+            if reply.type != "heartbeat":
+                await send(ws, reply.body())
+
         try:
             async with connect(url, subprotocols=["steakhouse.v1", f"token.{self.token}"],  # type: ignore[list-item]
                                max_size=1 << 22) as ws:
@@ -198,16 +231,21 @@ class SimulatedParticipant:
                         seen = Perception(message["width"], message["height"],
                                           tuple(loaded.layouts.values()))
                     elif kind == "state" and seen is not None:
+                        latest = message
+                        if thinking is not None and not thinking.done():
+                            seen = seen.observe(message, loaded.study.world.fov_angle, loaded.study.world.kb_delay)
+                            continue
+                        if realtime and message["subtask"] is None:
+                            seen = seen.observe(message, loaded.study.world.fov_angle, loaded.study.world.kb_delay)
+                            thinking = asyncio.create_task(think_then_choose(ws, think_time()))
+                            continue
                         seen, mind, body = respond(mind, seen, message, needs, loaded, config, rng)
-                        seq += 1
-                        if self.seat.keep_frames:
-                            sent.append(body)
-                        self.outcome.interrupts += body["type"] == "interrupt"
-                        self.outcome.selections += body["type"] == "select_subtask"
-                        try:
-                            await ws.send(json.dumps({"v": 1, "seq": seq, **body}))
-                        except ConnectionClosed:
-                            continue  # the trial ended meanwhile: its trial_end is still to be read
+                        await send(ws, body)
+                    elif (kind == "ack" and realtime and message["subtask"] is None and not message["queued"]
+                          and latest and (thinking is None or thinking.done())):
+                        # Stopped, or a choice refused: under wait_for_participant no frame comes until it acts.
+                        latest = {**latest, "subtask": None}
+                        thinking = asyncio.create_task(think_then_choose(ws, think_time()))
                     elif kind == "error" and message["code"] == "internal" and seen is None:
                         raise TrialNotStarted(message["message"])
                     elif kind == "error" and message["code"] not in ("not_playing",):
@@ -216,5 +254,7 @@ class SimulatedParticipant:
                         self.outcome.trials += 1
                         break
         finally:
+            if thinking is not None:
+                thinking.cancel()
             self.on_trial(-1)
         self.gap_mean = seen.gap_mean if seen is not None else 0.0

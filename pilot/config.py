@@ -20,6 +20,11 @@ Defaults and where they come from (docs/pilot.md):
   plus normal noise of ``rating_sd`` (1.0), rounded and clipped to the item's scale (reversed items mirrored).
 - ``quiz_error_rate`` (0.0): the chance of answering a quiz question wrongly (answers otherwise come from
   the study file: a simulated participant has read the instructions).
+- ``think_seconds_min`` / ``think_seconds_max`` (0.5 / 3.0): at the ``realtime`` pace only, the wall-clock
+  seconds before each choice of a next task, drawn uniformly between the two (a glance at the kitchen, the
+  recipe and the buttons, then a click; the range a person reading the screen needs). It replaces
+  ``decision_latency_ticks`` there, so the pilot meets each clock as a person would: under ``fixed_rate`` the
+  world goes on while it thinks, under ``wait_for_participant`` it waits.
 """
 
 from __future__ import annotations
@@ -28,7 +33,7 @@ from pathlib import Path
 from typing import Any
 
 import yaml
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 
 class PilotConfigError(ValueError):
@@ -50,6 +55,14 @@ class ParticipantConfig(BaseModel):
     rating_gap_slope: float = Field(default=1.0)
     rating_sd: float = Field(default=1.0, ge=0.0)
     quiz_error_rate: float = Field(default=0.0, ge=0.0, le=1.0)
+    think_seconds_min: float = Field(default=0.5, ge=0.0, le=60.0)
+    think_seconds_max: float = Field(default=3.0, ge=0.0, le=60.0)
+
+    @model_validator(mode="after")
+    def _think_range(self) -> ParticipantConfig:
+        if self.think_seconds_max < self.think_seconds_min:
+            raise ValueError("think_seconds_max must be at least think_seconds_min")
+        return self
 
     def reaction_weights(self) -> tuple[float, float, float]:
         """``(stop, replace, correct)`` normalised to sum 1 (all zero: never react)."""

@@ -21,6 +21,7 @@ from planner.decision import RobotFactory
 from server import errors, security
 from server.catalog import Catalog, load_catalog
 from server.game.admission import Admission
+from server.game.clock import Clock, MonotonicClock
 from server.game.live import GameDeps
 from server.game.lobby import Lobby
 from server.game.registry import GameRegistry
@@ -37,10 +38,12 @@ from server.store.writer import BatchWriter
 log = logging.getLogger("server")
 
 
-def create_app(settings: Settings | None = None, *, robot_factory: RobotFactory | None = None) -> FastAPI:
+def create_app(settings: Settings | None = None, *, robot_factory: RobotFactory | None = None,
+               clock: Clock | None = None) -> FastAPI:
     """The app for ``settings`` (read from the environment when omitted).
 
-    ``robot_factory`` replaces ``settings.robot_factory`` for in-process planners (``robot_workers = 0``).
+    ``robot_factory`` replaces ``settings.robot_factory`` for in-process planners (``robot_workers = 0``);
+    ``clock`` replaces the wall clock of the rounds' limit and idle nudge (tests move it by hand).
     """
     settings = settings or Settings()
     catalog = load_catalog(settings.study_files)
@@ -55,7 +58,7 @@ def create_app(settings: Settings | None = None, *, robot_factory: RobotFactory 
         pool = make_pool(settings.workers, settings.robot_factory, robot_factory)
         await pool.start()
         deps = GameDeps(store, writer, pool, settings.decision_deadline_fraction, settings.max_message_bytes,
-                        on_end=lambda game: None)
+                        on_end=lambda game: None, clock=clock or MonotonicClock())
         lobby = Lobby(catalog, store, writer, Admission(settings.live_trial_capacity),
                       settings.admission_max_wait_s)
         registry = GameRegistry(catalog, deps, settings.sweep_interval_s, lobby)

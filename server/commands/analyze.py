@@ -55,7 +55,7 @@ def register(subparsers: Any) -> None:
     p.add_argument("--ratings", metavar="COL[=MIN..MAX][,...]",
                    help="with --csv: columns that are ratings (rank tests beside the ANOVA), with their scale")
     p.add_argument("--include-invalid", action="store_true",
-                   help="keep trials the server marked invalid (listed either way)")
+                   help="keep trials the server marked invalid or low-engagement (listed either way)")
     p.add_argument("--include-pilot", action="store_true",
                    help="with --study: analyse simulated pilot participants too (steakhouse pilot; left out by "
                         "default)")
@@ -69,7 +69,7 @@ def register(subparsers: Any) -> None:
 
 def handle(args: argparse.Namespace) -> int:
     """Run the analysis; usage problems raise ``UsageError`` (exit code 2)."""
-    include = frozenset(({"invalid"} if args.include_invalid else set())
+    include = frozenset(({"invalid", "low_engagement"} if args.include_invalid else set())
                         | ({"pilot"} if args.include_pilot else set()))
     if args.study is not None:
         return _handle_study(args, include)

@@ -12,10 +12,15 @@ decline_consent    consent                       screened_out
 finish_instructions instructions                 the next step
 pass_quiz          quiz                          the next step
 fail_quiz          quiz                          screened_out (the last allowed attempt failed)
-end_trial          practice / trial (same trial) the next step (finished or abandoned)
+end_trial          practice / trial (same trial) the next step (finished or abandoned; after an abandoned main
+                                                 trial, past its questionnaires: nobody asks about an unplayed round)
 server_full        practice / trial              screened_out (waited too long for a free slot)
 submit_questionnaire questionnaire (same id)     the next step
 =================  ============================  ====================================
+
+A main trial can also end with a screen-out (``server.flow.standing``: abandoned or low-engagement main rounds
+beyond the study's ``validity.max_invalid_rounds``): :meth:`Progress.screen_out` with the reason
+``abandoned_rounds`` or ``low_engagement``.
 
 ``done`` and ``screened_out`` are final. Any other action raises :class:`IllegalTransition` (HTTP 409).
 """
@@ -82,6 +87,9 @@ class Progress:
     plan: tuple[Step, ...]
     step: int
     screened_out: bool = False
+    reason: str | None = None
+    """Why a participant was screened out after a round (``participants.screen_out_reason``); ``None``: the
+    reason follows from the step they stopped at."""
 
     def __post_init__(self) -> None:
         if not 0 <= self.step < len(self.plan):
@@ -102,10 +110,13 @@ class Progress:
 
     @property
     def screen_out_reason(self) -> str | None:
-        """Why a screened-out participant ended: ``declined_consent``, ``failed_quiz`` or ``server_full`` (no
-        slot for their round in time, ``server.game.admission``)."""
+        """Why a screened-out participant ended: ``declined_consent``, ``failed_quiz``, ``server_full`` (no
+        slot for their round in time, ``server.game.admission``), ``abandoned_rounds`` or ``low_engagement``
+        (they did not take part in their rounds, ``server.flow.standing``)."""
         if not self.screened_out:
             return None
+        if self.reason is not None:
+            return self.reason
         return {"consent": "declined_consent", "quiz": "failed_quiz", "trial": "server_full"}.get(
             self.current.kind, "screened_out")
 
@@ -115,10 +126,17 @@ class Progress:
             return STATUS_SCREENED_OUT
         return STATUS_COMPLETED if self.phase is Phase.DONE else STATUS_IN_PROGRESS
 
+    def screen_out(self, reason: str) -> Progress:
+        """The participant screened out where they are now, for ``reason`` (see :attr:`screen_out_reason`)."""
+        if self.screened_out:
+            raise IllegalTransition(self.phase, Move.END_TRIAL, "already screened out")
+        return Progress(self.plan, self.step, screened_out=True, reason=reason)
+
     def apply(self, move: Move, *, trial: tuple[str, int] | None = None,
-              questionnaire: str | None = None) -> Progress:
+              questionnaire: str | None = None, played: bool = True) -> Progress:
         """The progress after ``move``; ``trial`` is ``(kind, index)`` for ``end_trial``, ``questionnaire``
-        the id for ``submit_questionnaire`` (both must name the current step)."""
+        the id for ``submit_questionnaire`` (both must name the current step); ``played=False``: the main trial
+        ending was abandoned, so the questionnaires about it are skipped."""
         phase = self.phase
         if move not in _LEGAL[phase]:
             raise IllegalTransition(phase, move)
@@ -129,4 +147,9 @@ class Progress:
             raise IllegalTransition(phase, move, f"the current questionnaire is {step.questionnaire!r}")
         if move in (Move.DECLINE_CONSENT, Move.FAIL_QUIZ, Move.SERVER_FULL):
             return Progress(self.plan, self.step, screened_out=True)
-        return Progress(self.plan, self.step + 1)
+        following = self.step + 1
+        if move is Move.END_TRIAL and not played and step.trial_kind == "main":
+            while (following < len(self.plan) - 1 and self.plan[following].kind == "questionnaire"
+                   and self.plan[following].after_trial == step.index):
+                following += 1
+        return Progress(self.plan, following)

@@ -12,7 +12,9 @@
 - :func:`submit_quiz`: one attempt at the comprehension quiz stored; passed → the next step, the last allowed
   attempt failed → screened out.
 - :func:`record_device`: the device the browser reported, stored with the participant (and as an event).
-- :func:`end_trial`: the trial row ended and the participant moved past it, together.
+- :func:`end_trial`: the trial row ended, the participant's activity in it counted and judged
+  (:mod:`server.flow.engagement`), and the participant moved past it (or screened out when they did not take
+  part, :mod:`server.flow.standing`), together.
 """
 
 from __future__ import annotations
@@ -29,13 +31,16 @@ from sqlalchemy.orm import Session
 
 from server.catalog import LoadedStudy
 from server.errors import AnswerProblems, ApiError
+from server.flow import standing
 from server.flow.answers import check_answers, stored_answer
+from server.flow.engagement import engagement_problem
 from server.flow.quiz import QuizResult, quiz_problems
 from server.flow.plan import build_plan, plan_from_json, plan_to_json
 from server.flow.progress import IllegalTransition, Move, Phase, Progress
-from server.store import assignment, participants, trials
+from server.store import activity, assignment, participants, trials
 from server.store.engine import Store
 from server.store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, QuizAttemptRow
+from server.study import Study
 from server.study.device import DeviceInfo, device_problems
 from server.store.types import utcnow
 
@@ -62,7 +67,8 @@ class Joined:
 
 
 def progress_of(row: ParticipantRow) -> Progress:
-    return Progress(plan_from_json(row.plan), row.step, screened_out=row.status == "screened_out")
+    return Progress(plan_from_json(row.plan), row.step, screened_out=row.status == "screened_out",
+                    reason=row.screen_out_reason)
 
 
 def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run: bool,
@@ -146,7 +152,7 @@ def resume_on_new_device(store: Store, participant_id: int, expected_token_hash:
 
 def _apply(session: Session, row: ParticipantRow, progress: Progress, new: Progress, move_: Move) -> None:
     moved = participants.advance(session, row.id, from_step=progress.step, to_step=new.step,
-                                 state=new.phase.value, status=new.status)
+                                 state=new.phase.value, status=new.status, screen_out_reason=new.reason)
     if not moved:
         raise IllegalTransition(progress.phase, move_, "the participant was moved by another request")
 
@@ -228,6 +234,7 @@ def record_device(store: Store, loaded: LoadedStudy, participant_id: int, info: 
     with store.transaction() as session:
         row = _load(session, participant_id)
         row.device = report
+        standing.review_device(row, problems)
         session.add(EventRow(participant_id=row.id, trial_id=None, tick=None, kind="device_check",
                              payload=report, created_at=now))
     return problems
@@ -235,8 +242,13 @@ def record_device(store: Store, loaded: LoadedStudy, participant_id: int, info: 
 
 def end_trial_in(session: Session, participant_id: int, trial_id: int, kind: str, index: int, *, status: str,
                  reason: str, ticks: int | None = None, delivered: int | None = None,
-                 score: int | None = None) -> Progress | None:
+                 score: int | None = None, study: Study | None = None) -> Progress | None:
     """End the trial row and move the participant past the trial (inside ``session``'s transaction).
+
+    With the ``study``, the participant's activity in the trial is counted and stored, a finished main trial is
+    judged for engagement, and after a main trial the participant's standing is reviewed: they stop counting
+    toward their order when a round cannot become a cell, and are screened out when they did not take part
+    (:mod:`server.flow.standing`). Without it (tools that build a store by hand) only the trial ends.
 
     Returns the participant's new progress, or ``None`` if the trial had already ended.
     """
@@ -244,17 +256,34 @@ def end_trial_in(session: Session, participant_id: int, trial_id: int, kind: str
                       score=score):
         return None
     row = _load(session, participant_id)
+    screen_out = None
+    if study is not None:
+        done = activity.measure(session, trial_id, study.timing.tick_rate_hz)
+        problem = (engagement_problem(done, study.validity)
+                   if kind == "main" and status == trials.FINISHED else None)
+        activity.record(session, trial_id, done, problem)
+        if problem is not None:
+            log.warning("trial %d (participant %s) is low-engagement: %s", trial_id, row.public_id, problem)
+            session.add(EventRow(participant_id=row.id, trial_id=trial_id, tick=ticks, kind="trial_low_engagement",
+                                 payload={"reason": problem}, created_at=utcnow()))
+        if kind == "main":
+            session.flush()
+            screen_out = standing.review_rounds(session, row, study.validity)
     progress = progress_of(row)
     try:
-        new = progress.apply(Move.END_TRIAL, trial=(kind, index))
+        new = progress.apply(Move.END_TRIAL, trial=(kind, index), played=status != trials.ABANDONED)
     except IllegalTransition:
         return progress
+    if screen_out is not None:
+        new = new.screen_out(screen_out)
+        log.warning("participant %s screened out after main round %d: %s", row.public_id, index + 1, screen_out)
     _apply(session, row, progress, new, Move.END_TRIAL)
     return new
 
 
 def end_trial(store: Store, participant_id: int, trial_id: int, kind: str, index: int,
               **outcome: Any) -> Progress | None:
+    """:func:`end_trial_in` in a transaction of its own."""
     with store.transaction() as session:
         return end_trial_in(session, participant_id, trial_id, kind, index, **outcome)
 

@@ -20,6 +20,11 @@ The clock:
   trial): the clock starts once it is in, at most ``FIRST_DECISION_S`` later. That decision is the costliest
   (the robot's belief is spread over every subtask the person might start, and a fresh robot worker's caches
   are cold), and when many participants start at once those decisions would queue behind each other.
+- ``wait_for_participant`` rounds have a wall-clock limit (``timing.max_round_seconds``, counted while the
+  participant is connected): past it the round ends with reason ``time_limit``. Each stretch the world waits
+  for the participant is logged as a ``wait`` event (its seconds count toward the trial's ``idle_pct``).
+  In both clocks, a cook with nothing to do for ``timing.idle_nudge_seconds`` gets one ``nudge`` per stretch
+  (``server.game.round_time``; the wall clock is injected, ``server.game.clock``).
 - Robot health (``server.game.health``): every decision counts toward the trial's share of missed
   deadlines; past the study's ``validity.max_missed_decisions_pct`` the trial is marked invalid as it
   happens (a warning in the server log, a ``trial_invalid`` event, the trial row's ``invalid_reason``).
@@ -37,21 +42,23 @@ import logging
 import time
 from collections import deque
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from server.catalog import LoadedStudy
 from server.flow import service
 from server.game import snapshot
 from server.game.blocked import Blocked
+from server.game.clock import Clock, MonotonicClock
 from server.game.connection import Connection
 from server.game.engine import TickOutcome, TrialEngine
 from server.game.health import RobotHealth
 from server.game.meta import TrialMeta
 from server.game.records import tick_row
+from server.game.round_time import RoundTime
 from server.protocol.client import Blur, Focus, Heartbeat, Idle, InterruptMessage, SelectSubtask
 from server.protocol.inbound import Inbound, ProtocolError
-from server.protocol.server import Ack, Error, Pong, State, TrialEnd
+from server.protocol.server import Ack, Error, Nudge, Pong, State, TrialEnd
 from server.robots import RobotChoice, RobotPool
 from server.store import trials
 from server.store.engine import Store
@@ -74,6 +81,8 @@ class GameDeps:
     deadline_fraction: float
     max_message_bytes: int
     on_end: Callable[[LiveGame], None]
+    clock: Clock = field(default_factory=MonotonicClock)
+    """The wall clock of the round limit and the idle nudge (tests inject one they move by hand)."""
 
 
 class LiveGame:
@@ -84,6 +93,7 @@ class LiveGame:
         self._health_writes: set[asyncio.Task[None]] = set()
         timing = loaded.study.timing
         self.mode, self.rate, self.period = timing.mode, timing.tick_rate_hz, 1.0 / timing.tick_rate_hz
+        self.times = RoundTime(deps.clock, timing.round_limit_seconds(engine.rules.horizon), timing.idle_nudge_seconds)
         self.connection: Connection | None = None
         self.inbound = Inbound(deps.max_message_bytes)
         self.connected = asyncio.Event()
@@ -113,6 +123,9 @@ class LiveGame:
             replaced.begin_close(4000)
         self.connection = conn
         self.inbound = Inbound(self.deps.max_message_bytes)
+        self.times.connected()
+        if not self.engine.controller.has_action():
+            self.times.idle()
         conn.open()
         conn.send(snapshot.hello(self.meta, self.engine, mode=self.mode, rate=self.rate,
                                  resumed=self.resumed or self.engine.tick > 0, limit=self.deps.max_message_bytes))
@@ -126,6 +139,7 @@ class LiveGame:
         if conn is not self.connection:
             return False
         self.connection = None
+        self.times.disconnected()
         self.connected.clear()
         self.event("disconnect", {})
         self.wake.set()
@@ -174,6 +188,8 @@ class LiveGame:
                 self.event("error", {"code": exc.code, "ref": exc.ref})
             return
         self.inbound.accept(message.seq)
+        if isinstance(message, SelectSubtask | InterruptMessage) and controller.has_action():
+            self.times.acted()
         conn.send(Ack(ack=message.seq, subtask=controller.subtask.value if controller.subtask else None,
                       queued=len(controller.queue)))
         self.answered.set()
@@ -199,19 +215,22 @@ class LiveGame:
         next_at: float | None = None
         last_start: float | None = None
         await self._robot_ready()
+        timed_out = False
         while not self.engine.done:
             if not self.connected.is_set():
                 await self.connected.wait()
                 next_at = None
                 continue
+            if self.times.over_limit():
+                timed_out = True
+                break
             now = time.monotonic()
             if self.fast:
                 await self._await_answer(period)
                 scheduled = now = time.monotonic()
             elif self.mode == "wait_for_participant":
                 if not self.engine.controller.has_action():
-                    self.wake.clear()
-                    await self.wake.wait()
+                    await self._wait_for_participant()
                     continue
                 scheduled = now if last_start is None else max(last_start + period, now)
             else:
@@ -232,10 +251,37 @@ class LiveGame:
                 self._request_decision()
             if self.connection is not None:
                 self.connection.send(self.state_message())
+            if not self.engine.controller.has_action():
+                self.times.idle()
+                self._nudge()
             last_start = started
             next_at = max(scheduled + period, time.monotonic())
         world = self.engine.world
-        await self.end("finished", "delivered" if world.orders_left == 0 else "horizon")
+        reason = "time_limit" if timed_out else "delivered" if world.orders_left == 0 else "horizon"
+        if timed_out:
+            log.info("trial %d (participant %s) reached its wall-clock limit of %.0f s", self.meta.trial_id,
+                     self.meta.participant, self.times.limit_s or 0.0)
+        await self.end("finished", reason)
+
+    async def _wait_for_participant(self) -> None:
+        """``wait_for_participant``: the cook has nothing to do, so the world waits for the participant's next
+        choice or key (or a disconnection), at most until the nudge or the round's limit is due. The stretch is
+        logged as a ``wait`` event with its seconds."""
+        self.times.idle()
+        self.wake.clear()
+        clock = self.deps.clock
+        began = clock.now()
+        await clock.wait(self.wake, self.times.until_next())
+        waited = clock.now() - began
+        if waited > 0:
+            self.event("wait", {"seconds": round(waited, 3)})
+        self._nudge()
+
+    def _nudge(self) -> None:
+        """Send the idle stretch's nudge once it is due (it names nothing of the condition)."""
+        if self.times.take_nudge() and self.connection is not None:
+            self.connection.send(Nudge())
+            self.event("nudge", {})
 
     def decision_budget(self) -> float:
         """Seconds the robot has for a decision: a share of the tick period, or ``PILOT_DECISION_S`` for a
@@ -350,7 +396,8 @@ class LiveGame:
         await asyncio.to_thread(self._store_health, self.health)
         progress = await asyncio.to_thread(
             service.end_trial, self.deps.store, self.meta.participant_id, self.meta.trial_id, self.meta.kind,
-            self.meta.index, status=status, reason=reason, ticks=world.tick, delivered=delivered, score=world.score)
+            self.meta.index, status=status, reason=reason, ticks=world.tick, delivered=delivered, score=world.score,
+            study=self.loaded.study)
         if self.connection is not None:
             self.connection.send(TrialEnd(status=status, reason=reason, ticks=world.tick,  # type: ignore[arg-type]
                                           delivered=delivered, score=world.score,

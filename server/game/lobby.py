@@ -117,11 +117,12 @@ class Lobby:
             self.admission.leave(ticket)
 
     def _trial_s(self, participant: ParticipantRow) -> float:
-        """A trial's length in seconds (horizon ÷ tick rate): the expected slot time before any was measured."""
+        """A trial's longest length in seconds (``Timing.round_seconds``): the expected slot time before any was
+        measured."""
         loaded = self.catalog.get(participant.study_id)
         if loaded is None:
             return 60.0
-        return loaded.rules.horizon / loaded.study.timing.tick_rate_hz
+        return loaded.study.timing.round_seconds(loaded.rules.horizon)
 
     def _screen_out(self, participant_id: int) -> None:
         try:

@@ -70,7 +70,7 @@ class GameRegistry:
         self.lobby = lobby or Lobby(catalog, deps.store, deps.writer, Admission(UNLIMITED))
         """Tests and tools that build a registry themselves get no cap (``UNLIMITED`` slots)."""
         self.deps = GameDeps(deps.store, deps.writer, deps.pool, deps.deadline_fraction, deps.max_message_bytes,
-                             on_end=self._ended)
+                             on_end=self._ended, clock=deps.clock)
         self.sweep_interval = sweep_interval
         self.games: dict[int, LiveGame] = {}
         self._by_participant: dict[int, LiveGame] = {}

@@ -62,7 +62,7 @@ def prepare_trial(store: Store, loaded: LoadedStudy, participant_id: int, step: 
             trials.end(session, row.id, status=trials.ABANDONED, reason="restarted")
             return Prepared("new", _create(session, loaded, participant_id, step))
         progress = service.end_trial_in(session, participant_id, row.id, step.trial_kind, step.index,
-                                        status=trials.ABANDONED, reason="grace_expired")
+                                        status=trials.ABANDONED, reason="grace_expired", study=study)
         return Prepared("abandoned", row, progress=progress)
 
 
@@ -90,6 +90,7 @@ def abandon_stale(store: Store, loaded: LoadedStudy, idle_seconds: float, live: 
             if row.id in live:
                 continue
             if service.end_trial_in(session, row.participant_id, row.id, row.kind, row.index,
-                                    status=trials.ABANDONED, reason="grace_expired") is not None:
+                                    status=trials.ABANDONED, reason="grace_expired",
+                                    study=loaded.study) is not None:
                 count += 1
     return count

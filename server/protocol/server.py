@@ -190,9 +190,18 @@ class Waiting(ServerMessage):
     """Expected wait in seconds (rounded up to 5 s)."""
 
 
+class Nudge(ServerMessage):
+    """The cook has had nothing to do for the study's ``timing.idle_nudge_seconds``: the page shows "Choose your
+    next task" until the participant acts. Sent once per idle stretch; it names nothing of the condition."""
+
+    type: Literal["nudge"] = "nudge"
+    text: Literal["Choose your next task"] = "Choose your next task"
+
+
 class TrialEnd(ServerMessage):
     """The trial is over; the server closes the connection after this. ``next`` is the participant's state
-    now (``GET /api/session`` tells what to show)."""
+    now (``GET /api/session`` tells what to show). ``reason``: ``delivered``, ``horizon``, ``time_limit`` (a
+    ``wait_for_participant`` round reached ``timing.max_round_seconds``) or, when abandoned, ``grace_expired``."""
 
     type: Literal["trial_end"] = "trial_end"
     status: Literal["finished", "abandoned"]
@@ -203,6 +212,6 @@ class TrialEnd(ServerMessage):
     next: str
 
 
-AnyServerMessage = Annotated[Hello | State | Ack | Blocked | Pong | Error | Waiting | TrialEnd,
+AnyServerMessage = Annotated[Hello | State | Ack | Blocked | Pong | Error | Waiting | Nudge | TrialEnd,
                              Field(discriminator="type")]
 server_adapter: TypeAdapter[AnyServerMessage] = TypeAdapter(AnyServerMessage)

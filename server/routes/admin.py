@@ -28,7 +28,7 @@ from server.services import Services
 from server.errors import ApiError
 from server.store import participants, trials
 from server.store.overview import (
-    invalid_trial_counts, order_breakdown, participant_names, participant_public, trial_public,
+    invalid_trial_counts, low_engagement_counts, order_breakdown, participant_names, participant_public, trial_public,
 )
 from server.study.warnings import study_warnings
 from server.store.tables import EventRow, TrialRow
@@ -84,8 +84,10 @@ def list_participants(services: ServicesDep, study_id: Annotated[str | None, Que
                       ) -> list[dict[str, Any]]:
     with services.store.transaction() as session:
         rows = participants.list_participants(session, study_id)
-        invalid = invalid_trial_counts(session, {p.id for p, _ in rows})
-        return [{**participant_public(p, a), "invalid_trials": invalid.get(p.id, 0)} for p, a in rows]
+        ids = {p.id for p, _ in rows}
+        invalid, low = invalid_trial_counts(session, ids), low_engagement_counts(session, ids)
+        return [{**participant_public(p, a), "invalid_trials": invalid.get(p.id, 0),
+                 "low_engagement_trials": low.get(p.id, 0)} for p, a in rows]
 
 
 @router.post("/participants/{participant_id}/flags")

@@ -64,15 +64,17 @@ def rotate_token(session: Session, participant_id: int, token: str) -> None:
 
 
 def advance(session: Session, participant_id: int, *, from_step: int, to_step: int, state: str,
-            status: str) -> bool:
-    """Move a participant from ``from_step`` to ``to_step``; ``False`` if someone else moved them first."""
+            status: str, screen_out_reason: str | None = None) -> bool:
+    """Move a participant from ``from_step`` to ``to_step`` (with the reason of a screen-out after a round);
+    ``False`` if someone else moved them first."""
     now = utcnow()
     finished: datetime | None = now if status != "in_progress" else None
     result = session.execute(
         update(ParticipantRow)
         .where(ParticipantRow.id == participant_id, ParticipantRow.step == from_step,
                ParticipantRow.status == "in_progress")
-        .values(step=to_step, state=state, status=status, updated_at=now, finished_at=finished)
+        .values(step=to_step, state=state, status=status, updated_at=now, finished_at=finished,
+                screen_out_reason=screen_out_reason)
     )
     return bool(result.rowcount)  # type: ignore[attr-defined]
 

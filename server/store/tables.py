@@ -82,6 +82,12 @@ class ParticipantRow(Base):
     device: Mapped[dict[str, Any] | None] = mapped_column(JsonType, nullable=True)
     """The device the participant's browser last reported (``server.study.device.DeviceInfo`` fields, plus
     ``problems`` and ``checked_at``); NULL until it reports one."""
+    uncounted_reason: Mapped[str | None] = mapped_column(String(200), nullable=True)
+    """Why the participant no longer counts toward their condition order (``server.flow.standing``: a main
+    round that cannot become an analysable cell, or a refused device); NULL while they count."""
+    screen_out_reason: Mapped[str | None] = mapped_column(String(32), nullable=True)
+    """Why a participant screened out after a round was screened out (``abandoned_rounds``,
+    ``low_engagement``); NULL otherwise (the other reasons follow from the step they stopped at)."""
 
 
 class AssignmentRow(Base):
@@ -131,6 +137,24 @@ class TrialRow(Base):
     """Of these, the ones that missed their deadline (the robot stood still)."""
     invalid_reason: Mapped[str | None] = mapped_column(String(200), nullable=True)
     """Why the trial is not valid data (``server.game.health``); NULL when it is valid."""
+    selections: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """The participant's task choices (``server.store.activity``; NULL until the trial ended, and for trials
+    stored before revision 0007)."""
+    interrupts: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """The participant's accepted interrupts (keys and the stop button)."""
+    key_actions: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """Of these, the one-step key actions (moves, stay, interact)."""
+    idle_pct: Mapped[float | None] = mapped_column(Float, nullable=True)
+    """The share of the trial's tick periods in which the cook had nothing to do (in %)."""
+    refused_steps: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """The participant's tasks refused or ended because they could not work (``subtask_blocked`` events)."""
+    delivered_by_participant: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """Dishes the participant's cook delivered."""
+    delivered_by_robot: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """Dishes the robot delivered."""
+    engagement_reason: Mapped[str | None] = mapped_column(String(200), nullable=True)
+    """Why the main trial is ``low_engagement`` (``server.flow.engagement``); NULL when the participant took
+    part."""
 
 
 class TickRow(Base):

@@ -1,7 +1,8 @@
 """How long a study takes, computed from the study itself, and the placeholders that put it into the texts
 participants read (consent and instructions).
 
-A round lasts at most ``horizon / tick_rate_hz`` seconds; the pages around the rounds are estimated with the
+A round lasts at most ``horizon / tick_rate_hz`` seconds in ``fixed_rate``, and at most the wall-clock limit
+``timing.max_round_seconds`` in ``wait_for_participant`` (``Timing.round_seconds``); the pages around the rounds are estimated with the
 per-page times below (a reader who does not rush). The total is an upper estimate: rounds end early when every
 order is delivered.
 
@@ -81,7 +82,7 @@ def study_length(study: Study) -> StudyLength:
     """The length of ``study`` from its rounds, horizon, tick rate, quiz and questionnaires."""
     practice = sum(p.count for p in study.practice)
     main = len(study.conditions)
-    round_seconds = study.world.horizon / study.timing.tick_rate_hz
+    round_seconds = study.timing.round_seconds(study.world.horizon)
     after_each = [q for q in study.questionnaires if q.when == "after_each_trial"]
     at_end = [q for q in study.questionnaires if q.when == "end_of_study"]
     questions = sum(len(q.items) for q in after_each)

@@ -51,10 +51,41 @@ class Timing(StudyModel):
     """World steps per second (5 Hz = one tick every 200 ms)."""
     blocked_subtask_seconds: float = Field(default=3.0, gt=0, le=600)
     """A subtask that makes no progress this long ends itself and says why (docs/client.md)."""
+    max_round_seconds: float | None = Field(default=None, gt=0, le=86_400)
+    """``wait_for_participant`` only: the wall-clock limit of a round (seconds while the participant is
+    connected); past it the round ends with reason ``time_limit``. Default: the horizon at the tick rate × 3
+    (:data:`ROUND_LIMIT_FACTOR`), so a person who reads as they play never meets it (docs/protocol.md §3)."""
+    idle_nudge_seconds: float = Field(default=10.0, gt=0, le=3_600)
+    """Seconds the cook may stand with nothing to do (no task, no key waiting) before the page shows
+    "Choose your next task" (a nudge naming nothing of the condition)."""
 
     def blocked_ticks(self) -> int:
         """``blocked_subtask_seconds`` in ticks at the tick rate (at least one)."""
         return max(1, round(self.blocked_subtask_seconds * self.tick_rate_hz))
+
+    def round_seconds(self, horizon: int) -> float:
+        """The longest a round lasts on the wall clock (while connected): the horizon at the tick rate
+        (``fixed_rate``), or the wall-clock limit (``wait_for_participant``)."""
+        played = horizon / self.tick_rate_hz
+        if self.mode == "fixed_rate":
+            return played
+        return self.max_round_seconds if self.max_round_seconds is not None else played * ROUND_LIMIT_FACTOR
+
+    def round_limit_seconds(self, horizon: int) -> float | None:
+        """The wall-clock limit the server enforces (``None`` in ``fixed_rate``: the horizon ends a round)."""
+        return self.round_seconds(horizon) if self.mode == "wait_for_participant" else None
+
+    @model_validator(mode="after")
+    def _limit_needs_waiting(self) -> Timing:
+        if self.mode == "fixed_rate" and self.max_round_seconds is not None:
+            raise_problems([(("max_round_seconds",), "only a wait_for_participant round has a wall-clock "
+                                                     "limit; a fixed_rate round ends at the horizon")], self)
+        return self
+
+
+ROUND_LIMIT_FACTOR = 3.0
+"""The default wall-clock limit of a ``wait_for_participant`` round: this many times the horizon at the tick
+rate (a reader's pace: the paper's participants took their time between choices)."""
 
 
 class Counterbalancing(StudyModel):

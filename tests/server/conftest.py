@@ -105,14 +105,16 @@ def make_settings(db_url: str, tmp_path: Path) -> Callable[..., Any]:
 
 @pytest.fixture
 def live_server(make_settings: Callable[..., Any]) -> Iterator[Callable[..., ThreadServer]]:
-    """``live_server(studies, robot_factory=None, **settings)``: a started :class:`ThreadServer`, stopped at
-    the end of the test."""
+    """``live_server(studies, robot_factory=None, clock=None, **settings)``: a started :class:`ThreadServer`
+    (``clock``: the rounds' wall clock, e.g. a ``ManualClock``), stopped at the end of the test."""
     from server.app import create_app
 
     started: list[ThreadServer] = []
 
-    def start(studies: list[Path], robot_factory: Callable[..., Any] | None = None, **overrides: Any) -> ThreadServer:
-        server = ThreadServer(create_app(make_settings(studies, **overrides), robot_factory=robot_factory))
+    def start(studies: list[Path], robot_factory: Callable[..., Any] | None = None, clock: Any = None,
+              **overrides: Any) -> ThreadServer:
+        server = ThreadServer(create_app(make_settings(studies, **overrides), robot_factory=robot_factory,
+                                         clock=clock))
         started.append(server.__enter__())
         return server
 

@@ -313,3 +313,34 @@ async def until_unloaded(services: Any, timeout: float = 10.0) -> None:
     while services.registry.games and time.monotonic() < deadline:
         await asyncio.sleep(0.05)
     assert not services.registry.games, "the trial must be unloaded after the grace window"
+
+
+class ManualClock:
+    """A wall clock for the rounds' limit and idle nudge (``server.game.clock.Clock``) that moves only when the
+    test calls :meth:`advance` (from its own thread: the server's loop is woken thread-safely)."""
+
+    def __init__(self) -> None:
+        self.t = 0.0
+        self._lock = threading.Lock()
+        self._waiters: list[tuple[asyncio.AbstractEventLoop, asyncio.Event]] = []
+
+    def now(self) -> float:
+        return self.t
+
+    async def wait(self, event: asyncio.Event, seconds: float | None) -> None:
+        deadline = None if seconds is None else self.t + seconds
+        while not event.is_set() and (deadline is None or self.t < deadline):
+            moved = asyncio.Event()
+            with self._lock:
+                self._waiters.append((asyncio.get_running_loop(), moved))
+            waits = {asyncio.ensure_future(event.wait()), asyncio.ensure_future(moved.wait())}
+            _, pending = await asyncio.wait(waits, return_when=asyncio.FIRST_COMPLETED)
+            for task in pending:
+                task.cancel()
+
+    def advance(self, seconds: float) -> None:
+        with self._lock:
+            self.t += seconds
+            waiters, self._waiters = self._waiters, []
+        for loop, moved in waiters:
+            loop.call_soon_threadsafe(moved.set)

@@ -104,7 +104,8 @@ def test_after_the_grace_window_the_study_policy_applies(live_server, study_file
     first_row = rows[hello1["trial"]["id"]]
     if policy == "abandon":
         assert (first_row.status, first_row.end_reason) == ("abandoned", "grace_expired")
-        assert session["state"] == "questionnaire"
+        # The only main round was abandoned: the study's screen-out outcome, never a questionnaire about it.
+        assert session["state"] == "screened_out" and session["completion"]["reason"] == "abandoned_rounds"
         assert reply["type"] == "error" and reply["code"] == "no_trial"
     elif policy == "restart":
         assert reply["type"] == "hello" and reply["tick"] == 0 and reply["trial"]["id"] != first_row.id

@@ -25,6 +25,17 @@ function flags(p) {
     out.push(h("a", { href: `#/trials?participant=${encodeURIComponent(p.participant_id)}`, class: "invalid-trials" },
       badge(`${p.invalid_trials} invalid trial${p.invalid_trials > 1 ? "s" : ""}`, "excluded")));
   }
+  if (p.low_engagement_trials) {
+    out.push(h("a", { href: `#/trials?participant=${encodeURIComponent(p.participant_id)}`, class: "low-engagement" },
+      badge(`${p.low_engagement_trials} low-engagement trial${p.low_engagement_trials > 1 ? "s" : ""}`, "excluded")));
+  }
+  if (p.screen_out_reason) {
+    out.push(badge(`screened out: ${p.screen_out_reason.replaceAll("_", " ")}`, "excluded"));
+  }
+  if (p.uncounted_reason) {
+    out.push(h("span", { class: "reason uncounted", title: "not counted toward the condition order" },
+      `not counted: ${p.uncounted_reason}`));
+  }
   return out.length ? out : h("span", { class: "muted" }, "–");
 }
 

@@ -25,7 +25,11 @@ export function trialsPage(root, { api, params }) {
         ["Condition", (t) => t.condition],
         ["Status", (t) => (t.status === "running" ? badge("running", "live") : `${t.status}${t.end_reason ? ` (${t.end_reason})` : ""}`)],
         ["Valid", (t) => (t.invalid ? [badge("invalid", "excluded"), h("span", { class: "reason" }, t.invalid_reason)]
+          : t.low_engagement ? [badge("low engagement", "excluded"), h("span", { class: "reason" }, t.engagement_reason)]
           : h("span", { class: "muted" }, t.missed_decisions_pct === null ? "–" : `${t.missed_decisions_pct} % missed`))],
+        ["Participant / robot dishes", (t) => (t.delivered_by_participant === null ? "–"
+          : `${t.delivered_by_participant} / ${t.delivered_by_robot}`), "num"],
+        ["Refused steps", (t) => (t.refused_steps === null ? "–" : String(t.refused_steps)), "num"],
         ["Ticks", (t) => String(t.ticks), "num"],
         ["Delivered", (t) => String(t.delivered), "num"],
         ["Score", (t) => String(t.score), "num"],

@@ -13,6 +13,10 @@ const SCREENED_OUT = {
   server_full: "The study's server was too busy to start your round in time, so the study ends here. We are " +
     "sorry: please return the study with the code below (or contact the researcher), and come back later if " +
     "the study is still open.",
+  abandoned_rounds: "A round was left without being played, so the study ends here and it cannot give you the " +
+    "completion code. If something went wrong on your side, please contact the researcher.",
+  low_engagement: "A round was played without taking part in it (no task chosen), so the study ends here and it " +
+    "cannot give you the completion code. If something went wrong on your side, please contact the researcher.",
   failed_quiz: "The answers to the questions about the instructions were not all right after the attempts this " +
     "study allows, so the study ends here. No game data were recorded. Thank you for your time.",
 };

@@ -64,6 +64,9 @@ export function endText(end, seconds) {
     return "The connection was lost for longer than the study allows, so the round was ended. You can continue " +
       "with the study.";
   }
+  if (end.reason === "time_limit") {
+    return "This round reached its time limit while the kitchen was waiting for your next task, so it ended.";
+  }
   if (end.reason !== "delivered") return "Time is up for this round.";
   return seconds === null ? "All orders delivered." : `All orders delivered in ${Math.round(seconds)} seconds.`;
 }

@@ -157,6 +157,9 @@ function playRound(root, ctx, onFinished) {
     onBlocked(message) {
       note.blocked(message);
     },
+    onNudge(message) {
+      note.say(message.text, "nudge", 8000);
+    },
     onLatency(ms) {
       hud.setLatency(ms);
     },

@@ -1,0 +1,29 @@
+"""The participant's part in each trial, as the server stored it when the trial ended (docs/operations.md,
+"Engagement"): the ``trials.csv`` columns of their activity and the trial's status for analysis.
+
+``trial_status``: ``running``, ``abandoned``, ``low_engagement`` (finished, but the participant did not take
+part), ``robot_invalid`` (finished, the robot's decisions missed their deadlines too often) or ``finished``.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from analysis.store_reader import StoredTrial
+
+
+def trial_status(trial: StoredTrial) -> str:
+    if trial.status != "finished":
+        return trial.status
+    if trial.engagement_reason:
+        return "low_engagement"
+    if trial.invalid_reason:
+        return "robot_invalid"
+    return "finished"
+
+
+def participation_values(trial: StoredTrial) -> dict[str, Any]:
+    """The trial's ``trials.csv`` columns of :data:`analysis.dictionary.PARTICIPATION_COLUMNS`."""
+    return {"trial_status": trial_status(trial), "key_actions": trial.key_actions, "idle_pct": trial.idle_pct,
+            "refused_steps": trial.refused_steps, "delivered_by_participant": trial.delivered_by_participant,
+            "delivered_by_robot": trial.delivered_by_robot, "engagement_reason": trial.engagement_reason}
