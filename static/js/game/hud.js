@@ -90,6 +90,7 @@ export class Hud {
       no_trial: "Not in a round",
       queued: "Waiting for your round",
       server_full: "Study busy",
+      moved: "Continued on another device",
       closed: "Disconnected",
     }[link] || link;
     this.setText(this.pill, text);

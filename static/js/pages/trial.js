@@ -176,6 +176,10 @@ function playRound(root, ctx, onFinished) {
         here.focus();
       }
       if (link === Link.UNAUTHORIZED) setCover("Your session was not found. Please open your study link again.");
+      if (link === Link.MOVED) {
+        window.removeEventListener("beforeunload", confirmLeaving);
+        setCover("Your study continues on another device. You can close this tab.");
+      }
       if (link === Link.QUEUED) setCover(waitingText(info));
       if (link === Link.NO_TRIAL || link === Link.SERVER_FULL) finish(null);
     },
