@@ -63,6 +63,7 @@ def session_view(loaded: LoadedStudy, row: ParticipantRow,
         view["consent"] = fill_placeholders(study.consent, texts)
     elif phase is Phase.INSTRUCTIONS:
         view["instructions"] = fill_placeholders(study.instructions, texts)
+        view["views"] = sorted({s.view or DEFAULT_VIEW for s in trial_steps})  # which keys and picture to teach
     elif phase is Phase.QUIZ and study.quiz is not None:
         view["quiz"] = {"questions": [{"id": q.id, "text": q.text, "options": list(q.options)}
                                       for q in study.quiz.questions],
