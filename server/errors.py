@@ -18,6 +18,7 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
 
 from server.flow.progress import IllegalTransition
+from server.text_input import safe
 
 
 EXCERPT_CHARS = 60
@@ -88,6 +89,7 @@ def excerpt(value: Any, limit: int = EXCERPT_CHARS) -> str:
             value = json.dumps(value, allow_nan=True, default=str)[: limit * 4]
         except ValueError:
             value = "…"
+    value = safe(value)
     return value if len(value) <= limit else value[: limit - 1] + "…"
 
 

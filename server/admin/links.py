@@ -11,11 +11,30 @@ from __future__ import annotations
 from typing import Any
 from urllib.parse import quote
 
-from server.catalog import LoadedStudy
+from server.catalog import Catalog, LoadedStudy
+from server.study.warnings import study_warnings
 
 
 def placeholder(name: str) -> str:
     return "{{%" + name + "%}}"
+
+
+def start_banner(catalog: Catalog, base_url: str) -> list[str]:
+    """What ``steakhouse serve`` prints at start: each study's participant and test-run links, the admin
+    address, and a loud line per shipped placeholder code still in a study (:mod:`server.flow.payment`)."""
+    base = base_url.rstrip("/")
+    lines = [f"Admin dashboard: {base}/admin/  (token: STEAKHOUSE_ADMIN_TOKEN, or the one logged above)"]
+    for loaded in catalog:
+        links = study_links(loaded, base)
+        lines.append(f"Study {loaded.id}: participant link {links['participant']['url']}")
+        lines.append(f"{' ' * (len(loaded.id) + 7)}test run         {links['test_run']['url']}")
+    for loaded in catalog:
+        for warning in study_warnings(loaded.study):
+            if warning.code == "placeholder_code":
+                lines.append(f"WARNING: study {loaded.id}: {warning.path} is still the shipped placeholder: real "
+                             "participants are told the study is not set up for payment and get no code. Set the "
+                             "code your recruiting platform gives you (docs/deploy.md).")
+    return lines
 
 
 def study_links(loaded: LoadedStudy, base_url: str) -> dict[str, Any]:

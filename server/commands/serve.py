@@ -8,6 +8,8 @@ with its folder. Invalid settings or study files stop the command with every pro
 Participant tokens never reach the log: the websocket takes ``?token=…`` (browsers cannot set headers
 there) and uvicorn logs the path with its query (``"WebSocket /ws/play?token=…" [accepted]`` at info, and
 HTTP requests in its access log), so the command installs :class:`RedactTokens` on uvicorn's loggers.
+A text frame that is not valid UTF-8 is closed by uvicorn itself with 1007 (invalid frame payload data); it
+logs that with a traceback, which :class:`QuietBadFrames` turns into one warning line.
 """
 
 from __future__ import annotations
@@ -43,16 +45,29 @@ class RedactTokens(logging.Filter):
         return True
 
 
+class QuietBadFrames(logging.Filter):
+    """uvicorn's record of a websocket text frame that is not valid UTF-8 (the socket is already closed with
+    1007): one warning line without the traceback, since a client's bad bytes are not a server error."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        if record.exc_info and isinstance(record.exc_info[1], UnicodeDecodeError):
+            record.exc_info, record.exc_text = None, None
+            record.levelno, record.levelname = logging.WARNING, "WARNING"
+            record.msg, record.args = "websocket closed with 1007: a text frame was not valid UTF-8", ()
+        return True
+
+
 def redact(text: str) -> str:
     return _TOKEN.sub(r"\1[redacted]", text)
 
 
 def install_redaction(names: tuple[str, ...] = UVICORN_LOGGERS) -> None:
-    """Put one :class:`RedactTokens` on each named logger (idempotent)."""
+    """Put one :class:`RedactTokens` and one :class:`QuietBadFrames` on each named logger (idempotent)."""
     for name in names:
         logger = logging.getLogger(name)
-        if not any(isinstance(f, RedactTokens) for f in logger.filters):
-            logger.addFilter(RedactTokens())
+        for kind in (RedactTokens, QuietBadFrames):
+            if not any(isinstance(f, kind) for f in logger.filters):
+                logger.addFilter(kind())
 
 
 def register(subparsers: Any) -> None:
@@ -76,6 +91,7 @@ def serve(args: argparse.Namespace) -> int:
     from pydantic import ValidationError
 
     from planner.layout import LayoutError
+    from server.admin.links import start_banner
     from server.app import create_app
     from server.catalog import DuplicateStudyError
     from server.settings import Settings
@@ -105,6 +121,9 @@ def serve(args: argparse.Namespace) -> int:
         print(f"{exc}\nthe server did not start", file=sys.stderr)
         return 1
     install_redaction()
+    shown_host = "127.0.0.1" if settings.host in ("0.0.0.0", "::") else settings.host
+    for line in start_banner(app.state.catalog, f"http://{shown_host}:{settings.port}"):
+        print(line, file=sys.stderr if line.startswith("WARNING") else sys.stdout, flush=True)
     _freeze_startup_objects()
     uvicorn.run(app, host=settings.host, port=settings.port, log_level=settings.log_level,
                 ws_max_size=settings.ws_max_frame_bytes, timeout_graceful_shutdown=5)

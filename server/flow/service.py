@@ -4,7 +4,12 @@
   id (the study's first URL parameter, e.g. ``PROLIFIC_PID``) is not a password: a second join with it
   answers the same participant only from the browser holding that participant's token (the token is kept);
   from any other browser it is refused (``409 already_started``), the attempt stored as a ``join_refused``
-  event, and the participant's session and token are left as they were. Never two assignments.
+  event, and the participant's session and token are left as they were. Never two assignments. Ids are
+  compared normalised (:func:`server.store.participants.normalised_recruit_id`: ``" ABC"`` is ``abc``). The
+  exception is a session that holds nothing yet: its device was refused on landing and it has not moved past
+  the first step (a phone user sent to a laptop): the next browser with the id claims it (a new token, the
+  phone's stops working, a ``session_claimed`` event). A study with ``recruiting.require_id`` refuses a join
+  without the id (``422 recruit_id_required``), except test runs.
 - :func:`resume_on_new_device`: the experimenter's one-time resume link redeemed (:mod:`server.admin.resume`):
   a fresh token for the participant, the old one stops working.
 - :func:`move`: one state-machine transition, applied only if nobody moved the participant meanwhile.
@@ -42,6 +47,7 @@ from server.store.engine import Store
 from server.store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, QuizAttemptRow
 from server.study import Study
 from server.study.device import DeviceInfo, device_problems
+from server.study.device import refused as device_refused
 from server.store.types import utcnow
 
 
@@ -80,7 +86,10 @@ def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run
     study = loaded.study
     names = study.recruiting.url_parameters
     kept = {name: recruiting[name] for name in names if name in recruiting}
-    recruit_id = kept.get(names[0]) if names else None
+    recruit_id = participants.normalised_recruit_id(kept.get(names[0])) if names else None
+    if recruit_id is None and study.recruiting.require_id and not (test_run or study.test_run or pilot_pace):
+        raise ApiError(422, "recruit_id_required", f"this study is joined from its link on the recruiting platform, "
+                       f"which carries your {names[0]}; please open that link again")
     with store.transaction() as session:
         assignment.lock_study(session, study.id)
         outcome = _join_in(session, loaded, kept, recruit_id, test_run, presented_token, pilot_pace)
@@ -113,6 +122,8 @@ def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recrui
             return _rejoined(session, existing, token)
         if existing is not None:
             holder = participants.by_token(session, presented_token) if presented_token else None
+            if (presented_token is None or holder is None or holder.id != existing.id) and _claimable(existing):
+                return _claimed(session, existing)
             if presented_token is None or holder is None or holder.id != existing.id:
                 session.add(EventRow(participant_id=existing.id, trial_id=None, tick=None, kind="join_refused",
                                      payload={"reason": "already_started", "had_token": presented_token is not None},
@@ -134,6 +145,20 @@ def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recrui
     if found is None:
         raise ApiError(500, "internal", "assignment not stored")
     return Joined(token, row, found, rejoined=False)
+
+
+def _claimable(row: ParticipantRow) -> bool:
+    """A session that holds nothing yet: its device was refused on landing and it is still at its first step."""
+    return row.status == "in_progress" and row.step == 0 and device_refused(row.device)
+
+
+def _claimed(session: Session, row: ParticipantRow) -> Joined:
+    token = secrets.token_urlsafe(32)
+    participants.rotate_token(session, row.id, token)
+    session.add(EventRow(participant_id=row.id, trial_id=None, tick=None, kind="session_claimed",
+                         payload={"refused_device": row.device}, created_at=utcnow()))
+    log.info("participant %s continues in a new browser (their first device was refused)", row.public_id)
+    return _rejoined(session, row, token)
 
 
 def resume_on_new_device(store: Store, participant_id: int, expected_token_hash: str) -> Joined | None:

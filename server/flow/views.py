@@ -16,6 +16,7 @@ from sqlalchemy.orm import Session
 from server.catalog import LoadedStudy
 from server.flow.progress import Phase
 from server.flow.rounds import RoundFacts, round_facts
+from server.flow import payment
 from server.flow.service import completion, progress_of, quiz_attempts
 from server.store.tables import ParticipantRow
 from server.store.types import utcnow
@@ -62,6 +63,7 @@ def session_view(loaded: LoadedStudy, row: ParticipantRow,
         view["consent"] = fill_placeholders(study.consent, texts)
     elif phase is Phase.INSTRUCTIONS:
         view["instructions"] = fill_placeholders(study.instructions, texts)
+        view["views"] = sorted({s.view or DEFAULT_VIEW for s in trial_steps})  # which keys and picture to teach
     elif phase is Phase.QUIZ and study.quiz is not None:
         view["quiz"] = {"questions": [{"id": q.id, "text": q.text, "options": list(q.options)}
                                       for q in study.quiz.questions],
@@ -80,7 +82,7 @@ def session_view(loaded: LoadedStudy, row: ParticipantRow,
             "items": [item_view(i) for i in questionnaire.items],
         }
     if phase in (Phase.DONE, Phase.SCREENED_OUT):
-        view["completion"] = completion(loaded, row)
+        view["completion"] = payment.shown_to(row, completion(loaded, row))
     return view
 
 

@@ -49,6 +49,7 @@ from server.catalog import LoadedStudy
 from server.flow import service
 from server.game import snapshot
 from server.game.blocked import Blocked
+from server.game.budget import EventBudget
 from server.game.clock import Clock, MonotonicClock
 from server.game.connection import Connection
 from server.game.engine import TickOutcome, TrialEngine
@@ -109,6 +110,7 @@ class LiveGame:
         self.lateness: deque[float] = deque(maxlen=5000)
         self.misses = 0
         self._errors_logged = 0
+        self.budget = EventBudget()
 
     # -- connection ---------------------------------------------------------------------------------
 
@@ -141,6 +143,7 @@ class LiveGame:
         self.connection = None
         self.times.disconnected()
         self.connected.clear()
+        self._store_drops(force=True)
         self.event("disconnect", {})
         self.wake.set()
         return True
@@ -158,6 +161,10 @@ class LiveGame:
             message = self.inbound.check(text, data)
             if self.finished:
                 raise ProtocolError("not_playing", "the trial is over", message.seq)
+            if not (isinstance(message, Heartbeat) or self.meta.pilot_pace) and not self.budget.take(message.type):
+                self._store_drops()
+                raise ProtocolError("rate_limited", "too many messages at once; this one was not applied",
+                                    message.seq)
             controller = self.engine.controller
             if isinstance(message, SelectSubtask):
                 hint = controller.available(self.engine.world, self.engine.kb)
@@ -183,7 +190,7 @@ class LiveGame:
                 self.event("idle", {"seq": message.seq, "idle_ms": message.idle_ms})
         except ProtocolError as exc:
             conn.send(Error(code=exc.code, message=exc.message, ref=exc.ref))  # type: ignore[arg-type]
-            if self._errors_logged < MAX_LOGGED_ERRORS:
+            if exc.code != "rate_limited" and self._errors_logged < MAX_LOGGED_ERRORS:
                 self._errors_logged += 1
                 self.event("error", {"code": exc.code, "ref": exc.ref})
             return
@@ -374,6 +381,12 @@ class LiveGame:
                                     "tick": self.engine.tick, "kind": kind, "payload": payload,
                                     "created_at": utcnow()})
 
+    def _store_drops(self, force: bool = False) -> None:
+        """Store the refused messages' counts as one ``events_dropped`` row (:mod:`server.game.budget`)."""
+        summary = self.budget.summary(force)
+        if summary is not None:
+            self.event("events_dropped", summary)
+
     # -- ending ---------------------------------------------------------------------------------------
 
     async def end(self, status: str, reason: str) -> None:
@@ -388,6 +401,7 @@ class LiveGame:
             self._decision.cancel()
         world = self.engine.world
         self._update_health(self.health.final(), "ended invalid")
+        self._store_drops(force=True)
         self.event("trial_end", {"status": status, "reason": reason, "ticks": world.tick})
         await self.deps.writer.flush()
         delivered = self.engine.rules.orders - world.orders_left

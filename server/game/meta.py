@@ -32,4 +32,5 @@ class TrialMeta:
     client message); ``None`` for a real participant."""
 
     def to_dict(self) -> dict[str, Any]:
-        return asdict(self)
+        """For the admin (JSON): the seed as text, since JavaScript numbers keep only 53 bits."""
+        return {**asdict(self), "seed": str(self.seed)}

@@ -32,6 +32,7 @@ from server.game.live import GameDeps, LiveGame
 from server.game.lobby import Lobby
 from server.game.restore import trial_engine, trial_meta
 from server.game.resume import Prepared, abandon_stale, prepare_trial
+from server.protocol.server import Error
 from server.store import trials
 from server.store.tables import ParticipantRow
 from server.store.types import utcnow
@@ -155,6 +156,18 @@ class GameRegistry:
             game.start()
             game.attach(conn)
             return game
+
+    def revoke(self, participant_id: int) -> bool:
+        """The participant's token was replaced (their resume link was used on a new device): the old browser's
+        game socket gets ``error: moved`` and is closed (4401) now, not at its next reconnect. Whether one was
+        open in this process."""
+        game = self._by_participant.get(participant_id)
+        conn = game.connection if game is not None else None
+        if conn is None:
+            return False
+        conn.send(Error(code="moved", message="this session continues on another device"))
+        conn.begin_close(4401)
+        return True
 
     def _build(self, loaded: LoadedStudy, participant: ParticipantRow, prepared: Prepared) -> LiveGame:
         row, study = prepared.trial, loaded.study

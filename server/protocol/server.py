@@ -166,7 +166,8 @@ class Pong(ServerMessage):
 
 ErrorCode = Literal["bad_frame", "too_large", "bad_json", "invalid_message", "unknown_type",
                     "unsupported_version", "bad_seq", "queue_full", "not_playing", "replaced", "no_trial",
-                    "unauthorized", "internal", "server_full"]
+                    "unauthorized", "internal", "server_full", "moved", "rate_limited",
+                    "device_refused"]
 
 
 class Error(ServerMessage):

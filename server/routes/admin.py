@@ -34,8 +34,10 @@ from server.study.warnings import study_warnings
 from server.store.tables import EventRow, TrialRow
 from server.store.types import utcnow
 from server.game.registry import process_name
+from server.text_input import storable_body
 
-router = APIRouter(prefix="/api/admin", tags=["admin"], dependencies=[Depends(require_admin)])
+router = APIRouter(prefix="/api/admin", tags=["admin"],
+                   dependencies=[Depends(require_admin), Depends(storable_body)])
 
 STORE_INT_MAX = 2**63 - 1
 TrialId = Annotated[int, Path(ge=1, le=STORE_INT_MAX)]

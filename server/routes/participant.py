@@ -13,13 +13,14 @@ from __future__ import annotations
 import time
 from typing import Annotated, Any
 
+from anyio import from_thread
 from fastapi import APIRouter, Depends, Request
 
 from server.admin.resume import link_secret, read_code, verify
 from server.catalog import LoadedStudy
 from server.deps import ParticipantDep, ServicesDep, bearer, is_admin, participant_study, path_study
 from server.errors import ApiError
-from server.flow import service
+from server.flow import payment, service
 from server.flow.progress import Move
 from server.flow.schemas import (ConsentRequest, JoinRequest, JoinResponse, QuestionnaireRequest, QuizRequest,
                                  ResumeRequest, StudyPublic)
@@ -28,8 +29,9 @@ from server.security import limit_joins
 from server.services import Services
 from server.store import participants
 from server.study.device import DeviceInfo
+from server.text_input import storable_body
 
-router = APIRouter(prefix="/api", tags=["participant"])
+router = APIRouter(prefix="/api", tags=["participant"], dependencies=[Depends(storable_body)])
 StudyDep = Annotated[LoadedStudy, Depends(participant_study)]
 
 
@@ -59,7 +61,8 @@ def join(loaded: Annotated[LoadedStudy, Depends(path_study)], body: JoinRequest,
 def resume(loaded: Annotated[LoadedStudy, Depends(path_study)], body: ResumeRequest,
            services: ServicesDep) -> JoinResponse:
     """Redeem a resume link made by the experimenter (:mod:`server.admin.resume`): this browser gets a new
-    token for the participant; 410 ``link_invalid`` for a used, expired or altered link."""
+    token for the participant (the old browser's game socket is closed at once); 410 ``link_invalid`` for a
+    used, expired or altered link."""
     code = read_code(body.code)
     with services.store.transaction() as session:
         row = participants.by_public_id(session, code.public_id) if code is not None else None
@@ -72,6 +75,7 @@ def resume(loaded: Annotated[LoadedStudy, Depends(path_study)], body: ResumeRequ
         joined = service.resume_on_new_device(services.store, participant_id, token_hash)
     if joined is None:
         raise ApiError(410, "link_invalid", "this resume link is no longer valid; please contact the researcher")
+    from_thread.run_sync(services.registry.revoke, joined.participant.id)
     return _joined(loaded, joined)
 
 
@@ -128,4 +132,4 @@ def questionnaire(body: QuestionnaireRequest, participant: ParticipantDep, loade
 
 @router.get("/session/completion")
 def completion(participant: ParticipantDep, loaded: StudyDep) -> dict[str, Any]:
-    return service.completion(loaded, participant)
+    return payment.shown_to(participant, service.completion(loaded, participant))

@@ -7,8 +7,9 @@ When this server process already runs as many live trials as it can hold on time
 waits for a slot (``server.game.lobby``): ``waiting`` messages with their place in line and the
 expected wait; past the limit ``error`` ``server_full`` (close 4503) and the participant is screened out.
 
-Refusals before the game starts are typed too: ``error`` with code ``unauthorized`` (close 4401) or
-``no_trial`` (close 4409, the participant is not at a trial step); a trial abandoned after the grace
+Refusals before the game starts are typed too: ``error`` with code ``unauthorized`` (close 4401),
+``device_refused`` (close 4403: the device check on landing refused the participant's device, and a round
+never opens on it) or ``no_trial`` (close 4409, the participant is not at a trial step); a trial abandoned after the grace
 window answers ``trial_end`` with status ``abandoned``.
 """
 
@@ -25,6 +26,7 @@ from server.game.connection import Connection
 from server.game.registry import GameRegistry, NoTrial, TrialAbandoned
 from server.protocol.server import Error, ServerMessage, TrialEnd
 from server.store.tables import ParticipantRow
+from server.study.device import refused as device_refused
 
 router = APIRouter()
 log = logging.getLogger(__name__)
@@ -86,6 +88,10 @@ async def play(websocket: WebSocket, services: ServicesDep) -> None:
     participant = await asyncio.to_thread(find_participant, services.store, token) if token else None
     if participant is None:
         await _refuse(websocket, Error(code="unauthorized", message="a valid participant token is required"), 4401)
+        return
+    if device_refused(participant.device):
+        await _refuse(websocket, Error(code="device_refused", message="this device cannot take part: please use a "
+                                       "computer with a keyboard"), 4403)
         return
     conn = Connection(websocket)
     registry = services.registry

@@ -10,7 +10,7 @@ import hashlib
 from datetime import datetime
 from typing import Any
 
-from sqlalchemy import select, update
+from sqlalchemy import func, or_, select, update
 from sqlalchemy.orm import Session
 
 from server.store.tables import AssignmentRow, ParticipantRow
@@ -29,9 +29,21 @@ def by_public_id(session: Session, public_id: str) -> ParticipantRow | None:
     return session.scalar(select(ParticipantRow).where(ParticipantRow.public_id == public_id))
 
 
+def normalised_recruit_id(value: str | None) -> str | None:
+    """A recruiting id as it is stored and compared: without surrounding spaces, in lower case (``" ABC "``,
+    ``"abc"`` and ``"Abc"`` are one participant); ``None`` when blank."""
+    value = (value or "").strip().lower()
+    return value or None
+
+
 def by_recruit_id(session: Session, study_id: str, recruit_id: str) -> ParticipantRow | None:
-    return session.scalar(select(ParticipantRow).where(ParticipantRow.study_id == study_id,
-                                                       ParticipantRow.recruit_id == recruit_id))
+    """The participant whose normalised recruiting id is ``recruit_id``'s (also among rows stored before ids
+    were normalised, which hold them as typed)."""
+    wanted = normalised_recruit_id(recruit_id)
+    return session.scalar(select(ParticipantRow).where(
+        ParticipantRow.study_id == study_id,
+        or_(ParticipantRow.recruit_id == wanted, func.lower(func.trim(ParticipantRow.recruit_id)) == wanted))
+        .order_by(ParticipantRow.id).limit(1))
 
 
 def assignment_of(session: Session, participant_id: int) -> AssignmentRow | None:

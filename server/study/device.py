@@ -4,7 +4,7 @@ message to use a computer with a keyboard; what the browser reported is stored w
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
@@ -43,6 +43,11 @@ class DeviceInfo(BaseModel):
     """A mouse or trackpad is present (``any-pointer: fine``)."""
     touch: bool
     """A touch screen is present (``maxTouchPoints > 0``)."""
+
+
+def refused(report: dict[str, Any] | None) -> bool:
+    """Whether a participant's stored device report (``ParticipantRow.device``) refused their device."""
+    return bool(report and report.get("problems"))
 
 
 def device_problems(required: DeviceRequirements, info: DeviceInfo) -> list[DeviceProblem]:

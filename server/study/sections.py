@@ -141,7 +141,10 @@ class Recruiting(StudyModel):
     screen_out_redirect_url: str | None = None
     """Where screened-out participants are sent; ``{code}`` is replaced by ``screen_out_code``."""
     url_parameters: tuple[str, ...] = ("PROLIFIC_PID", "STUDY_ID", "SESSION_ID")
-    """Query parameters of the landing URL stored with the participant."""
+    """Query parameters of the landing URL stored with the participant; the first identifies them."""
+    require_id: bool = False
+    """Refuse a join whose link lacks the first URL parameter (a participant who typed the address by hand, or
+    came back without their id, could otherwise start again as someone new); test runs may join without it."""
 
     @field_validator("completion_redirect_url", "screen_out_redirect_url")
     @classmethod
@@ -168,6 +171,8 @@ class Recruiting(StudyModel):
     @model_validator(mode="after")
     def _codes_for_placeholders(self) -> Recruiting:
         problems: list[tuple[Loc, str]] = []
+        if self.require_id and not self.url_parameters:
+            problems.append((("require_id",), "needs a URL parameter to require: url_parameters is empty"))
         for kind in ("completion", "screen_out"):
             url = getattr(self, f"{kind}_redirect_url")
             if url and CODE_PLACEHOLDER in url and getattr(self, f"{kind}_code") is None:

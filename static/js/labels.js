@@ -23,7 +23,7 @@ export const SUBTASKS = {
   drop_on_counter: { label: "Put on counter", hint: "Put what you hold on the nearest free counter." },
   chop_onion: { label: "Chop onion", hint: "Chop the onion on the board until it is ready." },
   wash_plate: { label: "Wash plate", hint: "Wash the plate in the sink until it is clean." },
-  deliver_dish: { label: "Deliver dish", hint: "Bring the finished dish to the serving hatch." },
+  deliver_dish: { label: "Deliver dish", hint: "Bring the finished dish to the serving counter." },
 };
 
 export function subtaskLabel(id) {
@@ -64,6 +64,6 @@ export const STATIONS = {
   grill: "Grill",
   board: "Chopping board",
   sink: "Sink",
-  serve: "Serving hatch",
+  serve: "Serving counter",
   floor: "Floor",
 };

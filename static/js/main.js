@@ -45,9 +45,10 @@ async function route(session) {
   }
   ctx.session = current;
   document.body.dataset.state = current.state;
-  setProgress(current.state === "done" || current.state === "screened_out" ? "" :
+  const refused = deviceRefused(current);
+  setProgress(refused || current.state === "done" || current.state === "screened_out" ? "" :
     `Part ${current.step + 1} of ${current.steps}`);
-  if (deviceRefused(current)) {
+  if (refused) {
     devicePage(root, ctx);
     return;
   }

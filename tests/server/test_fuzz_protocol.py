@@ -6,7 +6,9 @@ frames, oversized and deeply nested frames — are sent one at a time into live 
 participant keeps choosing subtasks on the same connection. The properties:
 
 - every frame gets exactly one reply, in order: ``ack`` / ``pong`` (with its ``seq``) when it is valid and
-  new, else an ``error`` with a documented code and the rejected ``seq`` as ``ref`` when it could be read;
+  new (or ``rate_limited`` once the trial's event budget is spent: a script sends far faster than a person,
+  ``server/game/budget.py``), else an ``error`` with a documented code and the rejected ``seq`` as ``ref`` when
+  it could be read;
 - every server message is a well-formed protocol message, numbered 1, 2, 3, … on its connection;
 - the game never crashes (no ``internal`` error, the loop task alive) and keeps advancing.
 """
@@ -30,7 +32,7 @@ from server.protocol.server import server_adapter
 from server.store.tables import EventRow
 
 CODES = {"bad_frame", "too_large", "bad_json", "invalid_message", "unknown_type", "unsupported_version",
-         "bad_seq", "queue_full", "not_playing"}
+         "bad_seq", "queue_full", "not_playing", "rate_limited"}
 LIMIT = 4096
 FRAMES = 250
 EXAMPLES = 8
@@ -229,7 +231,8 @@ class Session:
         where = f"frame {frame.data[:120]!r} → {reply}"
         if reply["type"] == "error":
             assert reply["code"] in CODES, where
-            allowed = frame.expect | ({"not_playing"} if self.ended else set())
+            allowed = frame.expect | ({"not_playing"} if self.ended else set()) | (
+                {"rate_limited"} if "accept" in frame.expect else set())
             assert reply["code"] in allowed, where
             assert reply["ref"] == expected_ref(frame), where
             return

@@ -7,7 +7,7 @@ import json
 import random
 
 import pytest
-from steakhouse_testing import Player, play_to_end
+from steakhouse_testing import Player, ProcessServer, play_to_end
 from websockets.exceptions import ConnectionClosed
 
 from server.store.tables import EventRow
@@ -137,3 +137,34 @@ def test_random_frames_never_stop_the_game(live_server, study_file):
         return end
 
     assert asyncio.run(scenario())["status"] == "finished"
+
+
+def test_a_text_frame_that_is_not_utf8_closes_1007_without_a_traceback(db_url, study_file, tmp_path):
+    """``steakhouse serve``'s own log: one warning line, no traceback; the participant reconnects and plays on."""
+    log = tmp_path / "server.log"
+    server = ProcessServer(study=study_file(), database_url=db_url, workers=0, log=log,
+                           env={"STEAKHOUSE_LOG_LEVEL": "info"}).start()
+    try:
+        async def scenario():
+            player = Player(server.url)
+            await player.ready()
+            sock = await player.socket()
+            hello = await sock.recv()
+            await sock.ws.send(b'{"v": 1, "seq": 5, "type": "idle", "idle_ms": 1, "x": "\xff\xfe"}', text=True)
+            with pytest.raises(ConnectionClosed):
+                while True:
+                    await sock.recv(timeout=5)
+            again = await player.socket()
+            hello2 = await again.recv()
+            end = await play_to_end(again)
+            await again.close()
+            await player.close()
+            return hello, sock.ws.close_code, hello2, end
+
+        hello, code, hello2, end = asyncio.run(scenario())
+    finally:
+        server.stop()
+    assert code == 1007
+    assert hello2["trial"]["id"] == hello["trial"]["id"] and end["status"] == "finished"
+    text = log.read_text()
+    assert "websocket closed with 1007" in text and "Traceback" not in text, text[-2000:]

@@ -113,3 +113,20 @@ def test_participants_progress_answers_and_flags(admin_server, admin_page):  # n
     page.wait_for_selector(f"{row}[data-excluded='false']")
     page.click(f"{row} button[data-action='test-run']")
     page.wait_for_selector(f"{row}[data-test-run='false']")
+
+
+def test_the_participants_table_fits_1280_pixels_with_its_actions_in_view(admin_server, admin_page):  # noqa: F811
+    public_id, _ = admin_server.finished_trial("a-rather-long-prolific-id-5f0c2a9e")
+    page = admin_page(viewport=(1280, 720))
+    login(page, admin_server, hash_=f"#/participants?study={REPLAY_STUDY}")
+    row = f"#participants-table tr[data-participant='{public_id}']"
+    page.wait_for_selector(row)
+    screenshot(page, "admin_participants_1280")
+    wrap = page.eval_on_selector("#participants-table", "t => [t.parentElement.scrollWidth, t.parentElement.clientWidth]")
+    assert wrap[0] <= wrap[1], f"the table scrolls sideways: {wrap[0]} px in {wrap[1]} px"
+    rights = page.eval_on_selector_all(f"{row} button, {row} a",
+                                       "els => els.map(e => e.getBoundingClientRect().right)")
+    assert rights and max(rights) <= 1280, rights
+    height = page.eval_on_selector(row, "r => r.getBoundingClientRect().height")
+    assert height <= 80, f"a participant's row is {height} px high"
+    assert public_id[:8] in page.inner_text(row)

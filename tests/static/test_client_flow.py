@@ -53,7 +53,7 @@ def test_a_participant_completes_the_whole_study(study_server, new_page):
     assert main.trial != practice.trial
     page.keyboard.press("ArrowRight")  # face the robot, so the screenshot shows it
     wait_drawn(page, "d.robot !== ''")
-    page.wait_for_function("() => document.querySelector('#latency').textContent.endsWith('ms')")
+    page.wait_for_function("() => document.querySelector('#latency').dataset.ms !== undefined")
     screenshot(page, "trial")
     clicked = play_by_clicking(page)
     assert page.inner_text("#summary-score") == "20"

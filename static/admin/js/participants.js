@@ -70,6 +70,18 @@ function deviceCell(p) {
     : h("span", { title: `window ${d.viewport_width}×${d.viewport_height}` }, size);
 }
 
+function recruitCell(p) {
+  const id = Object.values(p.recruiting)[0];
+  return id ? h("span", { class: "recruit-id", title: id }, id) : h("span", { class: "muted" }, "–");
+}
+
+/** "3 Dec 07:53": the day and minute a participant joined (the full time on hover). */
+function shortWhen(iso) {
+  const date = new Date(iso);
+  if (!iso || Number.isNaN(date.getTime())) return "–";
+  return date.toLocaleString(undefined, { day: "numeric", month: "short", hour: "2-digit", minute: "2-digit" });
+}
+
 export function participantsPage(root, { api, params, go }) {
   const studyId = params.get("study") || "";
   const select = h("select", { id: "participants-study", "aria-label": "Study" }, h("option", { value: "" }, "All studies"));
@@ -164,15 +176,16 @@ export function participantsPage(root, { api, params, go }) {
   let last = [];
   function render(people) {
     last = people;
+    // Compact enough for 1280 px with the actions in view: the public id is cut to 8 characters (the whole id
+    // on hover), the study is named only when every study is listed, the progress cell says the state.
     const columns = [
-      ["Participant", (p) => h("code", {}, p.participant_id)],
-      ["Study", (p) => p.study_id],
+      ["Participant", (p) => h("code", { title: p.participant_id }, p.participant_id.slice(0, 8))],
+      ...(studyId ? [] : [["Study", (p) => p.study_id]]),
       ["Order", (p) => (p.order_index === null ? "–" : h("span", { title: p.condition_order.join(" → ") }, String(p.order_index + 1)))],
       ["Progress", progress],
-      ["Status", (p) => p.status.replace("_", " ")],
-      ["Recruiting id", (p) => Object.values(p.recruiting)[0] || h("span", { class: "muted" }, "–")],
+      ["Recruiting id", recruitCell],
       ["Device", deviceCell],
-      ["Joined", (p) => when(p.created_at)],
+      ["Joined", (p) => h("span", { class: "nowrap", title: when(p.created_at) }, shortWhen(p.created_at))],
       ["Flags", flags],
       ["", actions],
     ];

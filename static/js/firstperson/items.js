@@ -43,7 +43,7 @@ export function cleanPlate(group, x = 0, z = 0, y = 0) {
 
 export function garnish(group, x = 0, z = 0, y = 0) {
   for (const [dx, dz] of [[-0.05, -0.03], [0.04, -0.05], [0.0, 0.04], [0.06, 0.04], [-0.06, 0.05]]) {
-    box(group, COLORS.garnish, 0.045, 0.03, 0.045, x + dx, y, z + dz);
+    box(group, COLORS.onion, 0.045, 0.03, 0.045, x + dx, y, z + dz);
   }
 }
 

@@ -1,6 +1,6 @@
 /**
  * The cells of the kitchen in 3D (docs/domain.md §1): a checkered floor tile, waist-high counters, and the
- * stations on them — onion and meat crates, the plate rack, grill, chopping board, sink and serving hatch —
+ * stations on them — onion and meat crates, the plate rack, grill, chopping board, sink and serving counter —
  * each with a silhouette of its own and the colours of the top-down drawing. `terrainModel` is the fixed
  * part of a cell (built once, the first time the cell is in view); `contentsModel` is what changes: the
  * object on a counter and a station's status (steak cooking, onion chopped once, plate washed), with the

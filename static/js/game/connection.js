@@ -5,6 +5,8 @@
  *   open ──trial_end──▶ ended        close 4000 / error "replaced" ──▶ replaced
  *   close 4401 ──▶ unauthorized      close 4409 (not at a trial) ──▶ no_trial      stop() ──▶ closed
  *   connecting ──waiting──▶ queued ──hello──▶ open    error "server_full" / close 4503 ──▶ server_full
+ *   error "moved" (the resume link was used on another device) ──▶ moved
+ *   error "device_refused" / close 4403 ──▶ no_trial (the page shows the device check again)
  *
  * `queued`: the server runs as many rounds as it can hold on time and this one starts when a slot is free;
  * `waiting` messages (every 2 s at least) carry the place in line and the expected wait.
@@ -18,10 +20,11 @@
 export const Link = Object.freeze({
   CONNECTING: "connecting", OPEN: "open", RECONNECTING: "reconnecting", ENDED: "ended",
   REPLACED: "replaced", UNAUTHORIZED: "unauthorized", NO_TRIAL: "no_trial", CLOSED: "closed",
-  QUEUED: "queued", SERVER_FULL: "server_full",
+  QUEUED: "queued", SERVER_FULL: "server_full", MOVED: "moved",
 });
 
-const FINAL = new Set([Link.ENDED, Link.REPLACED, Link.UNAUTHORIZED, Link.NO_TRIAL, Link.CLOSED, Link.SERVER_FULL]);
+const FINAL = new Set([Link.ENDED, Link.REPLACED, Link.UNAUTHORIZED, Link.NO_TRIAL, Link.CLOSED, Link.SERVER_FULL,
+  Link.MOVED]);
 const HEARTBEAT_MS = 2000;
 const SILENCE_MS = 6000;
 const BACKOFF_MIN_MS = 250;
@@ -143,7 +146,7 @@ export class GameConnection {
         if (on.onEnd) on.onEnd(message);
         break;
       case "error":
-        const final = ["replaced", "unauthorized", "no_trial", "server_full"];
+        const final = ["replaced", "unauthorized", "no_trial", "server_full", "moved", "device_refused"];
         if (final.includes(message.code)) this.flags[message.code] = true;
         else if (on.onError) on.onError(message);
         break;
@@ -158,9 +161,12 @@ export class GameConnection {
     this.stopHeartbeat();
     if (FINAL.has(this.link)) return;
     if (this.flags.ended) return;
-    if (this.flags.replaced || code === 4000) this.setLink(Link.REPLACED);
+    if (this.flags.moved) this.setLink(Link.MOVED);
+    else if (this.flags.replaced || code === 4000) this.setLink(Link.REPLACED);
     else if (this.flags.unauthorized || code === 4401) this.setLink(Link.UNAUTHORIZED);
-    else if (this.flags.no_trial || code === 4409) this.setLink(Link.NO_TRIAL);
+    else if (this.flags.no_trial || this.flags.device_refused || code === 4409 || code === 4403) {
+      this.setLink(Link.NO_TRIAL);
+    }
     else if (this.flags.server_full || code === 4503) this.setLink(Link.SERVER_FULL);
     else this.retry();
   }

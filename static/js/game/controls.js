@@ -8,11 +8,19 @@
  * `aria-describedby` for screen readers, the reason as a tooltip on hover and in the "why" line under the
  * tasks on hover and keyboard focus. Choosing it anyway only shows the reason. While offline every button
  * is marked aria-disabled rather than disabled, so keyboard focus stays where the participant left it.
+ *
+ * Task keys: the tasks a dish needs, in the order shown, carry the number-row keys 1–9, 0, -, = (game/keys.js
+ * TASK_KEYS), shown on the button; "Put on counter" has none (a dish never needs it). A task key acts like a
+ * click on its button.
  */
 
 import { h } from "../dom.js";
 import { INTERRUPTS, SUBTASK_GROUPS, SUBTASKS, subtaskLabel } from "../labels.js";
 import { handsReason } from "./reasons.js";
+import { TASK_KEYS } from "./keys.js";
+
+/** Tasks without a key: the number row has twelve keys and a dish needs twelve tasks, not this one. */
+const UNKEYED = new Set(["drop_on_counter"]);
 
 export class Controls {
   /** `onRefused(subtask, reason)`: a disabled task was chosen; `labels`: interrupt id → label replacing the usual
@@ -32,20 +40,23 @@ export class Controls {
 
     this.why = h("p", { class: "task-why", id: "task-why", "aria-live": "polite" });
     this.descriptions = h("div", { class: "visually-hidden" });
+    this.keyed = grouped.flatMap((g) => g.subtasks).filter((s) => !UNKEYED.has(s)).slice(0, TASK_KEYS.length);
+    this.choose = (id) => {
+      if (!this.enabled) return;
+      const why = this.reasons.get(id);
+      if (why) onRefused(id, why);
+      else onSelect(id);
+    };
     const taskButton = (id) => {
       this.descriptions.append(h("span", { id: `why-${id}` }));
+      const key = TASK_KEYS[this.keyed.indexOf(id)];
       const button = h("button", {
         type: "button", class: "task-button", "aria-pressed": "false", title: (SUBTASKS[id] || {}).hint,
-        dataset: { subtask: id },
-        onclick: () => {
-          if (!this.enabled) return;
-          const why = this.reasons.get(id);
-          if (why) onRefused(id, why);
-          else onSelect(id);
-        },
+        dataset: { subtask: id, key: key ? key.label : "" }, "aria-keyshortcuts": key ? key.label : null,
+        onclick: () => this.choose(id),
         onfocus: () => this.explain(id), onmouseenter: () => this.explain(id),
         onblur: () => this.explain(null), onmouseleave: () => this.explain(null),
-      }, subtaskLabel(id));
+      }, key ? h("kbd", { class: "task-key", "aria-hidden": "true" }, key.label) : null, subtaskLabel(id));
       this.buttons.set(id, button);
       return button;
     };
@@ -65,6 +76,14 @@ export class Controls {
     this.interrupts = h("div", { class: "interrupts", role: "group", "aria-label": "Interrupt actions" },
       this.interruptButtons);
     this.setEnabled(false);
+  }
+
+  /** A task key was pressed (`index` in TASK_KEYS): as a click on its task's button; false when it has none. */
+  chooseKey(index) {
+    const id = this.keyed[index];
+    if (!id) return false;
+    this.choose(id);
+    return true;
   }
 
   setEnabled(enabled) {

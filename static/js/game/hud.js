@@ -1,6 +1,7 @@
 /**
  * The heads-up display above the kitchen: round, orders left, time left, score, the current task and
- * what the cook holds; and the connection pill (connected with its round-trip time, reconnecting, …).
+ * what the cook holds; and the connection pill (connected, reconnecting, …; "Slow connection" beside it when
+ * the round trip to the server is slow).
  * Text nodes are only touched when their value changes, so 30 updates a second cost nothing.
  */
 
@@ -90,6 +91,7 @@ export class Hud {
       no_trial: "Not in a round",
       queued: "Waiting for your round",
       server_full: "Study busy",
+      moved: "Continued on another device",
       closed: "Disconnected",
     }[link] || link;
     this.setText(this.pill, text);
@@ -105,9 +107,13 @@ export class Hud {
     this.noteTimer = window.setTimeout(() => this.setText(this.note, ""), 3000);
   }
 
+  /** The round trip to the server: said only when it is slow enough to notice (in words; the ms on hover). */
   setLatency(ms) {
     const rounded = Math.round(ms);
-    this.setText(this.latency, `${rounded} ms`);
-    this.latency.dataset.quality = rounded < 150 ? "good" : rounded < 400 ? "fair" : "poor";
+    const quality = rounded < 150 ? "good" : rounded < 400 ? "fair" : "poor";
+    this.setText(this.latency, quality === "good" ? "" : quality === "fair" ? "Slow connection" : "Very slow connection");
+    this.latency.dataset.quality = quality;
+    this.latency.dataset.ms = String(rounded);
+    this.latency.title = `Round trip to the server: ${rounded} ms`;
   }
 }

@@ -1,6 +1,6 @@
 /**
  * The recipe, always in sight: the dish's steps as a compact strip (meat → grill; onion → board → chop;
- * plate → sink → wash → take out; clean plate → steak → garnish → serve; docs/domain.md §1), each with the
+ * plate → sink → wash → pick up (the "Pick up clean plate" task); clean plate → steak → garnish → serve; docs/domain.md §1), each with the
  * game's own drawing. The participant's current step is highlighted from what the cook holds (always known to
  * them) or, with empty hands, from the task they chose; nothing else about the world is used.
  *
@@ -24,7 +24,7 @@ export const RECIPE = [
     { id: "plate", label: "Plate", icon: (px) => objectIcon("dirty_plate", px) },
     { id: "sink", label: "Sink", icon: (px) => stationIcon("sink", null, px) },
     { id: "wash", label: "Wash", icon: (px) => stationIcon("sink", { state: "washing", progress: 1, total: 2 }, px) },
-    { id: "take_out", label: "Take out", icon: (px) => objectIcon("clean_plate", px) },
+    { id: "take_out", label: "Pick up", icon: (px) => objectIcon("clean_plate", px) },
   ] },
   { id: "serve", title: "Serve", steps: [
     { id: "clean_plate", label: "Clean plate", icon: (px) => objectIcon("clean_plate", px) },

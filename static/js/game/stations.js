@@ -1,6 +1,6 @@
 /**
  * Drawings of the terrain and stations (docs/domain.md §1): floor, counter, onion / meat crates, plate rack,
- * grill, chopping board, sink and serving hatch, with what a station holds and its progress (cook
+ * grill, chopping board, sink and serving counter, with what a station holds and its progress (cook
  * ticks, chops, washes). A cell is drawn inside its own square (x0, y0, s) in device pixels.
  */
 

@@ -1,7 +1,9 @@
 /**
  * The end page, for participants who finished (`done`) and for those screened out (`screened_out`: they
  * declined consent, or did not pass the comprehension quiz): thanks, the study's code (with a copy button) and, when the study configures one,
- * the redirect back to the recruiting platform after a short countdown (with a link to go at once).
+ * the redirect back to the recruiting platform after a short countdown (with a link to go at once). A study whose
+ * code is still the shipped placeholder gives a real participant no code (`completion.not_set_up`): the page says
+ * the study is not set up for payment yet and to contact the researcher (server/flow/payment.py).
  */
 
 import { h, show } from "../dom.js";
@@ -31,6 +33,11 @@ export function finishPage(root, ctx) {
   parts.push(h("p", { id: "finish-text" }, finished ? "Your answers and games have been saved."
     : SCREENED_OUT[completion.reason] || SCREENED_OUT.declined_consent));
 
+  if (completion.not_set_up) {
+    parts.push(h("p", { id: "not-set-up", class: "page-notice", role: "status" },
+      "This study is not set up for payment yet, so there is no code to show. Please contact the researcher " +
+      "and quote your participant number: ", h("output", { class: "code" }, session.participant_id), "."));
+  }
   if (completion.code) {
     const code = h("output", { class: "code", id: "completion-code" }, completion.code);
     const status = h("span", { class: "muted", role: "status" });

@@ -19,8 +19,8 @@ const INTRO = {
     button: { practice: "Start practice", main: "Start round" },
   },
   in_progress: {
-    text: ["This round is already in progress, perhaps in another tab or window.",
-      "Continue it here; the other tab will stop showing it."],
+    text: ["This round is already in progress: it was started before this page was reloaded, or in another tab " +
+      "or window.", "Continue it here; any other tab stops showing it."],
     button: "Continue the round",
   },
   ended_away: {
@@ -67,15 +67,16 @@ export function endText(end, seconds) {
   if (end.reason === "time_limit") {
     return "This round reached its time limit while the kitchen was waiting for your next task, so it ended.";
   }
-  if (end.reason !== "delivered") return "Time is up for this round.";
+  if (end.reason !== "delivered") return "The time for this round ran out before every order was delivered.";
   return seconds === null ? "All orders delivered." : `All orders delivered in ${Math.round(seconds)} seconds.`;
 }
 
 /** The card after a round. `scored`: show the score; `seconds`: the round's length or null. */
 export function summaryCard(root, end, { scored, seconds, onContinue }) {
-  const title = end.status === "abandoned" ? "This round ended while you were away" : "Round complete";
+  const title = end.status === "abandoned" ? "This round ended while you were away"
+    : end.reason === "delivered" ? "Round complete" : "Time is up";
   const next = { questionnaire: "Next: a few questions about this round.", practice: "Next: another practice round.",
-                 trial: "Next: the next round.", done: "That was the last round." }[end.next] || "";
+                 trial: "Next: another round.", done: "That was the last round." }[end.next] || "";
   const button = h("button", { type: "button", class: "primary", id: "continue", onclick: onContinue }, "Continue");
   show(root, h("section", { class: "card narrow", id: "round-summary", "aria-labelledby": "summary-title" },
     h("h1", { id: "summary-title" }, title),

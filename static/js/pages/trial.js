@@ -21,6 +21,13 @@ import { subtaskLabel } from "../labels.js";
 import { introCard, summaryCard } from "./round_cards.js";
 
 const IDLE_MS = 30000;
+const NOT_RUNNING = "That did nothing: the game is paused until the connection is back.";
+
+/** Why a key that is not a game key did nothing, and which keys are. */
+export function otherKeyText(key) {
+  const name = key === " " ? "Space" : key.toUpperCase();
+  return `${name} is not a game key: move with the arrows or W A S D, Space interacts, 1–9, 0, - and = choose tasks.`;
+}
 
 function playingKey(session) {
   const t = session.trial;
@@ -101,6 +108,10 @@ function playRound(root, ctx, onFinished) {
     if (action) cover.append(action);
   };
   const sendInterrupt = (key) => {
+    if (!conn.isOpen || !view) {
+      note.say(NOT_RUNNING, "blocked");
+      return;
+    }
     const action = view.interruptFor(key);
     const seq = conn.send("interrupt", { action });
     view.interruptSent(seq);
@@ -132,7 +143,14 @@ function playRound(root, ctx, onFinished) {
                                   onRefused: (id, reason) => note.say(`${subtaskLabel(id)}: ${reason}.`, "blocked") });
         main.querySelector(".interrupts-slot").replaceWith(controls.interrupts);
         side.append(controls.tasks);
-        removeKeys = listenKeys(document, sendInterrupt, { repeatMs: 1000 / message.tick_rate_hz });
+        removeKeys = listenKeys(document, sendInterrupt, {
+          repeatMs: 1000 / message.tick_rate_hz,
+          onTask: (index) => {
+            if (!conn.isOpen) note.say(NOT_RUNNING, "blocked");
+            else if (!controls.chooseKey(index)) note.say("No task has this key.", "blocked");
+          },
+          onOtherKey: (key) => note.say(otherKeyText(key), "blocked"),
+        });
       }
       controls.setEnabled(true);
       controls.setCurrent(null);
@@ -179,6 +197,10 @@ function playRound(root, ctx, onFinished) {
         here.focus();
       }
       if (link === Link.UNAUTHORIZED) setCover("Your session was not found. Please open your study link again.");
+      if (link === Link.MOVED) {
+        window.removeEventListener("beforeunload", confirmLeaving);
+        setCover("Your study continues on another device. You can close this tab.");
+      }
       if (link === Link.QUEUED) setCover(waitingText(info));
       if (link === Link.NO_TRIAL || link === Link.SERVER_FULL) finish(null);
     },
@@ -186,7 +208,8 @@ function playRound(root, ctx, onFinished) {
       finish(end);
     },
     onError(error) {
-      if (error.code === "queue_full") hud.notice("Too many moves queued: wait a moment", "warn");
+      if (error.code === "queue_full") note.say("That key did nothing: three moves are already waiting.", "blocked");
+      if (error.code === "rate_limited") note.say("That did nothing: too many key presses at once.", "blocked");
     },
   });
   const activity = new Activity((type, fields) => conn.send(type, fields), { idleMs: IDLE_MS });

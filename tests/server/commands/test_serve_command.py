@@ -46,3 +46,19 @@ def test_serve_refuses_two_studies_with_one_id(study_file, tmp_path, capsys):
 def test_serve_refuses_invalid_settings(capsys):
     assert main(["serve", "--port", "70000"]) == 2
     assert "invalid settings: port" in capsys.readouterr().err
+
+
+def test_serve_prints_each_studys_links_the_admin_address_and_warns_about_placeholder_codes(
+        monkeypatch, study_file, tmp_path, capsys):
+    monkeypatch.setattr(uvicorn, "run", lambda app, **kwargs: None)
+    shipped = study_file("shipped", recruiting={"completion_code": "REPLACE-WITH-YOUR-COMPLETION-CODE"})
+    ready = study_file("ready", recruiting={"completion_code": "C0DE", "url_parameters": ["PROLIFIC_PID"]})
+    url = f"sqlite:///{tmp_path / 'db.sqlite3'}"
+    assert main(["serve", "--host", "0.0.0.0", "--port", "8123", "--study", str(shipped), "--study", str(ready),
+                 "--database-url", url, "--workers", "0"]) == 0
+    out, err = capsys.readouterr()
+    assert "Admin dashboard: http://127.0.0.1:8123/admin/" in out
+    assert "Study ready: participant link http://127.0.0.1:8123/?study=ready&PROLIFIC_PID={{%PROLIFIC_PID%}}" in out
+    assert "http://127.0.0.1:8123/?study=shipped&test_run=1" in out
+    assert "WARNING: study shipped: recruiting.completion_code is still the shipped placeholder" in err
+    assert "study ready" not in err

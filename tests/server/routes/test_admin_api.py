@@ -9,6 +9,8 @@ import httpx
 import pytest
 from steakhouse_testing import Player, play_to_end
 
+from server.store.tables import TrialRow
+
 ADMIN = {"Authorization": "Bearer admin-secret"}
 PATHS = ["/api/admin/studies", "/api/admin/participants", "/api/admin/live", "/api/admin/live/1",
          "/api/admin/trials", "/api/admin/trials/1", "/api/admin/trials/1/events", "/api/admin/robots"]
@@ -90,4 +92,8 @@ def test_with_the_token_the_live_trial_and_its_replay_are_listed(server):
     assert replay["ticks"][-1]["world_state"]["orders_left"] == 0
     assert {"select_subtask", "connect", "trial_start", "trial_end"} <= {e["kind"] for e in events}
     assert [t["trial_id"] for t in listed] == [trial_id]
+    with server.services.store.transaction() as session:
+        stored_seed = session.get(TrialRow, trial_id).seed
+    assert listed[0]["seed"] == replay["trial"]["seed"] == str(stored_seed), "as text: JavaScript keeps 53 bits"
+    assert live[0]["seed"] == spectator["trial"]["seed"] == str(stored_seed)
     assert gone.status_code == 404

@@ -124,3 +124,38 @@ def test_the_websocket_refuses_bad_tokens_and_participants_not_in_a_trial(client
     body, _ = join(client)
     [message] = ws_messages(server, body["token"])
     assert message["code"] == "no_trial" and "consent" in message["message"]
+
+
+def test_a_placeholder_code_never_reaches_a_real_participant_but_test_runs_see_it(live_server, study_file):
+    from steakhouse_testing import Player, play_every_trial
+
+    placeholders = {"completion_code": "REPLACE-WITH-YOUR-COMPLETION-CODE",
+                    "completion_redirect_url": "https://example.org/done?cc={code}",
+                    "screen_out_code": "REPLACE-WITH-YOUR-SCREEN-OUT-CODE"}
+    server = live_server([study_file(world={"orders": 1, "horizon": 5, "kb_delay": 1}, recruiting=placeholders)])
+
+    async def finish(test_run: bool) -> tuple[dict, dict]:
+        player = Player(server.url)
+        joined = await player.http.post("/api/studies/tiny/join", json={"test_run": test_run})
+        player.token = joined.json()["token"]
+        (await player.post("/api/session/consent", {"accept": True})).raise_for_status()
+        (await player.post("/api/session/instructions_done")).raise_for_status()
+        await play_every_trial(player)
+        view = await player.session()
+        code = (await player.http.get("/api/session/completion", headers=player.headers)).json()
+        await player.close()
+        return view, code
+
+    with httpx.Client(base_url=server.url, timeout=30) as client:
+        body, headers = join(client, PROLIFIC_PID="declines")
+        declined = client.post("/api/session/consent", json={"accept": False}, headers=headers).json()
+    assert declined["completion"] == {"kind": "screen_out", "code": None, "redirect_url": None,
+                                      "reason": "declined_consent", "not_set_up": True}
+    real_view, real_code = asyncio.run(finish(test_run=False))
+    assert real_view["state"] == "done"
+    for completion in (real_view["completion"], real_code):
+        assert completion["code"] is None and completion["redirect_url"] is None and completion["not_set_up"]
+    assert "REPLACE-WITH" not in json.dumps([declined, real_view, real_code])
+    test_view, test_code = asyncio.run(finish(test_run=True))
+    assert test_view["completion"]["code"] == test_code["code"] == "REPLACE-WITH-YOUR-COMPLETION-CODE"
+    assert "not_set_up" not in test_view["completion"]

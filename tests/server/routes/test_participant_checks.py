@@ -182,3 +182,31 @@ def test_a_round_in_progress_and_a_round_that_ended_while_away_are_told_apart(li
     before, during, after = asyncio.run(scenario())
     assert (before, during) == ("new", "in_progress")
     assert after["state"] == "questionnaire" and after["notice"] == "round_ended_away"
+
+
+def test_a_round_never_opens_on_a_device_the_check_refused(live_server, study_file):
+    server = live_server([study_file(world={"orders": 1, "horizon": 5, "kb_delay": 1})])
+    phone = {**DESKTOP, "screen_width": 390, "screen_height": 844, "fine_pointer": False, "touch": True}
+
+    async def scenario():
+        player = Player(server.url)
+        await player.join(PROLIFIC_PID="skipper")
+        (await player.post("/api/session/device", phone)).raise_for_status()
+        await player.post("/api/session/consent", {"accept": True})
+        await player.post("/api/session/instructions_done")  # a script can skip the page; the server cannot be
+        sock = await player.socket()
+        refused = await sock.recv()
+        with pytest.raises(Exception):  # noqa: B017 - the server closes the socket
+            await sock.recv(timeout=5)
+        code = sock.ws.close_code
+        (await player.post("/api/session/device", DESKTOP)).raise_for_status()
+        again = await player.socket()
+        hello = await again.recv()
+        end = await play_to_end(again)
+        await again.close()
+        await player.close()
+        return refused, code, hello, end
+
+    refused, code, hello, end = asyncio.run(scenario())
+    assert refused["type"] == "error" and refused["code"] == "device_refused" and code == 4403
+    assert hello["type"] == "hello" and end["status"] == "finished"

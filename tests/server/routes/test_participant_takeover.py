@@ -15,7 +15,7 @@ from steakhouse_testing import Player, eventually
 from server.admin.resume import link_secret, make_code, read_code
 from server.flow.service import ALREADY_STARTED
 from server.store import participants
-from server.store.tables import EventRow
+from server.store.tables import EventRow, ParticipantRow
 
 ADMIN = {"Authorization": "Bearer admin-secret"}
 
@@ -113,3 +113,108 @@ def test_a_resume_link_moves_a_participant_to_a_new_device_once(live_server, stu
     _, kinds = eventually(lambda: stored(server, joined["participant_id"]),
                           lambda found: "resume_link_used" in found[1])
     assert kinds.count("resume_link_made") == 1 and kinds.count("resume_link_used") == 1
+
+
+def test_using_a_resume_link_closes_the_old_browsers_game_socket_at_once(live_server, study_file):
+    server = live_server([study_file(world={"orders": 1, "horizon": 3000, "kb_delay": 1})])
+
+    async def scenario() -> tuple[list[dict[str, Any]], int | None, dict[str, Any], dict[str, Any]]:
+        old = Player(server.url)
+        await old.ready(PROLIFIC_PID="switcher")
+        joined = await old.session()
+        sock = await old.socket()
+        await sock.until(lambda m: m["type"] == "state")
+        made = (await old.http.post(f"/api/admin/participants/{joined['participant_id']}/resume_link",
+                                    headers=ADMIN)).json()
+        code = made["path"].split("#resume=", 1)[1]
+        new = Player(server.url)
+        new.token = (await new.http.post("/api/studies/tiny/resume", json={"code": code})).json()["token"]
+        ended: list[dict[str, Any]] = []
+        try:
+            while True:  # no reconnect attempt, no heartbeat: the server itself closes the old socket
+                ended.append(await sock.recv(timeout=5))
+        except Exception:  # noqa: BLE001 - the close ends the loop
+            pass
+        again = await new.socket()
+        hello = await again.recv()
+        first = await again.until(lambda m: m["type"] == "hello" or m["type"] == "state")
+        await again.close()
+        for player in (old, new):
+            await player.close()
+        return ended, sock.ws.close_code, hello, first
+
+    ended, code, hello, first = asyncio.run(scenario())
+    assert ended[-1]["type"] == "error" and ended[-1]["code"] == "moved", ended[-3:]
+    assert code == 4401
+    assert hello["type"] == "hello" and hello["resumed"] is True and first["type"] == "state"
+
+
+PHONE = {"screen_width": 390, "screen_height": 844, "viewport_width": 390, "viewport_height": 700,
+         "pixel_ratio": 3, "fine_pointer": False, "touch": True}
+LAPTOP = {"screen_width": 1440, "screen_height": 900, "viewport_width": 1280, "viewport_height": 720,
+          "pixel_ratio": 2, "fine_pointer": True, "touch": False}
+
+
+def test_recruiting_ids_are_compared_normalised(live_server, study_file):
+    server = live_server([study_file()])
+    with httpx.Client(base_url=server.url, timeout=30) as client:
+        first = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "AbC123"}}).json()
+        client.post("/api/session/consent", json={"accept": False},
+                    headers={"Authorization": f"Bearer {first['token']}"})
+        for typed in ("abc123", "ABC123 ", "  aBc123", "ABC123\t"):
+            again = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": typed}})
+            assert again.status_code == 409 and again.json()["detail"]["code"] == "already_started", typed
+        other = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "abc1234"}})
+        assert other.status_code == 200
+    with server.services.store.transaction() as session:
+        row = participants.by_public_id(session, first["participant_id"])
+        assert row is not None and row.recruit_id == "abc123" and row.recruiting["PROLIFIC_PID"] == "AbC123"
+
+
+def test_a_study_that_requires_the_id_refuses_a_join_without_it(live_server, study_file):
+    server = live_server([study_file(recruiting={"require_id": True})])
+    with httpx.Client(base_url=server.url, timeout=30) as client:
+        for recruiting in ({}, {"PROLIFIC_PID": "   "}, {"STUDY_ID": "s"}):
+            refused = client.post("/api/studies/tiny/join", json={"recruiting": recruiting})
+            assert refused.status_code == 422, refused.text
+            assert refused.json()["detail"]["code"] == "recruit_id_required" and "PROLIFIC_PID" in refused.text
+        assert client.post("/api/studies/tiny/join", json={"test_run": True}).status_code == 200
+        assert client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "p"}}).status_code == 200
+    with server.services.store.transaction() as session:
+        assert session.query(ParticipantRow).count() == 2
+
+
+def test_a_session_whose_device_was_refused_is_claimed_by_the_next_browser(live_server, study_file):
+    server = live_server([study_file()])
+    with httpx.Client(base_url=server.url, timeout=30) as client:
+        phone = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "walker"}}).json()
+        on_phone = {"Authorization": f"Bearer {phone['token']}"}
+        view = client.post("/api/session/device", json=PHONE, headers=on_phone).json()
+        assert view["device"]["ok"] is False and view["state"] == "consent"
+        laptop = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "walker"}})
+        assert laptop.status_code == 200, laptop.text
+        body = laptop.json()
+        assert body["participant_id"] == phone["participant_id"] and body["token"] != phone["token"]
+        assert body["rejoined"] is True
+        on_laptop = {"Authorization": f"Bearer {body['token']}"}
+        assert client.get("/api/session", headers=on_phone).status_code == 401, "the phone's token stops working"
+        assert client.post("/api/session/device", json=LAPTOP, headers=on_laptop).json()["device"]["ok"] is True
+        assert client.post("/api/session/consent", json={"accept": True}, headers=on_laptop).status_code == 200
+        # Once the device passed, the session is the laptop's: a third browser is refused as before.
+        third = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "walker"}})
+        assert third.status_code == 409
+    _, kinds = stored(server, phone["participant_id"])
+    assert kinds.count("session_claimed") == 1 and kinds.count("join_refused") == 1
+
+
+def test_a_session_past_its_first_step_is_not_claimed_even_if_its_device_is_refused_later(live_server, study_file):
+    server = live_server([study_file()])
+    with httpx.Client(base_url=server.url, timeout=30) as client:
+        first = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "steady"}}).json()
+        headers = {"Authorization": f"Bearer {first['token']}"}
+        client.post("/api/session/device", json=LAPTOP, headers=headers)
+        client.post("/api/session/consent", json={"accept": True}, headers=headers)
+        client.post("/api/session/device", json=PHONE, headers=headers)  # the window was made small
+        other = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "steady"}})
+        assert other.status_code == 409
+        assert client.get("/api/session", headers=headers).status_code == 200

@@ -1,0 +1,108 @@
+"""A participant's messages cannot store thousands of event rows a second: past a burst, messages are refused
+(``rate_limited``, nothing applied) and counted in coalesced ``events_dropped`` rows; a person's pace is never
+limited, and the game goes on."""
+
+from __future__ import annotations
+
+import asyncio
+import time
+
+from steakhouse_testing import Player, eventually, play_to_end
+
+from server.game.budget import BURST, RATE_PER_S, EventBudget
+from server.store.tables import EventRow
+
+
+class Clock:
+    def __init__(self) -> None:
+        self.now = 100.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+def test_the_bucket_allows_a_burst_then_the_rate_and_counts_every_drop():
+    clock = Clock()
+    budget = EventBudget(rate=10, burst=5, clock=clock)
+    assert [budget.take("interrupt") for _ in range(7)] == [True] * 5 + [False] * 2
+    assert budget.summary() == {"dropped": 2, "by_kind": {"interrupt": 2}}
+    assert budget.take("focus") is False and budget.summary() is None, "at most one summary a second"
+    clock.now += 0.35
+    assert [budget.take("select_subtask") for _ in range(4)] == [True, True, True, False]
+    clock.now += 1.0
+    assert budget.summary() == {"dropped": 2, "by_kind": {"focus": 1, "select_subtask": 1}}
+    assert budget.summary(force=True) is None, "nothing new to report"
+    assert budget.total_dropped == 4
+
+
+def test_a_persons_pace_is_never_limited():
+    clock = Clock()
+    budget = EventBudget(clock=clock)
+    for _ in range(600):  # a minute of eight key presses a second, the fastest a person keeps up
+        clock.now += 1 / 8
+        assert budget.take("interrupt")
+
+
+def test_a_flood_of_messages_stores_a_bounded_number_of_rows_and_the_game_goes_on(live_server, study_file):
+    server = live_server([study_file(world={"orders": 1, "horizon": 3000, "kb_delay": 1})])
+    flood = 3000
+
+    async def scenario():
+        player = Player(server.url)
+        await player.ready()
+        sock = await player.socket()
+        hello = await sock.recv()
+        started = time.monotonic()
+        for _ in range(flood):
+            await sock.send("focus")
+        replies = []
+        while len(replies) < flood:
+            message = await sock.recv()
+            if message["type"] in ("ack", "error"):
+                replies.append(message)
+        elapsed = time.monotonic() - started
+        await sock.send("interrupt", action="stay")
+        await sock.close()
+        again = await player.socket()
+        await again.recv()
+        await again.close()
+        await player.close()
+        return hello["trial"]["id"], replies, elapsed
+
+    trial_id, replies, elapsed = asyncio.run(scenario())
+    refused = [r for r in replies if r["type"] == "error"]
+    assert {r["code"] for r in refused} == {"rate_limited"}
+    accepted = flood - len(refused)
+    assert BURST <= accepted <= BURST + RATE_PER_S * elapsed + 1, (accepted, elapsed)
+
+    def rows():
+        with server.services.store.transaction() as session:
+            return [(e.kind, e.payload) for e in session.query(EventRow).filter_by(trial_id=trial_id)]
+
+    stored = eventually(rows, lambda found: any(kind == "disconnect" for kind, _ in found))
+    focus = [payload for kind, payload in stored if kind == "focus"]
+    dropped = [payload for kind, payload in stored if kind == "events_dropped"]
+    assert len(focus) == accepted, "every applied message has its row, no refused one has"
+    assert sum(d["dropped"] for d in dropped) == len(refused), "every drop is counted"
+    assert all(set(d["by_kind"]) == {"focus"} for d in dropped)
+    assert len(dropped) <= elapsed / 1.0 + 2, "the drops are coalesced"
+    assert not any(kind == "error" for kind, _ in stored), "refusals for the rate do not store rows"
+    print(f"\n{flood} focus messages in {elapsed:.2f} s: {accepted} stored, {len(refused)} refused, "
+          f"{len(dropped)} events_dropped rows ({(accepted + len(dropped)) / elapsed:.0f} rows/s)")
+
+
+def test_the_game_plays_to_the_end_under_the_limit(live_server, study_file):
+    server = live_server([study_file()])
+
+    async def scenario():
+        player = Player(server.url)
+        await player.ready()
+        sock = await player.socket()
+        end = await play_to_end(sock)
+        await sock.close()
+        await player.close()
+        return end, sock.received
+
+    end, received = asyncio.run(scenario())
+    assert end["status"] == "finished"
+    assert not any(m["type"] == "error" and m["code"] == "rate_limited" for m in received)
