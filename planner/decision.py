@@ -28,6 +28,8 @@ class Decision:
     explored_kbs: int = 0
     elapsed_ms: float = 0.0
     timed_out: bool = False
+    cycle_broken: bool = False
+    """The robot yielded this tick to break a joint cycle with the person (:mod:`planner.cycle`)."""
 
     def to_dict(self) -> dict[str, object]:
         return {
@@ -37,6 +39,7 @@ class Decision:
             "explored_kbs": self.explored_kbs,
             "elapsed_ms": round(self.elapsed_ms, 3),
             "timed_out": self.timed_out,
+            "cycle_broken": self.cycle_broken,
         }
 
 

@@ -1,5 +1,6 @@
 """The simulated partner: the human model driving the robot's avatar, a :class:`planner.decision.Robot` like
-the planners of :mod:`planner.robots`; and the protocol of what plays the human's avatar in a headless trial."""
+the planners of :mod:`planner.robots`; the protocol of what plays the human's avatar in a headless trial; and
+a person who never moves (:class:`StillHuman`)."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ import time
 
 import numpy as np
 
+from planner.adversary import AdversarialHuman, AdversaryConfig
 from planner.decision import Decision
 from planner.events import Event
 from planner.geometry import Action
@@ -25,6 +27,31 @@ class HumanPolicy(Protocol):
 
     def act(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory,
             rng: np.random.Generator) -> tuple[Action, HumanMemory]: ...
+
+
+class StillHuman(HumanModel):
+    """A person who never moves or acts, standing where they are (a participant who has stopped; the person
+    beside a robot that works alone, :mod:`planner.alone`)."""
+
+    def act(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory,
+            rng: np.random.Generator) -> tuple[Action, HumanMemory]:
+        return Action.STAY, memory
+
+
+PARTNERS: tuple[str, ...] = ("simulated", "adversary", "still")
+"""The partner models a headless trial can pair a robot with (``benchmarks/planner/no_stall.py``)."""
+
+
+def partner_model(name: str, layout: Layout, rules: Rules,
+                  adversary: AdversaryConfig = AdversaryConfig()) -> HumanPolicy | None:
+    """A fresh partner by name: ``None`` for ``simulated`` (the simulated human :func:`planner.play.run_trial`
+    plays by default), :class:`planner.adversary.AdversarialHuman` (with ``adversary``) or :class:`StillHuman`.
+    Raises ``ValueError`` naming the known partners for an unknown name."""
+    if name not in PARTNERS:
+        raise ValueError(f"unknown partner {name!r}; known: {', '.join(PARTNERS)}")
+    if name == "adversary":
+        return AdversarialHuman(layout, rules, adversary)
+    return StillHuman(layout, rules) if name == "still" else None
 
 
 class SimulatedPartner:

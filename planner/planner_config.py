@@ -34,7 +34,11 @@ class PlannerConfig:
     stalls); above most quiet stretches of finished trials (a trial's longest: p90 24 ticks, max 56, on the
     shipped and generator-seed 0–9 kitchens; docs/domain.md §5, "Standoffs"). ``visit_ticks``: ticks the
     person stands in one cell before the robot goes to stand beside it for ``standoff_ticks`` ticks, once
-    until the person moves (:mod:`planner.standoff`, still person). ``reuse_rollouts``: keep a
+    until the person moves (:mod:`planner.standoff`, still person). ``cycle_returns``, ``cycle_window``,
+    ``cycle_hold``: returns to one of the last ``cycle_window`` joint situations without team progress that
+    make a joint cycle, and the ticks the robot then holds still after stepping aside (:mod:`planner.cycle`).
+    ``alone_ticks``: ticks the person has not moved, turned or interacted before the robot plans as if it were
+    alone (:mod:`planner.alone`). ``reuse_rollouts``: keep a
     rollout whose first tick came true for the next tick's decision (:mod:`planner.reuse`; only with
     ``rollout_samples`` 1).
     ``rollout_budget``: simulated ticks one decision may spend on new rollouts (0: no limit; 336 is eight
@@ -70,6 +74,10 @@ class PlannerConfig:
     standoff_ticks: int = 5
     stall_ticks: int = 30
     visit_ticks: int = 30
+    cycle_returns: int = 8
+    cycle_window: int = 16
+    cycle_hold: int = 10
+    alone_ticks: int = 20
     reuse_rollouts: bool = False
     rollout_budget: int = 0
 

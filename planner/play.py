@@ -50,6 +50,8 @@ class TrialResult:
     actions: tuple[tuple[Action, Action], ...] = ()
     decision_ms: tuple[float, ...] = ()
     timed_out: int = 0
+    cycles_broken: int = 0
+    """Joint cycles the robot broke (:mod:`planner.cycle`)."""
 
     def to_dict(self) -> dict[str, object]:
         return {
@@ -82,7 +84,7 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
     component_ticks = dict.fromkeys(GAP_COMPONENTS, 0)
     actions: list[tuple[Action, Action]] = []
     decision_ms: list[float] = []
-    timed_out = 0
+    timed_out = cycles_broken = 0
     while not is_done(world, rules):
         if before_human is not None:
             before_human(kb, memory, human_rng)
@@ -92,6 +94,7 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
         if robot is not None:
             decision_ms.append(decision.elapsed_ms)
             timed_out += decision.timed_out
+            cycles_broken += decision.cycle_broken
         world, events = step(layout, world, {"human": h_action, "robot": r_action}, rules)
         kb = update_kb(kb, layout, world, angle=settings.angle, kb_delay=settings.kb_delay,
                        own_events=[e for e in events if e.agent == "human"])
@@ -111,5 +114,5 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
         kb_gap_mean=gap_sum / ticks, kb_gap_ticks_pct=100.0 * gap_ticks / ticks,
         gap_component_pct={k: 100.0 * v / ticks for k, v in component_ticks.items()},
         robot_in_fov_pct=100.0 * in_fov / ticks, final=world, actions=tuple(actions),
-        decision_ms=tuple(decision_ms), timed_out=timed_out,
+        decision_ms=tuple(decision_ms), timed_out=timed_out, cycles_broken=cycles_broken,
     )

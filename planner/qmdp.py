@@ -43,10 +43,12 @@ from dataclasses import replace
 
 import numpy as np
 
+from planner.alone import solo_rollout, still_for
+from planner.cycle import CycleWatch, broken, watch, without_avoided
 from planner.reference import ReferenceLookahead
 from planner.belief import Belief, update_belief
 from planner.decision import Decision
-from planner.events import Event
+from planner.events import Event, EventKind
 from planner.fov import view
 from planner.geometry import DIRECTIONS, Action, manhattan, move_action
 from planner.kb import KnowledgeBase, initial_kb, omniscient_kb, update_kb
@@ -67,7 +69,8 @@ TICKS_PER_SUBTASK = 6
 class QmdpRobot:
     def __init__(self, layout: Layout, rules: Rules, config: PlannerConfig, explore: bool) -> None:
         self.layout, self.rules, self.cfg, self.explore = layout, rules, config, explore
-        self.rollout = Rollout(layout, rules, config)
+        self.rollout = self.team_rollout = Rollout(layout, rules, config)
+        self.solo_rollout = solo_rollout(layout, rules, config)
         self.reference = ReferenceLookahead(layout, rules, config) if config.lookahead == "abstract" else None
         self.tasker = RobotTasker(layout, rules)
         self.kb: KnowledgeBase | None = None
@@ -78,6 +81,8 @@ class QmdpRobot:
         self.held_before: str | None = None
         self.pending: tuple[Action, ...] = ()
         self.human_still = 0
+        self.partner_still = 0
+        self.cycle = CycleWatch()
         self.averages: dict[Subtask, float] = {}
         self.averages_key: tuple[str | None, int] | None = None
         self.standoff = Standoff()
@@ -98,6 +103,8 @@ class QmdpRobot:
         self.held_before = world.robot.held
         self.pending = ()
         self.human_still = 0
+        self.partner_still = 0
+        self.cycle = CycleWatch()
         self.averages = {}
         self.averages_key = None
         self.standoff = Standoff()
@@ -122,12 +129,16 @@ class QmdpRobot:
                                     floor=self.cfg.belief_floor)
         moved = self.last_human is not None and self.last_human.pos != world.human.pos
         self.human_still = 0 if moved else self.human_still + 1
+        self.partner_still = still_for(self.partner_still, self.last_human, world.human, human_events)
         self.last_human = world.human
         target = self.tasker.targets(self.current, world) if self.current is not None else ()
-        self.standoff = advance(self.standoff, self.layout, self.robot_before, world, target, moved,
-                                potential(world, self.cfg))
+        phi = potential(world, self.cfg)
+        self.standoff = advance(self.standoff, self.layout, self.robot_before, world, target, moved, phi)
+        robot_moved = (self.robot_before is not None and self.robot_before != world.robot) or any(
+            e.agent == "robot" and e.kind is EventKind.BLOCKED for e in events)
+        self.cycle = watch(self.cycle, world, phi, self.cfg.cycle_window, robot_moved)
         self.robot_before = world.robot
-        judged = unaided(world) if self.standoff.stalled(self.cfg.stall_ticks) else world
+        judged = unaided(world) if self.standoff.stalled(self.cfg.stall_ticks) or self.alone else world
         if self.current is not None and (self.tasker.done(self.current, self.held_before, world)
                                          or self.current not in self.tasker.options(judged, self.current)):
             self.current = None
@@ -143,6 +154,14 @@ class QmdpRobot:
             self.averages, self.averages_key = {}, key
         likely = self.belief.likely(self.cfg.belief_threshold, self.cfg.max_subtasks)
         seed = int(rng.integers(2**31))
+        cycles = self.cycle.broken
+        yielded = self.break_cycle(world)
+        if yielded is not None:
+            return Decision(action=yielded, belief=self.belief.as_dict(), cycle_broken=self.cycle.broken > cycles,
+                            elapsed_ms=(time.perf_counter() - start) * 1000)
+        self.rollout = self.solo_rollout if self.alone else self.team_rollout
+        if self.alone:  # planner.alone: plan for one agent beside a person who stays where they stand
+            world, likely = unaided(world), ((likely[0][0], 1.0),)
         if self.reference is not None:
             by_action, explored, cut = self.reference.q_values(world, self.kb, likely, seed, deadline)
             return Decision(action=max(by_action, key=lambda a: by_action[a]),
@@ -160,7 +179,7 @@ class QmdpRobot:
         if isinstance(around, Action):
             return Decision(action=around, belief=self.belief.as_dict(),
                             elapsed_ms=(time.perf_counter() - start) * 1000)
-        options = around
+        options = without_avoided(around, self.cycle, world.tick)
         horizon = self.plan_horizon(world, options, likely)
         q: dict[Subtask, float] = {}
         values: dict[Subtask, float] = {}
@@ -179,6 +198,28 @@ class QmdpRobot:
         return Decision(action=action, q_values={r.value: v for r, v in q.items()},
                         belief=self.belief.as_dict(), explored_kbs=explored,
                         elapsed_ms=(time.perf_counter() - start) * 1000, timed_out=timed_out)
+
+    @property
+    def alone(self) -> bool:
+        """Whether the person has stopped (:mod:`planner.alone`): the robot plans as if it were alone."""
+        return self.partner_still >= self.cfg.alone_ticks
+
+    @property
+    def cycles_broken(self) -> int:
+        return self.cycle.broken
+
+    def break_cycle(self, world: WorldState) -> Action | None:
+        """:mod:`planner.cycle`: in a joint cycle the robot yields (steps aside off the person's way, then holds
+        still ``cycle_hold`` ticks); ``None`` when it plans as usual."""
+        if world.tick < self.cycle.hold_until:
+            return Action.STAY
+        if not self.cycle.cycling(self.cfg.cycle_returns):
+            return None
+        assert self.belief is not None
+        human_cells = self.tasker.targets(self.belief.likely(0.0, 1)[0][0], world)
+        self.cycle = broken(self.cycle, self.current, world.tick, self.cfg.cycle_hold)
+        self.current, self.pending = None, ()
+        return step_aside(self.layout, world, human_cells)
 
     def plan_horizon(self, world: WorldState, options: tuple[Subtask, ...],
                      likely: tuple[tuple[Subtask, float], ...]) -> int:

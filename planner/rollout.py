@@ -33,7 +33,7 @@ from planner.planner_config import PlannerConfig
 from planner.rules import Rules
 from planner.state import WorldState
 from planner.step import step
-from planner.subtasks import Believed, Subtask, available, finished, targets
+from planner.subtasks import Believed, Subtask, available, beyond_orders, finished, targets, within_orders
 
 
 def potential(world: WorldState, cfg: PlannerConfig) -> float:
@@ -118,7 +118,7 @@ def _robot_options(rules: Rules, held: str | None, human_held: str | None, order
             options.append(Subtask.PICKUP_CLEAN_PLATE)
     elif coming and held == CLEAN_PLATE and Subtask.PICKUP_STEAK not in options:
         options.append(Subtask.PICKUP_STEAK)
-    return tuple(options)
+    return within_orders(tuple(options), beyond_orders(held, human_held, orders_left, objects, grills, boards, sinks))
 
 
 @dataclass(frozen=True, slots=True)

@@ -182,3 +182,33 @@ _PICKS = {
     Subtask.PICKUP_CLEAN_PLATE: CLEAN_PLATE, Subtask.PICKUP_STEAK: STEAK_PLATE,
     Subtask.PICKUP_GARNISH: DISH,
 }
+
+
+def beyond_orders(held: str | None, partner_held: str | None, orders_left: int,
+                  objects: tuple[tuple[Pos, str], ...], grills: tuple[int | None, ...],
+                  boards: tuple[int | None, ...], sinks: tuple[int | None, ...]) -> frozenset[Subtask]:
+    """The steps that would start more of a dish than the orders left need (docs/domain.md §5, "Never more
+    than the orders need"), counting what is in progress by anyone: meat on a grill or in a hand; onions on a
+    board or in a hand; plates in a sink or a hand, clean plates anywhere; plated steaks and dishes anywhere.
+    (A raw item lying on a counter is not counted: picking it up starts nothing new.)"""
+    hands = (held, partner_held)
+
+    def anywhere(obj: str) -> int:
+        return sum(h == obj for h in hands) + sum(o == obj for _, o in objects)
+
+    dishes = anywhere(DISH)
+    plated = anywhere(STEAK_PLATE) + dishes
+    steaks = sum(g is not None for g in grills) + hands.count(MEAT) + plated
+    garnishes = sum(b is not None for b in boards) + hands.count(ONION) + dishes
+    plates = sum(s is not None for s in sinks) + hands.count(DIRTY_PLATE) + anywhere(CLEAN_PLATE) + plated
+    counts = ((Subtask.PICKUP_MEAT, steaks), (Subtask.PICKUP_ONION, garnishes), (Subtask.PICKUP_PLATE, plates),
+              (Subtask.PICKUP_CLEAN_PLATE, hands.count(CLEAN_PLATE) + plated), (Subtask.PICKUP_STEAK, plated),
+              (Subtask.PICKUP_GARNISH, dishes))
+    return frozenset(s for s, n in counts if n >= orders_left)
+
+
+def within_orders(options: tuple[Subtask, ...], unneeded: frozenset[Subtask]) -> tuple[Subtask, ...]:
+    """``options`` without the ``unneeded`` steps. When none is left: putting the load down on a free counter
+    (with empty hands the same subtask only parks the robot by a free counter: nothing is needed of it until
+    something changes)."""
+    return tuple(s for s in options if s not in unneeded) or (Subtask.DROP_ON_COUNTER,)

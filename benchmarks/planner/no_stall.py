@@ -1,15 +1,24 @@
-"""No stall, with any partner (issue 18 part 1): unfinished trials per robot planner and partner model.
+"""No stall, with any partner (issues 18 and 27): unfinished trials, extra steaks and joint cycles broken per
+robot planner and partner model.
 
 Every planner (``fov_aware``, ``baseline``, ``no_rollout``) plays the shipped kitchens and generated ones
-(:mod:`planner.layout_gen`, generator seeds ``--generator-seeds``) with two partners in the human's place:
+(:mod:`planner.layout_gen`, generator seeds ``--generator-seeds``) with three partners in the human's place:
 
 * ``simulated`` – the simulated FOV-limited human (docs/domain.md §4);
 * ``adversary`` – :class:`planner.adversary.AdversarialHuman`: random subtasks including impossible ones,
   standing in the only access cell of a station, random interrupts, long still stretches, for at most
   ``--budget`` ticks (default 150), then the simulated human. The task stays possible because the
-  disruption ends; a trial unfinished at the horizon (400 ticks) is a **stall** of the robot.
+  disruption ends; a trial unfinished at the horizon (400 ticks) is a **stall** of the robot;
+* ``still``     – :class:`planner.partner.StillHuman`: a participant who never moves from the start cell (the
+  robot has to work alone). A trial one agent cannot finish with the person standing there (some kind of
+  station is reached only through the person's cell: :func:`planner.alone.solo_possible`) is counted as
+  **impossible**, not as unfinished.
 
-Printed: unfinished / trials per (partner, robot), then every stall with its kitchen, seed, robot, partner
+Printed: per (partner, robot) unfinished / trials, mean ticks, **extra steaks** (steaks the robot put on a
+grill while the steaks in play — meat on grills, plated steaks, dishes — already matched the orders left,
+summed over the trials), **max excess** (the largest excess of steaks in play over the orders left in any
+trial, whoever started them) and **cycles broken** (:mod:`planner.cycle`, summed over the trials); then every
+stall with its kitchen, seed, robot, partner
 and the last tick at which the kitchen changed (:func:`planner.adversary.last_progress_tick`), and the two
 agents' final poses and held objects, so it can be replayed with ``run_trial``.
 
@@ -25,17 +34,23 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 
-from planner.adversary import AdversarialHuman, AdversaryConfig, last_progress_tick
+from planner.adversary import AdversaryConfig, last_progress_tick
+from planner.alone import solo_possible
+from planner.events import EventKind
+from planner.geometry import Action
 from planner.layout import Layout
+from planner.objects import DISH, STEAK_PLATE
 from planner.layout_gen import generate_named
+from planner.partner import PARTNERS, partner_model
 from planner.play import run_trial
 from planner.planner_config import PlannerConfig
 from planner.robots import make_robot
 from planner.rules import Rules
+from planner.state import WorldState, initial_state
+from planner.step import step
 from study_config import layout_names, load_layout
 
 ROBOTS = ("fov_aware", "baseline", "no_rollout")
-PARTNERS = ("simulated", "adversary")
 
 
 @dataclass(frozen=True, slots=True)
@@ -52,15 +67,38 @@ def kitchen(name: str) -> Layout:
     return generate_named(int(name[4:])) if name.startswith("gen:") else load_layout(name)
 
 
+def steaks_in_play(world: WorldState) -> int:
+    """Meat on grills, plated steaks and dishes, held or on counters."""
+    held = (world.human.held, world.robot.held, *(obj for _, obj in world.objects))
+    return sum(g is not None for g in world.grills) + sum(obj in (STEAK_PLATE, DISH) for obj in held)
+
+
+def extra_steaks(layout: Layout, rules: Rules, actions: tuple[tuple[Action, Action], ...]) -> tuple[int, int]:
+    """Replaying a recorded trial's ``(human, robot)`` actions: the steaks the robot put on a grill beyond what
+    the orders left needed (the steaks in play after it exceeded the orders left), and the largest excess of
+    steaks in play over the orders left at any tick, whoever started them (0: never more than needed)."""
+    world = initial_state(layout, rules)
+    by_robot = excess = 0
+    for human, robot in actions:
+        world, events = step(layout, world, {"human": human, "robot": robot}, rules)
+        over = steaks_in_play(world) - world.orders_left
+        by_robot += over > 0 and any(e.agent == "robot" and e.kind is EventKind.START_COOKING for e in events)
+        excess = max(excess, over)
+    return by_robot, excess
+
+
 def run_one(spec: StallSpec) -> dict[str, object]:
     layout = kitchen(spec.kitchen)
     rules = Rules()
     robot = make_robot(spec.robot, layout, rules, PlannerConfig())
-    human = AdversarialHuman(layout, rules, AdversaryConfig(budget=spec.budget)) if spec.partner == "adversary" else None
+    human = partner_model(spec.partner, layout, rules, AdversaryConfig(budget=spec.budget))
     result = run_trial(layout, spec.seed, robot=robot, human=human, record=True)
     final = result.final
+    by_robot, excess = extra_steaks(layout, rules, result.actions)
+    possible = spec.partner != "still" or solo_possible(layout, initial_state(layout, rules))
     return {"kitchen": layout.name, "robot": spec.robot, "partner": spec.partner, "seed": spec.seed,
-            "finished": result.finished, "ticks": result.ticks,
+            "possible": possible, "finished": result.finished, "ticks": result.ticks, "cycles": result.cycles_broken,
+            "extra_steaks": by_robot, "excess": excess,
             "last_progress": last_progress_tick(layout, rules, result.actions),
             "human": (final.human.pos, final.human.facing.value, final.human.held),
             "robot_state": (final.robot.pos, final.robot.facing.value, final.robot.held)}
@@ -95,16 +133,22 @@ def main(argv: list[str] | None = None) -> int:
                 print(f"{i}/{len(specs)} trials", file=sys.stderr, flush=True)
     print(f"{len(shipped)} shipped + {len(generated)} generated kitchens × seeds {seeds.start}–{seeds.stop - 1}; "
           f"adversary budget {args.budget} ticks; horizon {Rules().horizon}")
-    print(f"{'partner':<11}{'robot':<12}{'unfinished':>11}{'trials':>8}{'mean ticks':>12}")
+    print(f"{'partner':<11}{'robot':<12}{'unfinished':>11}{'impossible':>11}{'trials':>8}{'mean ticks':>12}"
+          f"{'extra steaks':>14}{'max excess':>12}{'cycles broken':>15}")
     for partner in partners:
         for robot in robots:
             part = [r for r in rows if r["partner"] == partner and r["robot"] == robot]
             if not part:
                 continue
-            stalled = sum(1 for r in part if not r["finished"])
+            stalled = sum(1 for r in part if not r["finished"] and r["possible"])
+            impossible = sum(1 for r in part if not r["possible"])
             mean = sum(int(str(r["ticks"])) for r in part) / len(part)
-            print(f"{partner:<11}{robot:<12}{stalled:>11}{len(part):>8}{mean:>12.1f}")
-    stalls = [r for r in rows if not r["finished"]]
+            extra = sum(int(str(r["extra_steaks"])) for r in part)
+            excess = max(int(str(r["excess"])) for r in part)
+            cycles = sum(int(str(r["cycles"])) for r in part)
+            print(f"{partner:<11}{robot:<12}{stalled:>11}{impossible:>11}{len(part):>8}{mean:>12.1f}{extra:>14}"
+                  f"{excess:>12}{cycles:>15}")
+    stalls = [r for r in rows if not r["finished"] and r["possible"]]
     print(f"stalls: {len(stalls)}")
     for r in stalls:
         print(f"  kitchen {r['kitchen']} seed {r['seed']} robot {r['robot']} partner {r['partner']}: "

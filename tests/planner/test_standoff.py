@@ -26,7 +26,9 @@ from planner.step import step
 from planner.subtasks import Subtask
 
 RULES = Rules()
-OFF = PlannerConfig(standoff_ticks=10**6)
+OFF = PlannerConfig(standoff_ticks=10**6, cycle_returns=10**6)
+"""The standoff rule off, and the joint-cycle rule too (planner.cycle: bumping into each other tick after tick
+is a cycle, which it would break)."""
 ON = PlannerConfig()
 # The onion crate (1,1) and the board (1,3) are reached only from (1,2).
 CORNER = parse_layout("""XXXXXXXXX
@@ -194,7 +196,8 @@ def test_a_person_shuttling_a_plate_does_not_stall_the_baseline_robot():
     world = replace(start, human=AgentState((5, 2), Direction.NORTH), robot=AgentState((2, 4), Direction.SOUTH),
                     objects=(((5, 1), "dirty_plate"),), grills=(RULES.cook_time,), orders_left=1)
     stale = replace(initial_kb(world), boards=(RULES.chop_time,), sinks=(0,))
-    stalled = play_with_person(SHUTTLE, world, stale, replace(ON, stall_ticks=10**6, visit_ticks=10**6), ticks=150)
+    rules_off = replace(ON, stall_ticks=10**6, visit_ticks=10**6, cycle_returns=10**6)
+    stalled = play_with_person(SHUTTLE, world, stale, rules_off, ticks=150)
     assert (stalled.orders_left, stalled.boards, stalled.sinks) == (1, (None,), (None,))
     moving = play_with_person(SHUTTLE, world, stale, ON, ticks=150)
     assert moving.orders_left == 0, "the robot should have made and served the dish itself"
@@ -211,5 +214,6 @@ def test_the_robot_visits_a_person_who_stands_still_so_the_team_finishes():
     # an onion, see the empty sink on the way and wash its plate.
     finished = run_trial(NOOK, 0, robot=make_robot("baseline", NOOK, RULES, ON))
     assert finished.finished
-    stalled = run_trial(NOOK, 0, robot=make_robot("baseline", NOOK, RULES, replace(ON, visit_ticks=10**6)))
+    no_visit = replace(ON, visit_ticks=10**6, cycle_returns=10**6)
+    stalled = run_trial(NOOK, 0, robot=make_robot("baseline", NOOK, RULES, no_visit))
     assert not stalled.finished and stalled.final.human.pos == (8, 1)
