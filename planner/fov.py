@@ -43,8 +43,23 @@ def in_view(origin: Pos, facing: Direction, cell: Pos, angle: float) -> bool:
     dx, dy = facing.vector
     if abs(vx) + abs(vy) == 1 and vx * dx + vy * dy == 0:
         return True
+    return _in_cone(vx, vy, dx, dy, angle)
+
+
+def in_view_heading(origin: Pos, heading: tuple[float, float], cell: Pos, angle: float) -> bool:
+    """:func:`in_view` for a heading that need not be one of the four facings (a unit vector in grid axes, e.g.
+    a headset's yaw in the reference's VR logs): the side cells are those of the nearest facing, the cone is
+    centred on the heading itself."""
+    facing = max(Direction, key=lambda d: d.vector[0] * heading[0] + d.vector[1] * heading[1])
+    vx, vy = cell[0] - origin[0], cell[1] - origin[1]
+    if angle >= 360.0 or (vx, vy) == (0, 0) or (vx, vy) in facing.sides:
+        return True
+    return _in_cone(vx, vy, heading[0], heading[1], angle)
+
+
+def _in_cone(vx: int, vy: int, dx: float, dy: float, angle: float) -> bool:
     dot = vx * dx + vy * dy
-    return dot >= math.hypot(vx, vy) * math.cos(math.radians(angle / 2.0)) - _EPS
+    return dot >= math.hypot(vx, vy) * math.hypot(dx, dy) * math.cos(math.radians(angle / 2.0)) - _EPS
 
 
 def visible_cells(layout: Layout, pos: Pos, facing: Direction, angle: float = FOV_ANGLE) -> frozenset[Pos]:

@@ -80,10 +80,19 @@ class PlannerConfig:
     alone_ticks: int = 20
     reuse_rollouts: bool = False
     rollout_budget: int = 0
+    unknown_held_cost: float = 0.0
+    shown_reward: float = 0.0
+    seen_carrying: float = 0.0
+    view_detour: int = 3
 
     def __post_init__(self) -> None:
         if self.lookahead not in LOOKAHEADS:
             raise ValueError(f"lookahead must be one of {', '.join(LOOKAHEADS)}, got {self.lookahead!r}")
+
+    @property
+    def values_knowing(self) -> bool:
+        """The exploration values the person's knowing (:meth:`planner.rollout.Rollout.knowing`)."""
+        return bool(self.unknown_held_cost or self.shown_reward or self.seen_carrying)
 
     def omniscient_human(self) -> PlannerConfig:
         return replace(self, human_angle=360.0, human_delay=0)

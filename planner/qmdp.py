@@ -61,6 +61,7 @@ from planner.rules import Rules
 from planner.state import AgentState, WorldState
 from planner.standoff import (Standoff, advance, alternatives, arrive, beside, committed, give_up, hold_aside,
                               in_the_way, step_aside, take_over, unaided, visit_done, within_reach)
+from planner.objects import DISH
 from planner.subtasks import Subtask
 
 TICKS_PER_SUBTASK = 6
@@ -335,29 +336,35 @@ class QmdpRobot:
         show = self.show_plan(world, subtask)
         if show:
             candidates[show[0]] = show[1:]
-        if len(candidates) < 2:
+        plans = [(move, rest, True) for move, rest in candidates.items()]
+        route = self.view_route(world, subtask) if not show else ()
+        if route and route[1:] != candidates.get(route[0]):
+            plans.append((route[0], route[1:], False))
+        if len(plans) < 2:
             return default, 0
-        scored: list[tuple[float, bool, Action]] = []
-        for move, rest in candidates.items():
+        scored: list[tuple[float, bool, int]] = []
+        for i, (move, rest, _) in enumerate(plans):
             if deadline is not None and scored and time.perf_counter() > deadline:
                 break
-            if move is default and not rest:
+            if move is default and not rest and not self.cfg.values_knowing:
                 v = direct_value
             else:
                 plan = (move,) + rest
-                v = sum(p * self.sampled(world, s, subtask, horizon, seed, plan) for s, p in likely)
-            scored.append((v, move is default, move))
-        chosen = max(scored, key=lambda t: (t[0], t[1]))[2]
-        self.pending = candidates[chosen]
-        return chosen, len(scored)
+                v = sum(p * self.sampled(world, s, subtask, horizon, seed, plan, self.cfg.values_knowing)
+                        for s, p in likely)
+            scored.append((v, move is default and not rest, i))
+        move, rest, kept = plans[max(scored, key=lambda t: (t[0], t[1]))[2]]
+        self.pending = rest if kept else ()
+        return move, len(scored)
 
     def sampled(self, world: WorldState, human_subtask: Subtask, robot_subtask: Subtask, horizon: int,
-                seed: int, prefix: tuple[Action, ...] = ()) -> float:
+                seed: int, prefix: tuple[Action, ...] = (), knowing: bool = False) -> float:
         """The mean rollout value over ``rollout_samples`` seeded futures (the same seeds for every
-        candidate, so candidates are compared on common random numbers)."""
+        candidate, so candidates are compared on common random numbers); ``knowing`` adds the value of the
+        person's knowing (:meth:`planner.rollout.Rollout.knowing`)."""
         assert self.kb is not None
         n = max(self.cfg.rollout_samples, 1)
-        if not prefix and n == 1 and self.cfg.reuse_rollouts:
+        if not prefix and not knowing and n == 1 and self.cfg.reuse_rollouts:
             key = (robot_subtask, human_subtask)
             trace = self.followed.get(key)
             if trace is None or trace.length < horizon:
@@ -366,7 +373,8 @@ class QmdpRobot:
             self.next_traces[key] = trace
             return trace.value(self.cfg.tick_discount, horizon)
         return sum(self.rollout.value(world, self.kb, human_subtask, robot_subtask, horizon, seed + 7919 * i,
-                                      prefix=prefix, parked_for=self.human_still) for i in range(n)) / n
+                                      prefix=prefix, parked_for=self.human_still, knowing=knowing)
+                   for i in range(n)) / n
 
     def yield_if_blocking(self, world: WorldState, subtask: Subtask, action: Action) -> Action:
         """The human model's yield rule for the robot: waiting at a station (steak not ready, garnish not
@@ -387,7 +395,7 @@ class QmdpRobot:
         stays there, so the human acknowledges what the robot holds (paper §VI-C, "walks alongside the
         human"). Among floor poses in view, reached by a shortest walk that avoids the human, it minimises
         the detour ``steps + d(pose, target) − d(robot, target)`` (ties: fewer steps), and keeps it only if
-        the detour is at most ``exploration_depth``. Empty when the modelled KB already knows what the robot
+        the detour is at most ``view_detour``. Empty when the modelled KB already knows what the robot
         holds, when the robot is in view, or when no view cell is that close to the way."""
         human = world.human
         if self.kb is None or self.kb.robot is None or self.kb.robot.held == world.robot.held:
@@ -405,7 +413,7 @@ class QmdpRobot:
         frontier = [start]
         first: dict[Pose, tuple[Action, ...]] = {start: ()}
         best: tuple[int, int, tuple[Action, ...]] | None = None
-        for steps in range(1, base + self.cfg.exploration_depth + 1):
+        for steps in range(1, base + self.cfg.view_detour + 1):
             nxt = []
             for pose in frontier:
                 for d in DIRECTIONS:
@@ -416,12 +424,51 @@ class QmdpRobot:
                     nxt.append(after)
                     if after[0] in seen:
                         detour = steps + to_target(after) - base
-                        if detour <= self.cfg.exploration_depth and (best is None or (detour, steps) < best[:2]):
+                        if detour <= self.cfg.view_detour and (best is None or (detour, steps) < best[:2]):
                             best = (detour, steps, first[after])
             frontier = nxt
         if best is None:
             return ()
         return best[2] + (Action.STAY,) * max(self.cfg.human_delay - 1, 0)
+
+
+    def view_route(self, world: WorldState, subtask: Subtask) -> tuple[Action, ...]:
+        """The walk to ``subtask``'s station, at most ``view_detour`` ticks longer than the shortest, with the
+        most ticks in the person's current view (ties: the shorter), while the robot carries a dish and
+        ``seen_carrying`` values that (docs/domain.md §5, "The person's knowing": a delivery route through
+        their view). Empty when it carries no dish, is at its station, or no such walk passes the view."""
+        if world.robot.held != DISH or not self.cfg.seen_carrying:
+            return ()
+        cells = self.tasker.targets(subtask, world)
+        if not cells:
+            return ()
+        human = world.human
+        seen = view(self.layout, human.pos, human.facing, self.cfg.human_angle).cells
+        start = (world.robot.pos, world.robot.facing)
+
+        def to_target(pose: Pose) -> int:
+            return min(distance(self.layout, pose, c) for c in cells)
+
+        base = to_target(start)
+        if base == 0:
+            return ()
+        layer: dict[Pose, tuple[int, tuple[Action, ...]]] = {start: (0, ())}
+        best: tuple[int, int, tuple[Action, ...]] | None = None
+        for steps in range(1, base + self.cfg.view_detour + 1):
+            nxt: dict[Pose, tuple[int, tuple[Action, ...]]] = {}
+            for pose, (count, actions) in layer.items():
+                for d in DIRECTIONS:
+                    after = next_pose(self.layout, pose, d)
+                    if after[0] == human.pos or steps + to_target(after) > base + self.cfg.view_detour:
+                        continue
+                    score = count + (after[0] in seen)
+                    if after not in nxt or nxt[after][0] < score:
+                        nxt[after] = (score, actions + (move_action(d),))
+            for pose, (count, actions) in nxt.items():
+                if to_target(pose) == 0 and (best is None or count > best[0]):
+                    best = (count, steps, actions)
+            layer = nxt
+        return best[2] if best is not None and best[0] > 0 else ()
 
 
 def _infer_action(before: AgentState | None, now: AgentState, interacted: bool) -> Action | None:

@@ -23,6 +23,7 @@ from functools import lru_cache
 import numpy as np
 
 from planner.events import EventKind
+from planner.fov import view
 from planner.geometry import Action, Pos
 from planner.human import HumanMemory, HumanModel
 from planner.kb import KnowledgeBase, omniscient_kb, update_kb
@@ -144,18 +145,25 @@ class Rollout:
         self.omniscient = cfg.human_sees_everything
 
     def value(self, world: WorldState, kb: KnowledgeBase, human_subtask: Subtask, robot_subtask: Subtask,
-              horizon: int, seed: int, prefix: tuple[Action, ...] = (), parked_for: int = 0) -> float:
-        """The discounted progress of the hypothesis; the robot plays ``prefix`` first, then its subtask."""
+              horizon: int, seed: int, prefix: tuple[Action, ...] = (), parked_for: int = 0,
+              knowing: bool = False) -> float:
+        """The discounted progress of the hypothesis; the robot plays ``prefix`` first, then its subtask.
+        ``knowing``: each tick also adds :meth:`knowing`."""
         return self.run(world, kb, HumanMemory(subtask=human_subtask, held=world.human.held),
-                        np.random.default_rng(seed), robot_subtask, horizon, prefix, parked_for)
+                        np.random.default_rng(seed), robot_subtask, horizon, prefix, parked_for, knowing)
 
     def run(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory, rng: np.random.Generator,
-            robot_subtask: Subtask, horizon: int, prefix: tuple[Action, ...] = (), parked_for: int = 0) -> float:
+            robot_subtask: Subtask, horizon: int, prefix: tuple[Action, ...] = (), parked_for: int = 0,
+            knowing: bool = False) -> float:
         """:meth:`value` from a given human memory and random stream (``rng`` is consumed)."""
         sim = self.start(world, kb, memory, robot_subtask, parked_for)
         total, discount = 0.0, 1.0
+        knowing = knowing and not self.omniscient
         for t in range(horizon):
+            before = sim
             sim, gain = self.tick(sim, rng, prefix[t] if t < len(prefix) else None)
+            if knowing:
+                gain += self.knowing(before, sim.world, sim.kb)
             total += discount * gain
             discount *= self.cfg.tick_discount
             if sim.world.orders_left == 0:
@@ -190,6 +198,24 @@ class Rollout:
         if self.tasker.done(robot_task, held_before, world) or robot_task not in self.tasker.options(world, robot_task):
             next_task = None
         return SimState(world, kb, memory, next_task, human_still, phi), phi - sim.phi
+
+    def knowing(self, before: SimState, world: WorldState, kb: KnowledgeBase) -> float:
+        """This tick's value of what the modelled person knows of the robot (docs/domain.md §5, "The person's
+        knowing"): ``−unknown_held_cost`` while their KB is wrong about what the robot holds, ``+shown_reward``
+        at the tick their KB comes to be right about it, ``+seen_carrying`` while the robot is
+        in their view with a dish (on the way to the serving counter). Zero for a person who sees everything."""
+        held = world.robot.held
+        value = 0.0
+        wrong = kb.robot is None or kb.robot.held != held
+        if wrong:
+            value -= self.cfg.unknown_held_cost
+        elif before.kb.robot is None or before.kb.robot.held != before.world.robot.held:
+            value += self.cfg.shown_reward
+        if held == DISH and self.cfg.seen_carrying:
+            human = world.human
+            if world.robot.pos in view(self.layout, human.pos, human.facing, self.cfg.human_angle).cells:
+                value += self.cfg.seen_carrying
+        return value
 
     def robot_move(self, world: WorldState, subtask: Subtask, human_parked: bool = False) -> Action:
         """The robot's next move toward ``subtask`` (walking around a human parked for two ticks)."""

@@ -1,0 +1,218 @@
+"""The paper's two robot behaviours on our robots (issue 26; docs/domain.md §6, "Behaviours").
+
+For each robot × kitchen × seed, one simulated trial with the FOV-limited simulated human (the same human random
+stream per seed for every robot, so trials are paired): behaviour 1 (a pickup shown to the person for
+``kb_delay`` consecutive ticks), behaviour 2 (share of a dish trip's ticks in the person's view), the robot
+component of the KB gap (% of ticks the person's KB is wrong about what the robot holds) and ticks
+(:mod:`planner.behaviours`). Kitchens: shipped ones by name (``--shipped``, default the paper's two study
+kitchens) and generated ones by generator seed (``--generator-seeds``; tune only on seeds < 1000, report on
+seeds ≥ 1000, as ``generated.py`` does). Rows are appended to ``OUT/trials.csv`` as trials finish.
+
+Printed per group (each shipped kitchen; generated kitchens together) and robot: the pooled rates, then each
+robot against the baseline over paired seeds: mean difference of the per-trial values with a 95 % t interval
+and the paired t-test p (ticks also Wilcoxon).
+
+    .venv/bin/python benchmarks/planner/behaviours.py --seeds 30 --out results/behaviours --jobs 2
+    .venv/bin/python benchmarks/planner/behaviours.py --shipped "" --generator-seeds 0-19 --seeds 3 --out DIR
+    .venv/bin/python benchmarks/planner/behaviours.py --out DIR --table-only
+
+``--set name=value`` overrides a :class:`planner.planner_config.PlannerConfig` field for every robot (tuning).
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import statistics
+import sys
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass, fields, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from scipy import stats
+
+from planner.behaviours import Frame, frame_of, measure
+from planner.layout import Layout
+from planner.layout_gen import generate_named
+from planner.perception import FOV_ANGLE, KB_DELAY
+from planner.planner_config import PlannerConfig
+from planner.play import TrialSettings, run_trial
+from planner.robots import make_robot
+from planner.rules import Rules
+from planner.state import initial_state
+from planner.step import step
+from study_config import load_layout
+
+COLUMNS = ("kitchen", "robot", "seed", "ticks", "finished", "holdings", "shown", "trips", "trip_share_sum",
+           "robot_gap_pct", "kb_gap_mean")
+
+
+@dataclass(frozen=True, slots=True)
+class Spec:
+    kitchen: str
+    robot: str
+    seed: int
+    overrides: tuple[tuple[str, str], ...] = ()
+
+
+def kitchen_layout(name: str) -> Layout:
+    """A shipped kitchen by name, or ``gen_<seed>`` for a generated one."""
+    if name.startswith("gen_"):
+        return generate_named(int(name.split("_")[1]))
+    return load_layout(name)
+
+
+def config_of(overrides: tuple[tuple[str, str], ...]) -> PlannerConfig:
+    types = {f.name: f.type for f in fields(PlannerConfig)}
+    values: dict[str, Any] = {}
+    for name, text in overrides:
+        kind = types[name]
+        values[name] = (text.lower() in ("1", "true", "yes")) if kind in (bool, "bool") else (
+            int(text) if kind in (int, "int") else float(text) if kind in (float, "float") else text)
+    return replace(PlannerConfig(human_angle=FOV_ANGLE, human_delay=KB_DELAY), **values)
+
+
+def run_one(spec: Spec) -> dict[str, object]:
+    layout = kitchen_layout(spec.kitchen)
+    rules = Rules()
+    robot = make_robot(spec.robot, layout, rules, config_of(spec.overrides))
+    result = run_trial(layout, spec.seed, TrialSettings(FOV_ANGLE, KB_DELAY, rules), robot=robot, record=True)
+    world = initial_state(layout, rules)
+    frames: list[Frame] = []
+    for h_action, r_action in result.actions:
+        world, events = step(layout, world, {"human": h_action, "robot": r_action}, rules)
+        frames.append(frame_of(layout, world, events, FOV_ANGLE))
+    b = measure(frames, KB_DELAY)
+    return {"kitchen": spec.kitchen, "robot": spec.robot, "seed": spec.seed, "ticks": result.ticks,
+            "finished": int(result.finished), "holdings": b.holdings, "shown": b.shown, "trips": b.trips,
+            "trip_share_sum": round(b.trip_share_sum, 4),
+            "robot_gap_pct": round(result.gap_component_pct["robot_held"], 2),
+            "kb_gap_mean": round(result.kb_gap_mean, 4)}
+
+
+def seed_range(text: str) -> range:
+    low, _, high = text.partition("-")
+    return range(int(low), int(high or low) + 1)
+
+
+def trial_values(row: dict[str, Any]) -> dict[str, float | None]:
+    """Per-trial values compared between robots: behaviour rates (None without a holding / a trip), % and ticks."""
+    holdings, trips = int(row["holdings"]), int(row["trips"])
+    return {"b1": int(row["shown"]) / holdings if holdings else None,
+            "b2": float(row["trip_share_sum"]) / trips if trips else None,
+            "robot_gap": float(row["robot_gap_pct"]), "ticks": float(row["ticks"])}
+
+
+def paired(a: list[float], b: list[float]) -> str:
+    """``mean difference [95 % CI] p`` of paired values (a − b)."""
+    if len(a) < 2:
+        return "-"
+    d = np.array(a) - np.array(b)
+    mean, sem = float(d.mean()), float(d.std(ddof=1) / np.sqrt(len(d)))
+    half = float(stats.t.ppf(0.975, len(d) - 1)) * sem
+    p = float(stats.ttest_rel(a, b).pvalue) if np.any(d != 0) else 1.0
+    return f"{mean:+.3g} [{mean - half:+.3g}, {mean + half:+.3g}] p={p:.2g} n={len(d)}"
+
+
+def table(rows: list[dict[str, Any]]) -> str:
+    groups: dict[str, list[dict[str, Any]]] = {}
+    for row in rows:
+        groups.setdefault("generated" if str(row["kitchen"]).startswith("gen_") else str(row["kitchen"]),
+                          []).append(row)
+    robots = sorted({str(r["robot"]) for r in rows}, key=lambda r: (r != "fov_aware", r == "baseline", r))
+    lines = []
+    for name in sorted(groups, key=lambda g: (g == "generated", g)):
+        part = groups[name]
+        lines.append(f"== {name}: {len({r['kitchen'] for r in part})} kitchen(s), "
+                     f"seeds {len({r['seed'] for r in part})}")
+        lines.append(f"{'robot':<12}{'trials':>7}{'unf.':>6}{'b1 shown':>16}{'b2 trip share':>20}"
+                     f"{'robot gap %':>13}{'ticks':>9}")
+        for robot in robots:
+            mine = [r for r in part if r["robot"] == robot]
+            if not mine:
+                continue
+            holdings = sum(int(r["holdings"]) for r in mine)
+            shown = sum(int(r["shown"]) for r in mine)
+            trips = sum(int(r["trips"]) for r in mine)
+            share = sum(float(r["trip_share_sum"]) for r in mine)
+            b1 = f"{shown / holdings:.2f} ({holdings})" if holdings else "-"
+            b2 = f"{share / trips:.2f} ({trips} trips)" if trips else "-"
+            lines.append(f"{robot:<12}{len(mine):>7}{sum(1 for r in mine if not int(r['finished'])):>6}{b1:>16}"
+                         f"{b2:>20}{statistics.mean(float(r['robot_gap_pct']) for r in mine):>13.1f}"
+                         f"{statistics.mean(float(r['ticks']) for r in mine):>9.1f}")
+        base = {(r["kitchen"], r["seed"]): trial_values(r) for r in part if r["robot"] == "baseline"}
+        for robot in robots:
+            if robot == "baseline":
+                continue
+            mine = {(r["kitchen"], r["seed"]): trial_values(r) for r in part if r["robot"] == robot}
+            keys = sorted(set(mine) & set(base))
+            if not keys:
+                continue
+            lines.append(f"  {robot} − baseline (paired per kitchen × seed, mean [95% CI]):")
+            for measure_name in ("b1", "b2", "robot_gap", "ticks"):
+                pairs = [(mine[k][measure_name], base[k][measure_name]) for k in keys
+                         if mine[k][measure_name] is not None and base[k][measure_name] is not None]
+                text = paired([float(a) for a, _ in pairs], [float(b) for _, b in pairs])  # type: ignore[arg-type]
+                if measure_name == "ticks" and len(pairs) > 1 and any(a != b for a, b in pairs):
+                    ticks_base = statistics.mean(float(b) for _, b in pairs)  # type: ignore[arg-type]
+                    diff = statistics.mean(float(a) - float(b) for a, b in pairs)  # type: ignore[arg-type]
+                    text += (f" ({100 * diff / ticks_base:+.1f}%, Wilcoxon p="
+                             f"{stats.wilcoxon([a for a, _ in pairs], [b for _, b in pairs]).pvalue:.2g})")
+                lines.append(f"    {measure_name:<10} {text}")
+    return "\n".join(lines)
+
+
+def read_rows(path: Path) -> list[dict[str, Any]]:
+    with path.open(newline="") as handle:
+        return list(csv.DictReader(handle))
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--shipped", default="none_3,mid_2", help="shipped kitchens, comma separated ('' for none)")
+    parser.add_argument("--generator-seeds", default="", help="generated kitchens, e.g. 1000-1019 (tune on < 1000)")
+    parser.add_argument("--seeds", type=int, default=30, help="simulation seeds 0..N-1 per kitchen")
+    parser.add_argument("--robots", default="fov_aware,baseline")
+    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                        help="a PlannerConfig field for every robot (repeatable)")
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--out", required=True, type=Path)
+    parser.add_argument("--table-only", action="store_true")
+    args = parser.parse_args(argv)
+    names = {f.name for f in fields(PlannerConfig)}
+    overrides = []
+    for item in args.set:
+        name, sep, value = item.partition("=")
+        if not sep or name not in names:
+            parser.error(f"--set {item!r}: expected NAME=VALUE with NAME a PlannerConfig field")
+        overrides.append((name, value))
+    csv_path = args.out / "trials.csv"
+    if not args.table_only:
+        kitchens = [k for k in args.shipped.split(",") if k]
+        if args.generator_seeds:
+            kitchens += [f"gen_{s}" for s in seed_range(args.generator_seeds)]
+        done = ({(r["kitchen"], r["robot"], int(r["seed"])) for r in read_rows(csv_path)}
+                if csv_path.exists() else set())
+        specs = [Spec(k, r, s, tuple(overrides)) for s in range(args.seeds) for k in kitchens
+                 for r in args.robots.split(",") if (k, r, s) not in done]
+        args.out.mkdir(parents=True, exist_ok=True)
+        fresh = not csv_path.exists()
+        with csv_path.open("a", newline="") as handle, ProcessPoolExecutor(max_workers=args.jobs) as pool:
+            writer = csv.DictWriter(handle, fieldnames=COLUMNS)
+            if fresh:
+                writer.writeheader()
+            for i, row in enumerate(pool.map(run_one, specs, chunksize=1), 1):
+                writer.writerow(row)
+                handle.flush()
+                if i % 20 == 0 or i == len(specs):
+                    print(f"{i}/{len(specs)} trials", file=sys.stderr, flush=True)
+    rows = read_rows(csv_path)
+    print(f"{len(rows)} trials in {csv_path}" + (f"; overrides {' '.join(args.set)}" if args.set else ""))
+    print(table(rows))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,98 @@
+"""The paper's two robot behaviours (paper §VI-C), measured from outside a trial (docs/domain.md §6, "Behaviours").
+
+A trial is read as one :class:`Frame` per tick, the state after the tick's step: what the robot holds, whether
+the robot stands in the person's view (:mod:`planner.fov`) and whether the robot delivered a dish in that tick.
+
+* **Behaviour 1, showing a pickup:** every tick at which the robot comes to hold an object it did not hold the
+  tick before (taken from a crate, a counter or the sink, or made by plating a steak or adding the garnish)
+  starts a *holding*, which lasts until what it holds changes again (put down, used, or the trial ends). The
+  holding *is shown* when the robot stands in the person's view for at least ``kb_delay`` consecutive ticks
+  within it, so the person can acknowledge what it holds (docs/domain.md §3). Rate: shown / holdings.
+* **Behaviour 2, a delivery in view:** a *dish trip* runs from the tick the robot comes to hold a dish to the
+  tick before it delivers it (a trip that ends otherwise is not counted). Its share is the fraction of the
+  trip's ticks with the robot in the person's view. Rate: the mean share over trips.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from planner.events import Event, EventKind
+from planner.fov import view
+from planner.layout import Layout
+from planner.objects import DISH
+from planner.state import WorldState
+
+
+@dataclass(frozen=True, slots=True)
+class Frame:
+    """One tick of a trial, as the behaviours read it."""
+
+    held: str | None
+    seen: bool
+    delivered: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class Behaviours:
+    """Counts of one trial (or a sum of trials): holdings and those shown; dish trips and their summed share."""
+
+    holdings: int = 0
+    shown: int = 0
+    trips: int = 0
+    trip_share_sum: float = 0.0
+
+    @property
+    def shown_rate(self) -> float | None:
+        return self.shown / self.holdings if self.holdings else None
+
+    @property
+    def trip_share(self) -> float | None:
+        return self.trip_share_sum / self.trips if self.trips else None
+
+    def __add__(self, other: Behaviours) -> Behaviours:
+        return Behaviours(self.holdings + other.holdings, self.shown + other.shown, self.trips + other.trips,
+                          self.trip_share_sum + other.trip_share_sum)
+
+
+def frame_of(layout: Layout, world: WorldState, events: Sequence[Event], angle: float) -> Frame:
+    """The frame of one tick of our own trials: ``world`` after the step, ``events`` the step's events."""
+    seen = world.robot.pos in view(layout, world.human.pos, world.human.facing, angle).cells
+    delivered = any(e.agent == "robot" and e.kind is EventKind.DELIVER for e in events)
+    return Frame(world.robot.held, seen, delivered)
+
+
+def holdings(frames: Sequence[Frame]) -> list[tuple[int, int]]:
+    """``(start, end)`` index ranges (end exclusive) of every holding (behaviour 1)."""
+    spans, start = [], None
+    for t, frame in enumerate(frames):
+        before = frames[t - 1].held if t else None
+        if frame.held != before:
+            if start is not None:
+                spans.append((start, t))
+            start = t if frame.held is not None else None
+    if start is not None:
+        spans.append((start, len(frames)))
+    return spans
+
+
+def longest_seen(frames: Sequence[Frame]) -> int:
+    """The longest run of consecutive ticks in view."""
+    best = run = 0
+    for frame in frames:
+        run = run + 1 if frame.seen else 0
+        best = max(best, run)
+    return best
+
+
+def measure(frames: Sequence[Frame], kb_delay: int) -> Behaviours:
+    """Behaviours 1 and 2 of one trial (module docstring)."""
+    spans = holdings(frames)
+    shown = sum(longest_seen(frames[a:b]) >= kb_delay for a, b in spans)
+    trips, share = 0, 0.0
+    for a, b in spans:
+        if frames[a].held == DISH and b < len(frames) and frames[b].delivered:
+            trips += 1
+            share += sum(f.seen for f in frames[a:b]) / (b - a)
+    return Behaviours(len(spans), shown, trips, share)

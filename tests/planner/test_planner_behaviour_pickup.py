@@ -1,0 +1,75 @@
+"""Behaviour 1 of the paper (§VI-C; docs/domain.md §6, "Behaviours") in a small hand-made kitchen: the robot
+takes meat from the crate behind the person, who chops a slow onion at the board facing the wall, so the robot
+can be seen only on the cells left and right of them. The FOV-aware robot steps beside the person on its way
+to the grill and stays there until the person can acknowledge the meat (``kb_delay`` consecutive ticks); the
+baseline, whose person sees everything, walks the shortest way along the top row, unseen. Checked for several
+planner seeds and with the measure the benchmark uses (:func:`planner.behaviours.measure`)."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from planner.behaviours import frame_of, measure
+from planner.fov import visible_cells
+from planner.geometry import Action, Direction
+from planner.layout import parse_layout
+from planner.objects import MEAT
+from planner.perception import FOV_ANGLE, KB_DELAY
+from planner.robots import make_robot
+from planner.rules import Rules
+from planner.state import AgentState, initial_state
+from planner.step import step
+
+RULES = Rules(chop_time=12)
+LAYOUT = parse_layout("\n".join([
+    "XXXXXXXXX",
+    "XMXDXWXXX",
+    "X1      X",
+    "X 2     X",
+    "XOXBXXPSX",
+    "XXXXXXXXX",
+]), name="pickup_test")
+PERSON = AgentState((3, 3), Direction.SOUTH)
+SEEDS = range(4)
+
+
+def trial(robot_name: str, seed: int):
+    """The frames from the pickup until the meat is on the grill (at most 20 ticks), the person chopping."""
+    start = replace(initial_state(LAYOUT, RULES), human=PERSON, robot=AgentState((1, 2), Direction.NORTH),
+                    boards=(0,))
+    robot = make_robot(robot_name, LAYOUT, RULES)
+    robot.reset(start)
+    rng = np.random.default_rng(seed)
+    world, events = step(LAYOUT, start, {"human": Action.INTERACT, "robot": Action.INTERACT}, RULES)
+    assert world.robot.held == MEAT
+    frames = [frame_of(LAYOUT, world, events, FOV_ANGLE)]
+    for _ in range(20):
+        action = robot.decide(world, events, rng).action
+        world, events = step(LAYOUT, world, {"human": Action.INTERACT, "robot": action}, RULES)
+        frames.append(frame_of(LAYOUT, world, events, FOV_ANGLE))
+        if world.robot.held is None:
+            break
+    return world, frames
+
+
+def test_the_pickup_and_the_shortest_way_are_out_of_view():
+    seen = visible_cells(LAYOUT, PERSON.pos, PERSON.facing, FOV_ANGLE)
+    assert seen & LAYOUT.floor == {(2, 3), (3, 3), (4, 3)}
+
+
+@pytest.mark.parametrize("seed", SEEDS)
+def test_the_fov_aware_robot_shows_what_it_picked_up_then_cooks_it(seed):
+    world, frames = trial("fov_aware", seed)
+    assert world.grills == (0,) or (world.grills[0] is not None and world.robot.held is None)
+    assert measure(frames, KB_DELAY).shown == 1
+
+
+@pytest.mark.parametrize("seed", SEEDS)
+def test_the_baseline_carries_it_to_the_grill_unseen(seed):
+    world, frames = trial("baseline", seed)
+    assert world.grills[0] is not None and world.robot.held is None
+    b = measure(frames, KB_DELAY)
+    assert (b.holdings, b.shown) == (1, 0)
