@@ -26,7 +26,7 @@ def test_a_round_with_no_actions_or_an_idle_cook_is_low_engagement():
     # Under the waiting clock the idle share is the waited time at the tick rate: 200 s at 5 Hz = 1000 periods.
     waited = replace(PLAYED, idle_ticks=0, waited_seconds=200.0)
     assert waited.idle_pct == pytest.approx(100 * 1000 / 1120)
-    assert engagement_problem(waited, rules) is None, "89.3 % is within the default 90 %"
+    assert engagement_problem(waited, rules) is None, "89.3 % is within the default 95 %"
     assert engagement_problem(waited, Validity(max_idle_pct=80)) == ("low_engagement: the cook was idle 89.3 % of "
                                                                      "the round, more than 80 %")
     assert engagement_problem(PLAYED, Validity(min_participant_actions=16)) is not None

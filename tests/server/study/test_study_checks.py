@@ -90,5 +90,5 @@ def test_a_wall_clock_limit_belongs_to_the_waiting_clock_and_the_engagement_rule
     assert found == {"validity.min_participant_actions", "validity.max_idle_pct", "validity.max_invalid_rounds"}
     study = load_study(write(tmp_path, "timing: {mode: wait_for_participant}\n"))
     assert (study.validity.min_participant_actions, study.validity.max_idle_pct,
-            study.validity.max_invalid_rounds) == (1, 90.0, 0)
+            study.validity.max_invalid_rounds) == (1, 95.0, 0)
     assert study.timing.idle_nudge_seconds == 10.0
