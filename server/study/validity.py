@@ -15,11 +15,12 @@ from server.study.base import StudyModel
 
 DEFAULT_MAX_MISSED_DECISIONS_PCT = 5.0
 """A trial whose robot missed more than this share of its decision deadlines is invalid (issue 13, part 3)."""
-DEFAULT_MAX_IDLE_PCT = 90.0
+DEFAULT_MAX_IDLE_PCT = 95.0
 """A main trial in which the cook had nothing to do for more than this share of its tick periods is
-low-engagement. Chosen from the real-time pilots of docs/pilot.md §4 (simulated participants who think
-0.5–3 s per choice): their highest per-trial idle share stays well below it, while a participant who never
-acts has 100 %."""
+low-engagement. Chosen from the real-time pilots of docs/pilot.md §4 (28 simulated participants per clock who
+think 0.5–3 s per choice): their highest per-trial idle share was 70.8 % (``fixed_rate``) and 86.8 %
+(``wait_for_participant``); on their median round, 95 % takes about 21 s of idleness per choice (90 % only
+about 10 s, within reach of a slow but real player), while a participant who never acts has 100 %."""
 
 
 class Validity(StudyModel):

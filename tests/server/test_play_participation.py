@@ -198,3 +198,28 @@ def test_a_participant_who_plays_is_unaffected(live_server, study_file, mode):
     with server.services.store.transaction() as s:
         stored = [s.get(TrialRow, t["trial_id"]) for t in rows]
         assert all(r.idle_pct is not None and r.idle_pct < 90 for r in stored)
+
+
+def test_a_participant_whose_device_was_refused_does_not_count_until_a_device_passes(live_server, study_file):
+    server = live_server([two_round_study(study_file, "fixed_rate")])
+    phone = {"screen_width": 390, "screen_height": 844, "viewport_width": 390, "viewport_height": 844,
+             "pixel_ratio": 3, "fine_pointer": False, "touch": True}
+    laptop = {**phone, "screen_width": 1440, "screen_height": 900, "viewport_width": 1440, "viewport_height": 800,
+              "pixel_ratio": 1, "fine_pointer": True, "touch": False}
+
+    async def scenario():
+        player = Player(server.url)
+        joined = await player.join()
+        view = (await player.post("/api/session/device", phone)).json()
+        refused_next = await next_joiner_order(server)
+        row = admin_participant(server, joined["participant_id"])
+        (await player.post("/api/session/device", laptop)).raise_for_status()
+        passed = admin_participant(server, joined["participant_id"])
+        await player.close()
+        return joined, view, refused_next, row, passed
+
+    joined, view, refused_next, row, passed = asyncio.run(scenario())
+    assert view["device"]["ok"] is False
+    assert row["uncounted_reason"] == "device_refused: small_screen; touch_only"
+    assert refused_next == condition_order(server.services, joined["participant_id"])
+    assert passed["uncounted_reason"] is None

@@ -44,6 +44,9 @@ def write_studies(folder: Path) -> list[Path]:
     replay = write_study(folder, REPLAY_STUDY, title="Dashboard replay study", kitchens=["practice"],
                          robots=["fov_aware", "stay"], timing={"tick_rate_hz": 30},
                          world={"orders": 1, "horizon": 500, "kb_delay": 1, "fov_angle": REPLAY_FOV},
+                         # A busy test machine must not make the finished trials robot-invalid: such a
+                         # participant stops counting for assignment, which the order card checks.
+                         validity={"max_missed_decisions_pct": 100},
                          recruiting={"completion_code": "DASH-OK-9",
                                      "completion_redirect_url": "https://recruit.example/complete?cc={code}"})
     practice = write_study(folder, PRACTICE_STUDY, title="Dashboard practice study", kitchens=["practice"],

@@ -55,12 +55,14 @@ function ordersTable(study, plannedN) {
       ["Screened out", (o) => String(o.screened_out), "num"],
       ["Test runs", (o) => String(o.test_runs), "num"],
       ["Excluded", (o) => String(o.excluded), "num"],
+      ["Not counted", (o) => String(o.uncounted ?? 0), "num"],
       ["Simulated pilots", (o) => String(o.pilots ?? 0), "num"],
     ], rows, { id: `orders-${study.id}`,
                rowAttrs: (o) => ({ dataset: { order: String(o.index), counted: String(o.counted), target: String(o.target) } }) }),
     h("p", { class: "muted" }, `Balance: max − min of achieved = ${spread}. The next participant gets order ${next + 1} ` +
       "(the least filled). Achieved counts completed participants and those in progress within " +
-      "the assignment window; test runs, excluded and screened-out participants do not count."));
+      "the assignment window; test runs, excluded and screened-out participants do not count, nor those with a " +
+      "main round that cannot become a cell (abandoned, low engagement, robot-invalid) or a refused device."));
 }
 
 function plannedInput(study, redraw) {

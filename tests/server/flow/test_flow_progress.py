@@ -96,3 +96,17 @@ def test_end_of_study_questionnaires_come_once_after_the_last_trial(study_file):
     assert kinds == [("consent", None, None), ("instructions", None, None), ("trial", None, None),
                      ("questionnaire", "each", 0), ("trial", None, None), ("questionnaire", "each", 1),
                      ("questionnaire", "final", None), ("done", None, None)]
+
+
+def test_an_abandoned_main_trial_skips_its_questionnaires_and_a_screen_out_keeps_its_reason(plan):
+    at_first_main = Progress(plan, 4)
+    assert at_first_main.phase is Phase.TRIAL and plan[5].kind == "questionnaire"
+    played = at_first_main.apply(Move.END_TRIAL, trial=("main", 0))
+    unplayed = at_first_main.apply(Move.END_TRIAL, trial=("main", 0), played=False)
+    assert played.phase is Phase.QUESTIONNAIRE
+    assert unplayed.phase is Phase.TRIAL and unplayed.current.index == 1, "nobody asks about an unplayed round"
+    out = unplayed.screen_out("abandoned_rounds")
+    assert out.phase is Phase.SCREENED_OUT and out.status == "screened_out"
+    assert out.screen_out_reason == "abandoned_rounds"
+    with pytest.raises(IllegalTransition):
+        out.screen_out("low_engagement")

@@ -16,7 +16,9 @@ RECRUITING = {"completion_code": "DONE42", "completion_redirect_url": "https://e
 
 @pytest.fixture
 def server(live_server, study_file):
-    return live_server([study_file(world={"orders": 1, "horizon": 5, "kb_delay": 1}, recruiting=RECRUITING)])
+    # Rounds of 5 ticks that nobody plays: engagement is not what this file tests (test_play_participation.py).
+    return live_server([study_file(world={"orders": 1, "horizon": 5, "kb_delay": 1}, recruiting=RECRUITING,
+                                   validity={"min_participant_actions": 0, "max_idle_pct": 100})])
 
 
 @pytest.fixture

@@ -79,3 +79,16 @@ def test_device_requirements_and_the_blocked_subtask_time_default_and_convert_to
     assert quick.timing.blocked_ticks() == 1
     found = [(p.path, p.reason) for p in validate_study_file(write(tmp_path, "timing: {blocked_subtask_seconds: 0}\n"))]
     assert found == [("timing.blocked_subtask_seconds", "should be greater than 0 (got 0)")]
+
+
+def test_a_wall_clock_limit_belongs_to_the_waiting_clock_and_the_engagement_rules_are_checked(tmp_path):
+    found = [(p.path, p.reason) for p in validate_study_file(write(tmp_path, "timing: {max_round_seconds: 60}\n"))]
+    assert found == [("timing.max_round_seconds", "only a wait_for_participant round has a wall-clock limit; a "
+                                                  "fixed_rate round ends at the horizon")]
+    bad = "validity: {min_participant_actions: -1, max_idle_pct: 101, max_invalid_rounds: -2}\n"
+    found = {p.path for p in validate_study_file(write(tmp_path, bad))}
+    assert found == {"validity.min_participant_actions", "validity.max_idle_pct", "validity.max_invalid_rounds"}
+    study = load_study(write(tmp_path, "timing: {mode: wait_for_participant}\n"))
+    assert (study.validity.min_participant_actions, study.validity.max_idle_pct,
+            study.validity.max_invalid_rounds) == (1, 95.0, 0)
+    assert study.timing.idle_nudge_seconds == 10.0

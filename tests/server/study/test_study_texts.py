@@ -25,17 +25,31 @@ def write(tmp_path: Path, text: str) -> Path:
 def test_the_paper_studys_length_is_its_rounds_at_full_length_plus_its_pages():
     study = load_study(STUDY_CONFIG / "paper_study.yaml")
     length = study_length(study)
-    assert (length.practice_rounds, length.main_rounds, length.round_seconds) == (1, 4, 400 / 5)
+    # The paper's clock waits for the participant: a round lasts at most its wall-clock limit (240 s).
+    assert study.timing.mode == "wait_for_participant"
+    assert (length.practice_rounds, length.main_rounds, length.round_seconds) == (1, 4, 240)
     per_round_questions = 5 * ITEM_SECONDS["rating"] + ITEM_SECONDS["text"]
-    expected = (CONSENT_SECONDS + INSTRUCTIONS_SECONDS + 3 * QUIZ_QUESTION_SECONDS + 5 * (80 + ROUND_PAGES_SECONDS)
+    expected = (CONSENT_SECONDS + INSTRUCTIONS_SECONDS + 3 * QUIZ_QUESTION_SECONDS + 5 * (240 + ROUND_PAGES_SECONDS)
                 + 4 * per_round_questions + END_SECONDS)
     assert length.total_seconds == expected
     assert length.minutes == -(-expected // 60)
     values = length.placeholders()
-    assert values["round_time"] == "80 seconds" and values["rounds"] == "5" and values["questions_per_round"] == "6"
+    assert values["round_time"] == "4 minutes" and values["rounds"] == "5" and values["questions_per_round"] == "6"
     consent = fill_placeholders(study.consent, values)
-    assert f"up to about {length.minutes} minutes" in consent and "at most\n80 seconds" in consent
+    assert f"up to about {length.minutes} minutes" in consent and "at most\n4 minutes" in consent
     assert "{" not in consent
+
+
+def test_round_time_is_true_in_both_clocks(tmp_path):
+    fixed = load_study(write(tmp_path, "world: {horizon: 300}\ntiming: {tick_rate_hz: 5}\n"))
+    waiting = load_study(write(tmp_path, "world: {horizon: 300}\ntiming: {mode: wait_for_participant}\n"))
+    chosen = load_study(write(tmp_path, "timing: {mode: wait_for_participant, max_round_seconds: 100}\n"))
+    assert study_length(fixed).placeholders()["round_time"] == "60 seconds"
+    assert fixed.timing.round_limit_seconds(300) is None, "a fixed_rate round ends at its horizon"
+    # The default limit: horizon at the tick rate, three times over.
+    assert study_length(waiting).placeholders()["round_time"] == "3 minutes"
+    assert waiting.timing.round_limit_seconds(300) == 180
+    assert study_length(chosen).placeholders()["round_time"] == "100 seconds"
 
 
 def test_a_longer_horizon_or_a_slower_clock_lengthens_what_the_texts_promise(tmp_path):

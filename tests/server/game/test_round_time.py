@@ -1,0 +1,54 @@
+"""The round's wall clock (issue 25): connected time toward the limit, one nudge per idle stretch."""
+
+from __future__ import annotations
+
+import asyncio
+
+from server.game.round_time import RoundTime
+
+
+class Hand:
+    def __init__(self) -> None:
+        self.t = 100.0
+
+    def now(self) -> float:
+        return self.t
+
+    async def wait(self, event: asyncio.Event, seconds: float | None) -> None:
+        return None
+
+
+def test_the_limit_counts_connected_time_only():
+    clock = Hand()
+    times = RoundTime(clock, limit_s=60.0, nudge_s=10.0)
+    times.connected()
+    clock.t += 40
+    times.disconnected()
+    clock.t += 500                      # away: the world is paused, the grace window applies instead
+    assert times.elapsed() == 40 and not times.over_limit()
+    times.connected()
+    clock.t += 19
+    assert not times.over_limit() and times.until_next() == 1
+    clock.t += 1
+    assert times.over_limit()
+
+
+def test_one_nudge_per_idle_stretch_counted_from_the_stretch_or_a_reconnection():
+    clock = Hand()
+    times = RoundTime(clock, limit_s=None, nudge_s=10.0)
+    times.connected()
+    times.idle()
+    clock.t += 9
+    assert not times.take_nudge() and times.until_next() == 1
+    clock.t += 1
+    assert times.take_nudge() and not times.take_nudge()
+    assert times.until_next() is None
+    times.acted()
+    times.idle()
+    clock.t += 10
+    times.disconnected()
+    assert not times.take_nudge(), "no nudge to nobody"
+    times.connected()
+    assert not times.take_nudge()
+    clock.t += 10
+    assert times.take_nudge()
