@@ -48,7 +48,8 @@ class StudyAnalysis:
 
 
 def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, measures: Sequence[str] | None = None,
-                  include: Collection[str] = (), seed: int = 0, plots: bool = True) -> StudyAnalysis:
+                  include: Collection[str] = (), seed: int = 0, plots: bool = True, lmm: bool = False
+                  ) -> StudyAnalysis:
     """Export ``study_id`` into ``<out_dir>/data`` and analyse ``measures`` (default: :data:`DEFAULT_MEASURES`
     and the study's scales) into ``out_dir``; ``include`` names exclusion rules whose rows are kept (with
     ``invalid`` the export itself keeps invalid trials in ``cells.csv``: ``export_study(include_invalid=True)``;
@@ -72,7 +73,7 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
     ratings.update({s.column: _scale_range(s.items, ratings) for s in design.scales})
     options = AnalysisOptions(
         levels=design.levels, strict_levels=False, ratings=ratings, items=design.items, scales=design.scales,
-        include=frozenset(include), horizon=design.horizon, seed=seed, plots=plots,
+        include=frozenset(include), horizon=design.horizon, seed=seed, plots=plots, lmm=lmm,
         title=f"Repeated-measures analysis: study {study_id}")
     chosen = list(measures) if measures is not None else [*DEFAULT_MEASURES, *(s.column for s in design.scales)]
     result = analyze_long(attach_trial_columns(cells, trials), chosen, within, SUBJECT, out, options,
