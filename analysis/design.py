@@ -44,7 +44,8 @@ class Design:
     def from_config(cls, config: dict[str, Any]) -> Design:
         robots = tuple(str(r) for r in config.get("robots", ()))
         kitchens = tuple(str(k["name"] if isinstance(k, dict) else k) for k in config.get("kitchens", ()))
-        factors = tuple(str(f) for f in config.get("factors", ("robot", "kitchen")))
+        between = tuple(str(f) for f in config.get("between") or ())
+        factors = (*between, *(str(f) for f in config.get("factors", ("robot", "kitchen"))))
         levels = {"robot": robots, "kitchen": kitchens}
         if "view" in factors:
             levels["view"] = tuple(str(v) for v in config.get("views") or [config.get("view", "top_down")])

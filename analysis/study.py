@@ -66,6 +66,10 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
             f"see {out / DATA_DIR / 'excluded.csv'} and participants.csv")
     design = StudyDesign.from_config(export.dataset.config)
     within = [f for f in design.factors if f in cells.columns and cells[f].nunique() > 1]
+    between = [f for f in design.between if f in cells.columns and cells[f].nunique() > 1]
+    if len(between) > 1:
+        raise AnalysisInputError(f"study {study_id!r} has {len(between)} between factors ({', '.join(between)}); "
+                                 "the analysis takes one")
     if not within:
         raise AnalysisInputError(f"study {study_id!r} has no within factor with two levels in its cells "
                                  f"(factors {list(design.factors) or 'none'}; see {out / DATA_DIR / 'cells.csv'})")
@@ -74,7 +78,8 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
     options = AnalysisOptions(
         levels=design.levels, strict_levels=False, ratings=ratings, items=design.items, scales=design.scales,
         include=frozenset(include), horizon=design.horizon, seed=seed, plots=plots, lmm=lmm,
-        title=f"Repeated-measures analysis: study {study_id}")
+        title=f"{'Mixed' if between else 'Repeated-measures'} analysis: study {study_id}",
+        between=between[0] if between else None)
     chosen = list(measures) if measures is not None else [*DEFAULT_MEASURES, *(s.column for s in design.scales)]
     result = analyze_long(attach_trial_columns(cells, trials), chosen, within, SUBJECT, out, options,
                           _context(export, trials, study_id, design, within))
