@@ -133,6 +133,11 @@ def test_a_view_between_participants_gets_the_mixed_anova(stored, tmp_path) -> N
     assert (cells.groupby("participant")["view"].nunique() == 1).all(), "one view per participant"
     assert sorted(cells.drop_duplicates("participant")["view"].value_counts().tolist()) == [3, 3]
     assert (cells.groupby("participant").size() == 4).all(), "every robot × kitchen condition in each group"
+    people = pd.read_csv(tmp_path / "data" / "participants.csv")
+    assert (people["complete"] == 1).all(), "complete in their own group's conditions"
+    assert pd.read_csv(tmp_path / "data" / "excluded.csv").empty
+    wide = pd.read_csv(tmp_path / "data" / "wide.csv")
+    assert (wide["complete"] == 1).all() and "ticks__stay__none_3__first_person" in wide.columns
     anova = pd.read_csv(tmp_path / "anova.csv")
     ticks = anova[anova["measure"] == "ticks"]
     assert ticks["effect"].tolist() == ["view", "robot", "view * robot", "kitchen", "view * kitchen",
