@@ -223,7 +223,7 @@ def _wide_rows(participants: Sequence[StoredParticipant], cell_rows: list[dict[s
             continue
         row: dict[str, Any] = {"participant": p.public_id, "order_index": p.order_index}
         present = {design.cell_of(c["robot"], c["kitchen"], c["view"]) for c in cells}
-        row["complete"] = int(all(cond in present for cond in design.conditions))
+        row["complete"] = int(all(cond in present for cond in design.expected_cells(p.condition_order)))
         for cell in cells:
             levels = design.cell_of(cell["robot"], cell["kitchen"], cell["view"])
             for name in values:

@@ -16,11 +16,16 @@ score (:mod:`analysis.scales`), for questionnaires after each trial and at the e
 from __future__ import annotations
 
 import itertools
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
 from analysis.dictionary import NUM, Column, item_column, item_columns
 from analysis.study_design import RatingItem, ScaleSpec, rating_specs
+
+
+CELL_FIELDS = ("robot", "kitchen", "view")
+"""The fields of a cell tuple, in order."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -39,12 +44,15 @@ class Design:
     """Named scales of the questionnaires after each trial (a score per cell)."""
     end_scales: tuple[ScaleSpec, ...] = ()
     """Named scales of the end-of-study questionnaires (a score per participant)."""
+    between: tuple[str, ...] = ()
+    """Factors between participants: a participant is expected in the conditions of their group only."""
 
     @classmethod
     def from_config(cls, config: dict[str, Any]) -> Design:
         robots = tuple(str(r) for r in config.get("robots", ()))
         kitchens = tuple(str(k["name"] if isinstance(k, dict) else k) for k in config.get("kitchens", ()))
-        factors = tuple(str(f) for f in config.get("factors", ("robot", "kitchen")))
+        between = tuple(str(f) for f in config.get("between") or ())
+        factors = (*between, *(str(f) for f in config.get("factors", ("robot", "kitchen"))))
         levels = {"robot": robots, "kitchen": kitchens}
         if "view" in factors:
             levels["view"] = tuple(str(v) for v in config.get("views") or [config.get("view", "top_down")])
@@ -65,13 +73,24 @@ class Design:
         trial_ratings, trial_scales = rating_specs(questionnaires, "after_each_trial")
         end_ratings, end_scales = rating_specs(questionnaires, "end_of_study")
         return cls(robots, kitchens, conditions, tuple(trial_items), tuple(end_items),
-                   trial_ratings + end_ratings, trial_scales, end_scales)
+                   trial_ratings + end_ratings, trial_scales, end_scales, between)
 
     def condition_of(self, condition_id: str) -> tuple[str, str] | None:
         """``(robot, kitchen)`` of a condition id (``robot@kitchen``, or ``robot@kitchen@view`` in a study with
         a view factor), or ``None`` when the id is malformed."""
         robot, sep, rest = condition_id.partition("@")
         return (robot, rest.partition("@")[0]) if sep else None
+
+    def expected_cells(self, condition_order: Sequence[str]) -> tuple[tuple[str, ...], ...]:
+        """The cells a participant assigned ``condition_order`` should have: every condition, or with between
+        factors those of the participant's group (the between levels of their first assigned condition)."""
+        if not self.between or not condition_order:
+            return self.conditions
+        first = condition_order[0].split("@")
+        fields = CELL_FIELDS[:len(self.conditions[0])] if self.conditions else ()
+        group = {fields.index(f): first[fields.index(f)] for f in self.between
+                 if f in fields and fields.index(f) < len(first)}
+        return tuple(c for c in self.conditions if all(c[i] == level for i, level in group.items()))
 
     @property
     def view_is_factor(self) -> bool:

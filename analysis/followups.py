@@ -33,25 +33,34 @@ def simple_effects(df: pd.DataFrame, dv: str, within: Sequence[str], subject: st
     within = list(within)
     rows: list[pd.DataFrame] = []
     for factor in within if len(within) > 1 else []:
-        family = []
-        for label, part in slices(df, within, factor):
-            row = rm_anova(part, dv, [factor], subject).iloc[[0]].copy()
-            row.insert(0, "factor", factor)
-            row.insert(1, "at", label)
-            levels = factor_levels(part, factor)
-            if len(levels) == 2:
-                from analysis.pairwise import paired_difference
-
-                wide = part.pivot_table(index=subject, columns=factor, values=dv, observed=True)[levels]
-                diff = paired_difference(wide[levels[0]].to_numpy(float), wide[levels[1]].to_numpy(float))
-                row = row.assign(level_1=levels[0], level_2=levels[1], **{c: diff[c] for c in TWO_LEVEL_COLUMNS})
-            family.append(row)
-        block = pd.concat(family, ignore_index=True).reindex(columns=SIMPLE_EFFECT_COLUMNS)
-        block["p_holm"] = holm(block["p_read"])
-        rows.append(block)
+        family = [slice_effect(part, dv, factor, subject, label) for label, part in slices(df, within, factor)]
+        rows.append(holm_family(family))
     if not rows:
         return pd.DataFrame(columns=SIMPLE_EFFECT_COLUMNS)
     return pd.concat(rows, ignore_index=True)[SIMPLE_EFFECT_COLUMNS]
+
+
+def slice_effect(part: pd.DataFrame, dv: str, factor: str, subject: str, label: str) -> pd.DataFrame:
+    """The one-way repeated-measures test of ``factor`` on the rows ``part`` (one row, ``at`` = ``label``), with the
+    mean difference, its CI and d_z when the factor has two levels."""
+    row = rm_anova(part, dv, [factor], subject).iloc[[0]].copy()
+    row.insert(0, "factor", factor)
+    row.insert(1, "at", label)
+    levels = factor_levels(part, factor)
+    if len(levels) == 2:
+        from analysis.pairwise import paired_difference
+
+        wide = part.pivot_table(index=subject, columns=factor, values=dv, observed=True)[levels]
+        diff = paired_difference(wide[levels[0]].to_numpy(float), wide[levels[1]].to_numpy(float))
+        row = row.assign(level_1=levels[0], level_2=levels[1], **{c: diff[c] for c in TWO_LEVEL_COLUMNS})
+    return row
+
+
+def holm_family(family: list[pd.DataFrame]) -> pd.DataFrame:
+    """The rows of one family of simple effects with their Holm-adjusted p."""
+    block = pd.concat(family, ignore_index=True).reindex(columns=SIMPLE_EFFECT_COLUMNS)
+    block["p_holm"] = holm(block["p_read"])
+    return block
 
 
 def holm(pvalues: pd.Series) -> pd.Series:

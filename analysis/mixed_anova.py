@@ -33,7 +33,7 @@ import pandas as pd
 from scipy import stats
 
 from analysis.anova import ANOVA_COLUMNS, _sphericity_columns, _untestable, effect_name, effects_of
-from analysis.effect_sizes import partial_eta2_ci
+from analysis.effect_sizes import BOOTSTRAP_RESAMPLES, partial_eta2_ci, percentile_interval
 from analysis.sphericity import Sphericity, covariance_sphericity, effect_contrasts
 
 
@@ -65,19 +65,9 @@ def mixed_anova_table(values: np.ndarray, groups: Sequence[int], n_groups: int, 
     """The ANOVA rows (``ANOVA_COLUMNS``) of participants × cells ``values`` whose between level is ``groups[s]``:
     the between effect, then each within effect followed by its interaction with the between factor."""
     n, n_cells = values.shape
-    x = group_codes(groups, n_groups)
-    intercept, codes = np.eye(n_groups)[:1], np.eye(n_groups)[1:]
     dof = n - n_groups
     total = float(((values - values.mean()) ** 2).sum())
-    mean_contrast = effect_contrasts(levels, ())
-    ss_b, ss_sb, _ = hypothesis_ss(x, values @ mean_contrast, codes)
-    within_parts = []
-    for effect in effects_of(within):
-        contrast = effect_contrasts(levels, effect)
-        z = values @ contrast
-        ss_w, ss_err, error = hypothesis_ss(x, z, intercept)
-        ss_bw = hypothesis_ss(x, z, codes)[0]
-        within_parts.append((effect_name(within, effect), contrast.shape[1], ss_w, ss_bw, ss_err, error))
+    (ss_b, ss_sb), within_parts = _sums(values, groups, n_groups, levels, within)
     error_total = ss_sb + sum(part[4] for part in within_parts)
     spherical = Sphericity(1, math.nan, math.nan, math.nan, math.nan, 1.0, 1.0)
     rows = [_row(between, n_groups - 1, dof, ss_b, ss_sb, total, error_total, spherical)]
@@ -86,6 +76,41 @@ def mixed_anova_table(values: np.ndarray, groups: Sequence[int], n_groups: int, 
         rows.append(_row(name, d, d * dof, ss_w, ss_err, total, error_total, s))
         rows.append(_row(f"{between} * {name}", (n_groups - 1) * d, d * dof, ss_bw, ss_err, total, error_total, s))
     return pd.DataFrame(rows, columns=ANOVA_COLUMNS)
+
+
+def mixed_ges_bootstrap(values: np.ndarray, groups: Sequence[int], n_groups: int, levels: Sequence[int],
+                        within: Sequence[str], rng: np.random.Generator,
+                        resamples: int = BOOTSTRAP_RESAMPLES) -> list[tuple[float, float]]:
+    """Percentile intervals of each effect's η²G (rows in :func:`mixed_anova_table` order): participants drawn with
+    replacement within their group, so every resample keeps the groups' sizes."""
+    labels = np.asarray(groups)
+    members = [np.flatnonzero(labels == g) for g in range(n_groups)]
+    picks = np.concatenate([m[rng.integers(0, len(m), size=(resamples, len(m)))] for m in members], axis=1)
+    resampled = np.concatenate([np.full(len(m), g) for g, m in enumerate(members)]).tolist()
+    samples = []
+    for pick in picks:
+        (ss_b, ss_sb), parts = _sums(values[pick], resampled, n_groups, levels, within)
+        error_total = ss_sb + sum(part[4] for part in parts)
+        ss = [ss_b, *(x for part in parts for x in (part[2], part[3]))]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            samples.append(np.asarray(ss) / (np.asarray(ss) + error_total))
+    return [percentile_interval(column) for column in np.asarray(samples).T]
+
+
+def _sums(values: np.ndarray, groups: Sequence[int], n_groups: int, levels: Sequence[int], within: Sequence[str]
+          ) -> tuple[tuple[float, float], list[tuple[str, int, float, float, float, np.ndarray]]]:
+    """``(SS_between, SS_S/B)`` and, per within effect, ``(name, d, SS_W, SS_B×W, SS_error, error SSCP)``."""
+    x = group_codes(groups, n_groups)
+    intercept, codes = np.eye(n_groups)[:1], np.eye(n_groups)[1:]
+    ss_b, ss_sb, _ = hypothesis_ss(x, values @ effect_contrasts(levels, ()), codes)
+    parts = []
+    for effect in effects_of(within):
+        contrast = effect_contrasts(levels, effect)
+        z = values @ contrast
+        ss_w, ss_err, error = hypothesis_ss(x, z, intercept)
+        parts.append((effect_name(within, effect), contrast.shape[1], ss_w, hypothesis_ss(x, z, codes)[0], ss_err,
+                      error))
+    return (ss_b, ss_sb), parts
 
 
 def _row(name: str, df1: int, df2: int, ss: float, ss_err: float, total: float, error_total: float,

@@ -33,3 +33,8 @@ class AnalysisOptions:
     seed: int = 0
     """Seed of the bootstrap of η²G's interval and of the plots' jitter."""
     title: str = "Repeated-measures analysis"
+    lmm: bool = False
+    """Also fit the linear mixed model of every measure (:mod:`analysis.lmm`)."""
+    between: str | None = None
+    """A factor between participants (one level per participant): the analysis is the mixed ANOVA
+    (:mod:`analysis.mixed_run`)."""

@@ -63,6 +63,9 @@ def pilot_table(source: Engine | str, study_id: str, out: Path,
         raise AnalysisInputError(f"study {study_id!r} has no pilot participant with a finished main trial; run "
                                  f"steakhouse pilot first")
     design = StudyDesign.from_config(export.dataset.config)
+    if design.between:
+        raise AnalysisInputError(f"study {study_id!r} has a factor between participants ({', '.join(design.between)}"
+                                 "); the power simulation covers within-participant designs only")
     within = [f for f in design.factors if f in cells.columns and cells[f].nunique() > 1]
     if not within:
         raise AnalysisInputError(f"study {study_id!r}: no within factor with two levels in the pilot's cells")

@@ -42,13 +42,24 @@ def method_section(result: AnalysisResult, options: AnalysisOptions) -> list[Blo
     within = first.within
     levels = "; ".join(f"{f}: {', '.join(str(v) for v in first.descriptives[f].drop_duplicates())}"
                        for f in within if f in first.descriptives) or ", ".join(within)
+    design = (Paragraph(
+        f"Design: {within[0]} between participants × {' × '.join(within[1:])} within participants (participant "
+        f"column: {first.subject}); levels in the study's order ({levels}). Each measure was analysed with a mixed "
+        f"(split-plot) ANOVA: {within[0]} against the participants-within-groups error term, every within effect "
+        f"and its interaction with {within[0]} against the participant × effect error term within groups (type III "
+        "sums of squares, as afex; sphericity of the within part from the pooled within-group covariance). "
+        f"Follow-ups: {within[0]} at each within cell (one-way between-participants ANOVA), each within factor "
+        f"within each group of {within[0]}; Holm within each family. Participants without a value in every cell of "
+        "a measure were left out of that measure (complete cases).")
+        if options.between else Paragraph(
+        f"Design: {' × '.join(within)}, all within participants (participant column: {first.subject}); "
+        f"levels in the study's order ({levels}). Each measure was analysed with a repeated-measures "
+        "ANOVA of every main effect and interaction, each tested against its own participant × effect "
+        "error term (MSE in the table); participants without a value in every cell of a measure were "
+        "left out of that measure (complete cases)."))
     return [
         Heading(2, "Method"),
-        Paragraph(f"Design: {' × '.join(within)}, all within participants (participant column: {first.subject}); "
-                  f"levels in the study's order ({levels}). Each measure was analysed with a repeated-measures "
-                  "ANOVA of every main effect and interaction, each tested against its own participant × effect "
-                  "error term (MSE in the table); participants without a value in every cell of a measure were "
-                  "left out of that measure (complete cases)."),
+        design,
         Paragraph("Which p to read: an effect with one degree of freedom is spherical, so its uncorrected test is "
                   "read. For an effect with more, Mauchly's test is reported but does not decide: the "
                   f"Greenhouse–Geisser corrected test is read when ε_GG ≤ {GG_THRESHOLD}, the Huynh–Feldt "

@@ -64,6 +64,8 @@ class AnalysisResult:
     files: tuple[Path, ...]
     checked_rules: tuple[str, ...] = ()
     """Exclusion rules whose column the table has (:mod:`analysis.exclusions`)."""
+    formulas: tuple[str, ...] = ()
+    """The linear mixed models' formulas (``--model lmm``), as printed."""
 
     @property
     def anova(self) -> pd.DataFrame:

@@ -1,6 +1,8 @@
 """``analyze_long``: the whole statistics pipeline for a long table, written to one folder.
 
-The table has one row per participant (``subject``) and cell of the within design (one to three factors).
+The table has one row per participant (``subject``) and cell of the within design (one to three factors); with
+``options.between`` a column names each participant's group and the analysis is the mixed ANOVA
+(:mod:`analysis.mixed_run`).
 In order: levels put in the study's order (:mod:`analysis.levels`), questionnaire scales scored
 (:mod:`analysis.scales`), rows excluded by rule set aside with their reasons (:mod:`analysis.exclusions`), the
 censoring of ``ticks`` and the analysis of ``finished`` (:mod:`analysis.censoring`), scale reliability, then each
@@ -20,6 +22,8 @@ Files written into ``out_dir``::
     censoring.csv       cell, n, reached_horizon, share           (when the table has ``finished``)
     finished.csv        factor, at, test, n, statistic, df, p, note (when the table has ``finished``)
     reliability.csv     scale, condition, n, items, alpha, ci95_low, ci95_high, note (when scales are declared)
+    lmm.csv             the linear mixed model per measure (``options.lmm``; analysis.models.MODEL_COLUMNS)
+    count_model.csv     the Poisson GEE of the interrupts (when they are analysed; analysis.models)
     plots/<measure>_interaction.png|.svg, plots/<measure>_paired.png|.svg
     report.md, report.html
 
@@ -45,6 +49,8 @@ from analysis.exclusions import RULES, apply_exclusions, missing_reasons
 from analysis.levels import apply_level_order
 from analysis.measure_info import measure_info
 from analysis.measure_run import analyze_measure, unreadable_measure
+from analysis.mixed_run import analyze_mixed_measure
+from analysis.models import COUNT_MEASURES, MODEL_COLUMNS, count_tests, lmm_tests, model_sentence
 from analysis.normality import NORMALITY_COLUMNS
 from analysis.options import AnalysisOptions
 from analysis.order_check import ORDER_COLUMNS
@@ -68,7 +74,10 @@ def analyze_long(df: pd.DataFrame, measures: Sequence[str], within: Sequence[str
     """
     options = options or AnalysisOptions()
     within = _check_arguments(df, measures, within, subject, options)
-    table = apply_level_order(df, within, options.levels, options.strict_levels)
+    ordered = (*within, options.between) if options.between else within
+    table = apply_level_order(df, ordered, options.levels, options.strict_levels)
+    if options.between:
+        check_between(table, options.between, subject)
     table = score_scales(table, options.items, options.scales) if options.scales else table
     unreadable = {m: non_numeric_values(table, m, within, subject) for m in measures}
     for measure in measures:
@@ -81,17 +90,22 @@ def analyze_long(df: pd.DataFrame, measures: Sequence[str], within: Sequence[str
     out.mkdir(parents=True, exist_ok=True)
     results: list[MeasureResult] = []
     files: list[Path] = []
+    model_rows: dict[str, list[dict[str, object]]] = {"lmm.csv": [], "count_model.csv": []}
     for measure, stem in zip(measures, _file_stems(measures), strict=True):
         if unreadable[measure]:
             results.append(unreadable_measure(kept, measure, within, subject, unreadable[measure]))
             continue
         info = measure_info(measure, kept[measure], options.horizon, options.ratings)
-        result, clean = analyze_measure(kept, measure, within, subject, info, options, missing_reasons(exclusions),
-                                        censoring)
-        if result.testable and options.plots:
-            result, written = _plots(result, clean, out, stem, options.seed)
+        if options.between:
+            result, clean = analyze_mixed_measure(kept, measure, within, options.between, subject, info, options,
+                                                  missing_reasons(exclusions), censoring)
+        else:
+            result, clean = analyze_measure(kept, measure, within, subject, info, options,
+                                            missing_reasons(exclusions), censoring)
+        if result.testable and options.plots and len(result.within) <= MAX_FACTORS:
+            result, written = _plots(result, clean, out, stem, options.seed, mixed=bool(options.between))
             files += written
-        results.append(result)
+        results.append(_with_models(result, kept, measure, within, subject, options, model_rows))
     tables = {
         **{f"{name}.csv": _stack(results, name) for name in PER_MEASURE},
         "exclusions.csv": exclusions,
@@ -103,6 +117,7 @@ def analyze_long(df: pd.DataFrame, measures: Sequence[str], within: Sequence[str
     if censoring is not None:
         tables["censoring.csv"] = censoring
         tables["finished.csv"] = finished_tests(kept, within, subject, options.finished)
+    tables.update({name: pd.DataFrame(rows, columns=MODEL_COLUMNS) for name, rows in model_rows.items() if rows})
     if options.scales:
         tables["reliability.csv"] = scale_reliability(kept, options.items, options.scales, within)
     for name, frame in tables.items():
@@ -110,18 +125,40 @@ def analyze_long(df: pd.DataFrame, measures: Sequence[str], within: Sequence[str
         files.append(out / name)
     warnings = tuple(f"{r.measure}: {note}" for r in results for note in r.notes if "not testable" in note)
     checked = tuple(rule.name for rule in RULES if rule.column in df.columns)
-    analysis = AnalysisResult(tuple(results), tables, warnings, out, (), checked)
+    formulas = tuple(dict.fromkeys(str(r["formula"]) for r in model_rows["lmm.csv"]))
+    analysis = AnalysisResult(tuple(results), tables, warnings, out, (), checked, formulas)
     files += write_report(analysis, out, options, context)
     return replace(analysis, files=tuple(files))
 
 
-def _plots(result: MeasureResult, clean: pd.DataFrame, out: Path, stem: str, seed: int
+def _with_models(result: MeasureResult, kept: pd.DataFrame, measure: str, within: Sequence[str], subject: str,
+                 options: AnalysisOptions, model_rows: dict[str, list[dict[str, object]]]) -> MeasureResult:
+    """``result`` with the models beside the ANOVA (:mod:`analysis.models`) in its notes; their rows added to
+    ``model_rows``."""
+    if not pd.api.types.is_numeric_dtype(kept[measure]):
+        return result
+    factors = [options.between, *within] if options.between else list(within)
+    notes = list(result.notes)
+    for name, wanted, fit in (("lmm.csv", options.lmm, lmm_tests),
+                              ("count_model.csv", measure in COUNT_MEASURES, count_tests)):
+        if not wanted:
+            continue
+        rows = fit(kept, measure, factors, subject)
+        model_rows[name] += rows
+        frame = pd.DataFrame(rows, columns=MODEL_COLUMNS)
+        notes.append(f"{frame['model'].iloc[0]}, {frame['formula'].iloc[0]} ({name}): "
+                     + "; ".join(model_sentence(r) for _, r in frame.iterrows()))
+    return replace(result, notes=tuple(notes))
+
+
+def _plots(result: MeasureResult, clean: pd.DataFrame, out: Path, stem: str, seed: int, mixed: bool = False
            ) -> tuple[MeasureResult, list[Path]]:
     plot_dir = out / "plots"
     paths, clipped = interaction_plot(result.descriptives, result.info, result.within,
                                       plot_dir / f"{stem}_interaction")
     rng = np.random.default_rng([seed, zlib.crc32(result.measure.encode()), 1])
-    paths += paired_plot(clean, result.info, result.within, result.subject, plot_dir / f"{stem}_paired", rng)
+    if not mixed:
+        paths += paired_plot(clean, result.info, result.within, result.subject, plot_dir / f"{stem}_paired", rng)
     notes = result.notes
     if clipped:
         notes += (f"error bars of the interaction plot are cut at the natural bounds of {result.measure} "
@@ -141,8 +178,25 @@ def _check_arguments(df: pd.DataFrame, measures: Sequence[str], within: Sequence
         raise AnalysisInputError(f"the analysis takes one to {MAX_FACTORS} distinct within factors, got "
                                  f"{list(within)}")
     scale_columns = {s.column for s in options.scales}
-    require_columns(df, [*within, subject, *(m for m in measures if m not in scale_columns)])
+    between = [options.between] if options.between else []
+    require_columns(df, [*within, subject, *between, *(m for m in measures if m not in scale_columns)])
+    if options.between in (*within, subject):
+        raise AnalysisInputError(f"the between factor {options.between!r} is also a within factor or the subject")
     return tuple(within)
+
+
+def check_between(table: pd.DataFrame, between: str, subject: str) -> None:
+    """A between factor has a level in every row, one level per participant, and at least two levels."""
+    empty = int(table[between].isna().sum())
+    if empty:
+        raise AnalysisInputError(f"column {between!r} has {empty} empty value(s); every row needs a group")
+    per_subject = table.groupby(subject, observed=True)[between].nunique()
+    if (per_subject > 1).any():
+        who = per_subject[per_subject > 1].index[0]
+        raise AnalysisInputError(f"subject {who} has more than one level of the between factor {between!r}; "
+                                 "a between factor has one level per participant")
+    if table[between].nunique() < 2:
+        raise AnalysisInputError(f"the between factor {between!r} has fewer than two levels")
 
 
 def _file_stems(measures: Sequence[str]) -> list[str]:

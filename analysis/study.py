@@ -48,7 +48,8 @@ class StudyAnalysis:
 
 
 def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, measures: Sequence[str] | None = None,
-                  include: Collection[str] = (), seed: int = 0, plots: bool = True) -> StudyAnalysis:
+                  include: Collection[str] = (), seed: int = 0, plots: bool = True, lmm: bool = False
+                  ) -> StudyAnalysis:
     """Export ``study_id`` into ``<out_dir>/data`` and analyse ``measures`` (default: :data:`DEFAULT_MEASURES`
     and the study's scales) into ``out_dir``; ``include`` names exclusion rules whose rows are kept (with
     ``invalid`` the export itself keeps invalid trials in ``cells.csv``: ``export_study(include_invalid=True)``;
@@ -66,6 +67,10 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
             f"see {out / DATA_DIR / 'excluded.csv'} and participants.csv")
     design = StudyDesign.from_config(export.dataset.config)
     within = [f for f in design.factors if f in cells.columns and cells[f].nunique() > 1]
+    between = [f for f in design.between if f in cells.columns and cells[f].nunique() > 1]
+    if len(between) > 1:
+        raise AnalysisInputError(f"study {study_id!r} has {len(between)} between factors ({', '.join(between)}); "
+                                 "the analysis takes one")
     if not within:
         raise AnalysisInputError(f"study {study_id!r} has no within factor with two levels in its cells "
                                  f"(factors {list(design.factors) or 'none'}; see {out / DATA_DIR / 'cells.csv'})")
@@ -73,8 +78,9 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
     ratings.update({s.column: _scale_range(s.items, ratings) for s in design.scales})
     options = AnalysisOptions(
         levels=design.levels, strict_levels=False, ratings=ratings, items=design.items, scales=design.scales,
-        include=frozenset(include), horizon=design.horizon, seed=seed, plots=plots,
-        title=f"Repeated-measures analysis: study {study_id}")
+        include=frozenset(include), horizon=design.horizon, seed=seed, plots=plots, lmm=lmm,
+        title=f"{'Mixed' if between else 'Repeated-measures'} analysis: study {study_id}",
+        between=between[0] if between else None)
     chosen = list(measures) if measures is not None else [*DEFAULT_MEASURES, *(s.column for s in design.scales)]
     result = analyze_long(attach_trial_columns(cells, trials), chosen, within, SUBJECT, out, options,
                           _context(export, trials, study_id, design, within))

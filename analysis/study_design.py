@@ -54,17 +54,21 @@ class StudyDesign:
     horizon: int | None = None
     items: tuple[RatingItem, ...] = ()
     scales: tuple[ScaleSpec, ...] = field(default=())
+    between: tuple[str, ...] = ()
+    """Factors between participants (``between``), with their levels in ``levels`` too."""
 
     @classmethod
     def from_config(cls, config: Mapping[str, Any]) -> StudyDesign:
         declared = tuple(str(f) for f in config.get("factors") or DEFAULT_FACTORS)
-        levels = {f: factor_levels(config, f) for f in declared}
+        between = tuple(str(f) for f in config.get("between") or ())
+        levels = {f: factor_levels(config, f) for f in (*declared, *between)}
         factors = tuple(f for f in declared if len(levels[f]) > 1)
         world = config.get("world") or {}
         horizon = world.get("horizon") if isinstance(world, Mapping) else None
         items, scales = rating_specs(config.get("questionnaires") or (), "after_each_trial")
-        return cls(factors, {f: levels[f] for f in factors}, tuple(f for f in declared if f not in factors),
-                   int(horizon) if horizon is not None else None, items, scales)
+        return cls(factors, {f: levels[f] for f in (*factors, *between)},
+                   tuple(f for f in declared if f not in factors), int(horizon) if horizon is not None else None,
+                   items, scales, between)
 
     @property
     def rating_columns(self) -> tuple[str, ...]:

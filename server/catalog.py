@@ -33,6 +33,11 @@ class LoadedStudy:
         return self.layouts[kitchen]
 
     @property
+    def order_groups(self) -> tuple[int, ...]:
+        """The between-participants group of each of ``orders`` (``server/study/groups.py``)."""
+        return tuple(self.study.order_groups())
+
+    @property
     def planner_config(self) -> PlannerConfig:
         """The robot's model of the person this study shows: its FOV angle and KB delay (docs/domain.md §5);
         the kitchen's numbers reach the robot as :attr:`rules`."""

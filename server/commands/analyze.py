@@ -48,6 +48,12 @@ def register(subparsers: Any) -> None:
                         "interrupts, interrupts_per_selection, ticks, robot_in_fov_pct and the study's scales)")
     p.add_argument("--within", metavar="A[,B[,C]]", help="one to three within factors, e.g. robot,kitchen")
     p.add_argument("--subject", metavar="COL", help="subject (participant) id column")
+    p.add_argument("--between", metavar="COL",
+                   help="with --csv: a factor between participants (one level each): mixed (split-plot) ANOVA")
+    p.add_argument("--model", choices=("anova", "lmm"), default="anova",
+                   help="anova (default): the (mixed) ANOVA on complete cases; lmm: also a linear mixed model "
+                        "(statsmodels, random intercept per participant) on every row, for unbalanced or "
+                        "incomplete data, its formula printed")
     p.add_argument("--out", metavar="DIR", type=Path, help="output folder (created if needed)")
     p.add_argument("--levels", metavar="FACTOR=A,B,...", action="append", default=[],
                    help="with --csv: the order of a factor's levels (repeat per factor; default: order of first "
@@ -77,6 +83,8 @@ def handle(args: argparse.Namespace) -> int:
         raise UsageError("--database-url goes with --study")
     if args.include_pilot:
         raise UsageError("--include-pilot goes with --study")
+    if args.between is not None and not args.between.strip():
+        raise UsageError("--between needs a column name")
     missing = [flag for flag in ("dv", "within", "subject", "out") if getattr(args, flag) is None]
     if missing:
         raise UsageError(f"--csv needs {', '.join('--' + m for m in missing)}")
@@ -93,7 +101,9 @@ def handle(args: argparse.Namespace) -> int:
 
     try:
         options = AnalysisOptions(levels=parse_level_option(args.levels), ratings=_ratings(args.ratings),
-                                  include=include, seed=args.seed, plots=not args.no_plots)
+                                  include=include, seed=args.seed, plots=not args.no_plots,
+                                  between=args.between.strip() if args.between else None,
+                                  lmm=args.model == "lmm")
         result = analyze_long(df, measures, within, args.subject, args.out, options)
     except AnalysisInputError as exc:
         raise UsageError(f"{args.csv}: {exc}") from exc
@@ -103,7 +113,7 @@ def handle(args: argparse.Namespace) -> int:
 
 def _handle_study(args: argparse.Namespace, include: frozenset[str]) -> int:
     """Export the stored study and analyse its cells."""
-    given = [flag for flag in ("within", "subject", "levels", "ratings") if getattr(args, flag)]
+    given = [flag for flag in ("within", "subject", "levels", "ratings", "between") if getattr(args, flag)]
     if given:
         raise UsageError(f"--study takes the design from the study; drop {', '.join('--' + g for g in given)}")
     if args.out is None:
@@ -116,7 +126,7 @@ def _handle_study(args: argparse.Namespace, include: frozenset[str]) -> int:
     measures = _names(args.dv, "--dv") if args.dv is not None else None
     try:
         done = analyze_study(database_url(args.database_url), args.study, args.out, measures, include, args.seed,
-                             plots=not args.no_plots)
+                             plots=not args.no_plots, lmm=args.model == "lmm")
     except AnalysisInputError as exc:
         raise UsageError(f"study {args.study}: {exc}") from exc
     for row in done.export.dataset.excluded.itertuples():
@@ -128,6 +138,8 @@ def _handle_study(args: argparse.Namespace, include: frozenset[str]) -> int:
 def _print(result: Any, extra_files: int = 0) -> None:
     for m in result.measures:
         print(f"{m.measure}: n = {m.n_used} of {m.n_total} subjects, {len(m.excluded)} excluded")
+    for formula in dict.fromkeys(getattr(result, "formulas", ())):
+        print(f"linear mixed model: {formula}")
     for warning in result.warnings:
         print(f"warning: {warning}", file=sys.stderr)
     print(f"wrote {len(result.files) + extra_files} files to {result.out_dir}")

@@ -44,7 +44,9 @@ def validate_files(args: argparse.Namespace) -> int:
         orders = len(study.condition_orders())
         print(
             f"{file}: ok: {study.id}: {len(study.conditions)} conditions ({conditions}); "
-            f"{orders} condition order{'s' if orders != 1 else ''} ({scheme}); "
+            f"{orders} condition order{'s' if orders != 1 else ''} ({scheme}"
+            + (f", in {len(set(study.order_groups()))} groups of {' × '.join(study.between)} between participants"
+               if study.between else "") + "); "
             f"view {' / '.join(study.view_levels)}; config {study.config_hash()[:12]}"
         )
         for warning in study_warnings(study):

@@ -44,6 +44,7 @@ from server.flow.plan import build_plan, plan_from_json, plan_to_json
 from server.flow.progress import IllegalTransition, Move, Phase, Progress
 from server.store import activity, assignment, participants, trials
 from server.store.engine import Store
+from server.store.group_assignment import least_filled_grouped
 from server.store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, QuizAttemptRow
 from server.study import Study
 from server.study.device import DeviceInfo, device_problems
@@ -133,7 +134,7 @@ def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recrui
     token = secrets.token_urlsafe(32)
     counts = assignment.order_counts(session, study.id, len(loaded.orders), utcnow(),
                                      study.assignment.in_progress_window_minutes, pilot=pilot)
-    index = assignment.least_filled(counts)
+    index = least_filled_grouped(counts, loaded.order_groups)
     order = list(loaded.orders[index])
     plan = build_plan(study, order)
     row = participants.create(

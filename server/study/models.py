@@ -20,6 +20,7 @@ from server.study.base import (Loc, NotEmpty, RobotName, Slug, StudyModel, dupli
                                robot_problem)
 from server.study.conditions import Condition, Factor, cross_conditions
 from server.study.counterbalance import MAX_FULL_CONDITIONS, condition_orders
+from server.study.groups import between_problems, groups_of, scheme_problems
 from server.study.device import DeviceRequirements
 from server.study.kitchens import Kitchen, KitchenEntry, base_dir_of, entry_name, resolve_kitchens
 from server.study.questionnaire import Questionnaire
@@ -51,6 +52,10 @@ class Study(StudyModel):
     views: Annotated[tuple[ViewName, ...], NotEmpty] | None = None
     """Levels of the view factor, e.g. ``[top_down, first_person]`` with ``view`` in ``factors``. The stored
     study always has ``views`` (from ``view`` when only that was written)."""
+    between: tuple[Factor, ...] = ()
+    """Factors between participants (``robot``, ``kitchen``, ``view``), e.g. ``[view]`` with ``views: [top_down,
+    first_person]``: each participant plays one level (one group per combination of levels), groups are filled in
+    balance, and the within ``factors`` are counterbalanced inside each group (``server/study/groups.py``)."""
     factors: Annotated[tuple[Factor, ...], NotEmpty] = Field(default=("robot", "kitchen"), validate_default=True)
     """Within-subject factors (``robot``, ``kitchen``, ``view``), crossed into the conditions; the first varies
     slowest in the condition list. A dimension left out must have a single level (e.g. one kitchen with
@@ -120,13 +125,25 @@ class Study(StudyModel):
         raise_problems(problems, views)
         return views
 
+    @field_validator("between", mode="before")
+    @classmethod
+    def _check_between(cls, between: Any) -> Any:
+        if isinstance(between, (list, tuple)) and "fov_angle" in between:
+            raise_problems([((list(between).index("fov_angle"),), "fov_angle as a between factor is not supported "
+                             "yet: the field of view is one per study (world.fov_angle); between factors may be "
+                             "robot, kitchen or view")], between)
+        return between
+
     @field_validator("factors")
     @classmethod
     def _check_factors(cls, factors: tuple[Factor, ...], info: ValidationInfo) -> tuple[Factor, ...]:
-        problems = duplicate_problems(factors, "factor")
+        between = tuple(info.data.get("between") or ())
+        problems = duplicate_problems(factors, "factor") + between_problems(factors, between)
         for factor, field in _FACTOR_LEVELS.items():
             levels = _view_levels(info.data) if factor == "view" else _levels(info, field)
-            if factor not in factors and levels is not None and len(levels) != 1:
+            if factor in between and levels is not None and len(levels) < 2:
+                problems.append(((), f"between factor {factor!r} needs at least two {field}"))
+            if factor not in factors and factor not in between and levels is not None and len(levels) != 1:
                 problems.append(
                     ((), f"{field} has {len(levels)} entries but {factor!r} is not a factor; "
                          f"add it to factors or keep one entry")
@@ -142,10 +159,11 @@ class Study(StudyModel):
                 field in data for field in ("view", "views")):
             return value
         ids = [c.id for c in _conditions(data)]
-        problems: list[tuple[Loc, str]] = []
-        if value.scheme == "full" and len(ids) > MAX_FULL_CONDITIONS:
+        problems: list[tuple[Loc, str]] = list(scheme_problems(value.scheme, tuple(data.get("between") or ())))
+        per_group = len(ids) // len(groups_of(ids, data))
+        if value.scheme == "full" and per_group > MAX_FULL_CONDITIONS:
             problems.append(
-                (("scheme",), f"full counterbalancing of {len(ids)} conditions gives too many orders; "
+                (("scheme",), f"full counterbalancing of {per_group} conditions gives too many orders; "
                               "use latin_square")
             )
         if value.scheme == "fixed" and value.order is not None:
@@ -176,12 +194,24 @@ class Study(StudyModel):
     def conditions(self) -> tuple[Condition, ...]:
         """Every robot × kitchen (× view) condition, in study order (first factor slowest)."""
         return _conditions({"robots": self.robots, "kitchens": self.kitchens, "view": self.view,
-                            "views": self.views, "factors": self.factors})
+                            "views": self.views, "factors": self.factors, "between": self.between})
 
     def condition_orders(self) -> list[tuple[str, ...]]:
-        """The condition orders participants are assigned to (lists of condition ids)."""
+        """The condition orders participants are assigned to (lists of condition ids); with between factors,
+        each group's orders in turn (see :meth:`order_groups`)."""
         scheme = self.counterbalancing
-        return condition_orders([c.id for c in self.conditions], scheme.scheme, scheme.order)
+        return [order for group in self._groups() for order in condition_orders(group, scheme.scheme, scheme.order)]
+
+    def order_groups(self) -> list[int]:
+        """The between-participants group of each order of :meth:`condition_orders` (all 0 without one)."""
+        scheme = self.counterbalancing
+        return [g for g, group in enumerate(self._groups())
+                for _ in condition_orders(group, scheme.scheme, scheme.order)]
+
+    def _groups(self) -> list[list[str]]:
+        return groups_of([c.id for c in self.conditions], {"between": self.between, "robots": self.robots,
+                                                           "kitchens": self.kitchens, "view": self.view,
+                                                           "views": self.views})
 
     def practice_view(self, practice: Practice) -> ViewName:
         """The view of a practice round: its own ``view``, else the study's first view level."""
@@ -203,6 +233,8 @@ class Study(StudyModel):
                      "practice": {"__all__": {"kitchen": {"path"}}}},
         )
         data["views"] = list(self.view_levels)
+        if not data["between"]:
+            del data["between"]  # studies without between factors keep the hash they had before the field
         return json.dumps(data, sort_keys=True, separators=(",", ":"), ensure_ascii=False)
 
     def config_hash(self) -> str:
@@ -237,5 +269,5 @@ def _levels(info: ValidationInfo, field: str) -> Any:
 def _conditions(data: dict[str, Any]) -> tuple[Condition, ...]:
     kitchens = [k if isinstance(k, str) else k.name for k in data["kitchens"]]
     levels: dict[Factor, Sequence[str]] = {"robot": data["robots"], "kitchen": kitchens, "view": _view_levels(data)}
-    return cross_conditions(levels, data["factors"])
+    return cross_conditions(levels, [*(data.get("between") or ()), *data["factors"]])
 

@@ -1,7 +1,8 @@
 """``steakhouse analyze --study`` on studies stored through the server's own store and flow functions (SQLite and
 PostgreSQL): a measure that does not vary no longer stops the analysis (issue 15's ``KeyError: 'F'``), a
 one-factor study with three robots is analysed in the study's order with sphericity and pairwise comparisons, a
-robot × kitchen × view study gets its three-factor ANOVA, and the report opens with data quality."""
+robot × kitchen × view study gets its three-factor ANOVA, a study with the view between participants gets the
+mixed ANOVA, and the report opens with data quality."""
 
 from __future__ import annotations
 
@@ -33,6 +34,8 @@ def stored(module_db_url, tmp_path_factory):
             robots=list(THREE_ROBOTS), kitchens=["none_3"], factors=["robot"], practice=[]))),
         "views": load_one(write_study(folder, "views", **study_overrides(
             views=["top_down", "first_person"], factors=["robot", "kitchen", "view"], practice=[]))),
+        "groups": load_one(write_study(folder, "groups", **study_overrides(
+            views=["top_down", "first_person"], between=["view"], factors=["robot", "kitchen"], practice=[]))),
     }
     for loaded in studies.values():
         with store.transaction() as session:
@@ -46,6 +49,9 @@ def stored(module_db_url, tmp_path_factory):
     for n in range(3):
         play_participant(store, studies["views"], join(store, studies["views"], f"v{n}"),
                          Participant(seed=20 + n, interrupt_rate=0.05))
+    for n in range(6):
+        play_participant(store, studies["groups"], join(store, studies["groups"], f"g{n}"),
+                         Participant(seed=30 + n, interrupt_rate=0.05))
     store.dispose()
     return module_db_url
 
@@ -119,3 +125,22 @@ def test_cells_carry_their_trials_validity_when_the_export_records_it() -> None:
     joined = attach_trial_columns(cells, trials)
     assert joined["invalid_reason"].tolist()[1] == "missed 20%" and joined["missed_decisions_pct"].tolist() == [0, 20]
     assert attach_trial_columns(cells, trials.drop(columns=["invalid_reason", "missed_decisions_pct"])).equals(cells)
+
+
+def test_a_view_between_participants_gets_the_mixed_anova(stored, tmp_path) -> None:
+    assert analyze(stored, "groups", tmp_path, "--dv", "ticks,kb_gap_mean") == 0
+    cells = pd.read_csv(tmp_path / "data" / "cells.csv")
+    assert (cells.groupby("participant")["view"].nunique() == 1).all(), "one view per participant"
+    assert sorted(cells.drop_duplicates("participant")["view"].value_counts().tolist()) == [3, 3]
+    assert (cells.groupby("participant").size() == 4).all(), "every robot × kitchen condition in each group"
+    people = pd.read_csv(tmp_path / "data" / "participants.csv")
+    assert (people["complete"] == 1).all(), "complete in their own group's conditions"
+    assert pd.read_csv(tmp_path / "data" / "excluded.csv").empty
+    wide = pd.read_csv(tmp_path / "data" / "wide.csv")
+    assert (wide["complete"] == 1).all() and "ticks__stay__none_3__first_person" in wide.columns
+    anova = pd.read_csv(tmp_path / "anova.csv")
+    ticks = anova[anova["measure"] == "ticks"]
+    assert ticks["effect"].tolist() == ["view", "robot", "view * robot", "kitchen", "view * kitchen",
+                                        "robot * kitchen", "view * robot * kitchen"]
+    assert ticks.loc[ticks["effect"] == "view", "df2"].tolist() == [4], "6 participants in 2 groups"
+    assert "mixed (split-plot) ANOVA" in (tmp_path / "report.md").read_text()

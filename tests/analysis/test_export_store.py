@@ -72,7 +72,7 @@ def test_the_command_says_what_it_wrote(stored, tmp_path, capsys) -> None:
     assert main(["export", "--study", "two_by_two", "--out", str(tmp_path), "--database-url", url]) == 0
     out = capsys.readouterr().out
     assert "study two_by_two: 8 participants, 30 trial attempts, 19 cells" in out
-    assert "4 participants listed in excluded.csv" in out and f"wrote 9 files to {tmp_path}" in out
+    assert "4 participants listed in excluded.csv" in out and f"wrote 10 files to {tmp_path}" in out  # 7 CSVs, wide.sav, the dictionary twice
 
 
 def test_every_file_and_every_column_is_in_the_data_dictionary(exported) -> None:

@@ -103,3 +103,16 @@ def test_the_textbook_split_plot_computation_for_three_groups_and_two_within_fac
     assert 0.5 <= table.loc["robot", "eps_gg"] <= 1 and table.loc["robot", "eps_gg"] == table.loc["view * robot",
                                                                                                   "eps_gg"]
     assert np.isnan(table.loc["kitchen", "mauchly_W"]), "one df: spherical"
+
+
+def test_the_eta2g_interval_resamples_within_groups_and_holds_the_estimate() -> None:
+    from analysis.mixed_anova import mixed_ges_bootstrap
+
+    df = pg.read_dataset("mixed_anova")
+    values, groups, n_groups, levels = wide_of(df, "Scores", "Group", ["Time"], "Subject")
+    table = mixed_anova_table(values, groups, n_groups, levels, ["Time"], "Group")
+    first = mixed_ges_bootstrap(values, groups, n_groups, levels, ["Time"], np.random.default_rng(1), 400)
+    again = mixed_ges_bootstrap(values, groups, n_groups, levels, ["Time"], np.random.default_rng(1), 400)
+    assert first == again, "same seed, same interval"
+    for (low, high), ges in zip(first, table["ges"], strict=True):
+        assert 0 <= low <= ges <= high <= 1

@@ -137,3 +137,11 @@ def test_a_chosen_effect_size_sets_that_effects_generalized_eta_squared_and_noth
     for bad in ("eta2g=1.5", "d=0.3", "eta2g=x"):
         with pytest.raises(Exception, match="--effect"):
             EffectSize.parse(bad)
+
+
+def test_a_malformed_effect_size_is_a_usage_error(tmp_path, capsys) -> None:
+    from server.cli import main
+
+    assert main(["power", "--study", "s", "--n", "8,12", "--out", str(tmp_path), "--effect", "d=0.5"]) == 2
+    assert "--effect 'd=0.5': expected eta2g=VALUE" in capsys.readouterr().err
+    assert not any(tmp_path.iterdir()), "nothing written"

@@ -34,6 +34,7 @@ HEADERS = {
     "normality.csv": ["measure", "n_residuals", "W", "p", "note"],
     "order.csv": ["measure", "n", "positions", "slope", "se", "z", "p", "order_effect", "carryover_chi2",
                   "carryover_df", "carryover_p", "sentence", "note"],
+    "count_model.csv": ["measure", "model", "formula", "term", "chi2", "df", "p", "n_obs", "n_subjects", "note"],
 }
 PLOTS = [f"plots/{m}_{kind}.{ext}" for m in ("ticks", "interrupts") for kind in ("interaction", "paired")
          for ext in ("png", "svg")]

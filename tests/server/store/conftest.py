@@ -1,8 +1,9 @@
-"""A migrated store and a loaded two-condition study for the store tests."""
+"""A migrated store, a loaded two-condition study, and joins from many threads at once, for the store tests."""
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+import threading
+from collections.abc import Callable, Iterator
 
 import pytest
 
@@ -28,3 +29,30 @@ def loaded(study_file, store: Store) -> LoadedStudy:
     with store.transaction() as session:
         sync_study(session, loaded.study)
     return loaded
+
+
+@pytest.fixture
+def join_at_once(store: Store) -> Callable[[LoadedStudy, int], list[int]]:
+    """``join_at_once(loaded, n)``: n participants join ``loaded`` from n threads at once; their order indexes
+    (fails the test if any join raised)."""
+    from server.flow import service
+
+    def run(loaded: LoadedStudy, n: int) -> list[int]:
+        results: list[int] = []
+        failures: list[BaseException] = []
+
+        def join() -> None:
+            try:
+                results.append(service.join(store, loaded, {}, False).assignment.order_index)
+            except BaseException as exc:  # noqa: BLE001 - collected for the assertion
+                failures.append(exc)
+
+        threads = [threading.Thread(target=join) for _ in range(n)]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+        assert failures == []
+        return results
+
+    return run

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import threading
 from collections import Counter
 from datetime import timedelta
 
@@ -69,22 +68,7 @@ def test_a_recruiting_id_joins_once_and_only_its_token_comes_back(store, loaded)
     assert counts(store, loaded) == [1, 1]
 
 
-def test_concurrent_joins_in_threads_stay_balanced(store, loaded):
-    results: list[int] = []
-    failures: list[BaseException] = []
-
-    def join() -> None:
-        try:
-            results.append(service.join(store, loaded, {}, False).assignment.order_index)
-        except BaseException as exc:  # noqa: BLE001 - collected for the assertion
-            failures.append(exc)
-
-    threads = [threading.Thread(target=join) for _ in range(41)]
-    for thread in threads:
-        thread.start()
-    for thread in threads:
-        thread.join()
-    assert failures == []
-    tally = Counter(results)
+def test_concurrent_joins_in_threads_stay_balanced(store, loaded, join_at_once):
+    tally = Counter(join_at_once(loaded, 41))
     assert sorted(tally.values()) == [20, 21]
     assert counts(store, loaded) == [tally[0], tally[1]]

@@ -1,0 +1,119 @@
+"""Follow-ups of a mixed design (one factor between participants, :mod:`analysis.mixed_anova`).
+
+* The between factor at each within cell: a one-way between-participants ANOVA of that cell's values (F on
+  (G − 1, N − G) df; η² as its η²G); with two groups also the mean difference and its 95 % CI (Student's t, the
+  same test). Holm within the family (the between factor across the cells).
+* Each within factor within each group (and each combination of the other within factors' levels): the one-way
+  repeated-measures test of :func:`analysis.followups.slice_effect` on that group's participants (``at``:
+  ``view=first_person, kitchen=mid_2``), Holm within the factor's family.
+* Pairwise: each within factor with more than two levels within each group (:mod:`analysis.pairwise`, ``at``
+  starting with the group); a between factor with more than two levels on the participants' means over all cells
+  (Student's t for independent groups; ``dz`` empty: the groups are not paired).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Sequence
+
+import numpy as np
+import pandas as pd
+from scipy import stats
+
+from analysis.cells import cell_label, design_cells, factor_levels, slices
+from analysis.descriptives import DESCRIPTIVE_STATS, cell_descriptives
+from analysis.followups import SIMPLE_EFFECT_COLUMNS, holm, holm_family, slice_effect
+from analysis.pairwise import PAIRWISE_COLUMNS, pairwise_comparisons
+
+
+def mixed_simple_effects(df: pd.DataFrame, dv: str, within: Sequence[str], between: str, subject: str
+                         ) -> pd.DataFrame:
+    within = list(within)
+    blocks = [holm_family([between_effect(part, dv, between, label) for label, part in cell_slices(df, within)])]
+    for factor in within:
+        family = []
+        for group in factor_levels(df, between):
+            part = df[df[between] == group]
+            here = f"{between}={group}"
+            pieces = slices(part, within, factor) if len(within) > 1 else iter([("", part)])
+            family += [slice_effect(piece, dv, factor, subject, ", ".join(filter(None, (here, label))))
+                       for label, piece in pieces]
+        blocks.append(holm_family(family))
+    return pd.concat(blocks, ignore_index=True)[SIMPLE_EFFECT_COLUMNS]
+
+
+def cell_slices(df: pd.DataFrame, within: Sequence[str]) -> list[tuple[str, pd.DataFrame]]:
+    """``(label, rows)`` of every within cell, in design order."""
+    out = []
+    for cell in design_cells(df, within):
+        mask = np.logical_and.reduce([df[f] == level for f, level in zip(within, cell, strict=True)])
+        out.append((cell_label(within, cell), df[mask]))
+    return out
+
+
+def between_effect(part: pd.DataFrame, dv: str, between: str, label: str) -> pd.DataFrame:
+    """The one-way between-participants ANOVA of one cell (one row per participant)."""
+    levels = factor_levels(part, between)
+    groups = [part.loc[part[between] == g, dv].to_numpy(dtype=float) for g in levels]
+    values = np.concatenate(groups)
+    n, k = len(values), len(groups)
+    ss_b = float(sum(len(g) * (g.mean() - values.mean()) ** 2 for g in groups))
+    ss_w = float(sum(((g - g.mean()) ** 2).sum() for g in groups))
+    df1, df2 = k - 1, n - k
+    note = ""
+    if df2 < 1 or any(len(g) < 1 for g in groups):
+        note = "not testable: too few participants in a group"
+    elif ss_w <= 1e-12 * max(ss_b + ss_w, 1.0):
+        note = "not testable: no variance within the groups"
+    f = math.nan if note else (ss_b / df1) / (ss_w / df2)
+    p = math.nan if note else float(stats.f.sf(f, df1, df2))
+    row: dict[str, object] = {
+        "factor": between, "at": label, "df1": df1, "df2": df2, "MSE": ss_w / df2 if df2 > 0 else math.nan,
+        "F": f, "p": p, "ges": ss_b / (ss_b + ss_w) if ss_b + ss_w > 0 else math.nan, "eps_gg": math.nan,
+        "eps_hf": math.nan, "correction": "none", "df1_read": df1, "df2_read": df2, "p_read": p, "note": note}
+    if k == 2 and not note:
+        result = stats.ttest_ind(groups[0], groups[1])
+        ci = result.confidence_interval(0.95)
+        row.update(level_1=levels[0], level_2=levels[1], mean_diff=float(groups[0].mean() - groups[1].mean()),
+                   ci95_low=float(ci.low), ci95_high=float(ci.high))
+    return pd.DataFrame([row]).reindex(columns=SIMPLE_EFFECT_COLUMNS)
+
+
+def mixed_pairwise(df: pd.DataFrame, dv: str, within: Sequence[str], between: str, subject: str) -> pd.DataFrame:
+    blocks = []
+    for group in factor_levels(df, between):
+        block = pairwise_comparisons(df[df[between] == group], dv, within, subject)
+        if not block.empty:
+            here = f"{between}={group}"
+            block["at"] = [", ".join(filter(None, (here, str(at)))) for at in block["at"]]
+            blocks.append(block)
+    levels = factor_levels(df, between)
+    if len(levels) > 2:
+        means = df.groupby([between, subject], observed=True)[dv].mean()
+        rows = [_independent(between, means, a, b) for a, b in itertools.combinations(levels, 2)]
+        block = pd.DataFrame(rows).reindex(columns=PAIRWISE_COLUMNS)
+        block["p_holm"] = holm(block["p"])
+        blocks.append(block)
+    if not blocks:
+        return pd.DataFrame(columns=PAIRWISE_COLUMNS)
+    return pd.concat(blocks, ignore_index=True)[PAIRWISE_COLUMNS]
+
+
+def _independent(between: str, means: pd.Series, a: object, b: object) -> dict[str, object]:
+    x, y = means.loc[a].to_numpy(dtype=float), means.loc[b].to_numpy(dtype=float)
+    result = stats.ttest_ind(x, y)
+    ci = result.confidence_interval(0.95)
+    return {"factor": between, "at": "", "level_1": a, "level_2": b, "n": len(x) + len(y),
+            "mean_1": float(x.mean()), "mean_2": float(y.mean()), "mean_diff": float(x.mean() - y.mean()),
+            "ci95_low": float(ci.low), "ci95_high": float(ci.high), "t": float(result.statistic),
+            "df": len(x) + len(y) - 2, "p": float(result.pvalue),
+            "note": "independent groups (Student's t on the participants' means over all cells)"}
+
+
+def mixed_descriptives(df: pd.DataFrame, dv: str, within: Sequence[str], between: str, subject: str
+                       ) -> pd.DataFrame:
+    """Cell descriptives per group (within-subject CIs computed within each group)."""
+    blocks = [cell_descriptives(df[df[between] == g], dv, within, subject).assign(**{between: g})
+              for g in factor_levels(df, between)]
+    return pd.concat(blocks, ignore_index=True)[[between, *within, *DESCRIPTIVE_STATS]]
