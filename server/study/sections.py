@@ -52,9 +52,16 @@ class Timing(StudyModel):
     blocked_subtask_seconds: float = Field(default=3.0, gt=0, le=600)
     """A subtask that makes no progress this long ends itself and says why (docs/client.md)."""
 
+    stall_hint_seconds: float = Field(default=8.0, gt=0, le=600)
+    """The team's potential unchanged this long gives the participant a hint (docs/client.md, "Stall hints")."""
+
     def blocked_ticks(self) -> int:
         """``blocked_subtask_seconds`` in ticks at the tick rate (at least one)."""
         return max(1, round(self.blocked_subtask_seconds * self.tick_rate_hz))
+
+    def stall_hint_ticks(self) -> int:
+        """``stall_hint_seconds`` in ticks at the tick rate (at least one)."""
+        return max(1, round(self.stall_hint_seconds * self.tick_rate_hz))
 
 
 class Counterbalancing(StudyModel):

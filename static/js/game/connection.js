@@ -127,6 +127,9 @@ export class GameConnection {
       case "blocked":
         if (on.onBlocked) on.onBlocked(message);
         break;
+      case "stall_hint":
+        if (on.onStallHint) on.onStallHint(message);
+        break;
       case "pong":
         if (on.onLatency) on.onLatency(Math.max(0, performance.now() - message.client_time));
         break;

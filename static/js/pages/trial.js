@@ -157,6 +157,9 @@ function playRound(root, ctx, onFinished) {
     onBlocked(message) {
       note.blocked(message);
     },
+    onStallHint(message) {
+      note.hint(message);
+    },
     onLatency(ms) {
       hud.setLatency(ms);
     },
