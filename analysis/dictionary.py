@@ -60,6 +60,8 @@ MEASURES: dict[str, Column] = {c.name: c for c in (
     Column("blurs", INT, "times the game tab lost focus during the trial"),
     Column("idle_events", INT, "idle reports from the participant's browser during the trial"),
     Column("errors", INT, "error events during the trial (rejected messages, robot errors)"),
+    Column("stall_hints", INT, "hints the participant got because the team had got nothing done for "
+           "timing.stall_hint_seconds"),
 )}
 
 UNITS: dict[str, str] = {

@@ -45,10 +45,12 @@ TRIAL_MEASURES: tuple[str, ...] = (
 )
 """The measure columns of ``trials.csv`` and ``cells.csv``, in order."""
 
-CONDUCT_COUNTS: tuple[str, ...] = ("disconnects", "blurs", "idle_events", "errors")
-"""Counts of participant-conduct events per trial (for exclusion rules), in ``trials.csv`` only."""
+CONDUCT_COUNTS: tuple[str, ...] = ("disconnects", "blurs", "idle_events", "errors", "stall_hints")
+"""Counts of participant-conduct events per trial (for exclusion rules), and of the stall hints the participant
+was given (``server.game.stall_hint``), in ``trials.csv`` only."""
 
-_CONDUCT_KIND = {"disconnects": "disconnect", "blurs": "blur", "idle_events": "idle", "errors": "error"}
+_CONDUCT_KIND = {"disconnects": "disconnect", "blurs": "blur", "idle_events": "idle", "errors": "error",
+                 "stall_hints": "stall_hint"}
 NAN = float("nan")
 
 

@@ -50,7 +50,7 @@ from planner.belief import Belief, update_belief
 from planner.decision import Decision
 from planner.events import Event, EventKind
 from planner.fov import view
-from planner.geometry import DIRECTIONS, Action, manhattan, move_action
+from planner.geometry import DIRECTIONS, Action, Pos, manhattan, move_action
 from planner.kb import KnowledgeBase, initial_kb, omniscient_kb, update_kb
 from planner.layout import Layout
 from planner.paths import Pose, best_moves, distance, next_pose
@@ -60,9 +60,9 @@ from planner.rollout import Rollout, RobotTasker, potential
 from planner.rules import Rules
 from planner.state import AgentState, WorldState
 from planner.standoff import (Standoff, advance, alternatives, arrive, beside, committed, give_up, hold_aside,
-                              in_the_way, step_aside, take_over, unaided, visit_done, within_reach)
+                              in_the_way, out_of_the_way, step_aside, take_over, unaided, visit_done, within_reach)
 from planner.objects import DISH
-from planner.subtasks import Subtask
+from planner.subtasks import NOTHING_NEEDED, Subtask, targets
 
 TICKS_PER_SUBTASK = 6
 
@@ -181,6 +181,11 @@ class QmdpRobot:
             return Decision(action=around, belief=self.belief.as_dict(),
                             elapsed_ms=(time.perf_counter() - start) * 1000)
         options = without_avoided(around, self.cycle, world.tick)
+        if world.robot.held is None and options == NOTHING_NEEDED:  # planner.subtasks.beyond_orders
+            self.current = None
+            action = out_of_the_way(self.layout, world, self.human_targets(world))
+            return Decision(action=action, belief=self.belief.as_dict(),
+                            elapsed_ms=(time.perf_counter() - start) * 1000)
         horizon = self.plan_horizon(world, options, likely)
         q: dict[Subtask, float] = {}
         values: dict[Subtask, float] = {}
@@ -205,9 +210,10 @@ class QmdpRobot:
         """Whether the person has stopped (:mod:`planner.alone`): the robot plans as if it were alone."""
         return self.partner_still >= self.cfg.alone_ticks
 
-    @property
-    def cycles_broken(self) -> int:
-        return self.cycle.broken
+    def human_targets(self, world: WorldState) -> tuple[Pos, ...]:
+        """The cells of the person's most likely subtask."""
+        assert self.belief is not None
+        return targets(self.layout, self.belief.likely(0.0, 1)[0][0], world, self.rules)
 
     def break_cycle(self, world: WorldState) -> Action | None:
         """:mod:`planner.cycle`: in a joint cycle the robot yields (steps aside off the person's way, then holds
@@ -217,7 +223,7 @@ class QmdpRobot:
         if not self.cycle.cycling(self.cfg.cycle_returns):
             return None
         assert self.belief is not None
-        human_cells = self.tasker.targets(self.belief.likely(0.0, 1)[0][0], world)
+        human_cells = self.human_targets(world)
         self.cycle = broken(self.cycle, self.current, world.tick, self.cfg.cycle_hold)
         self.current, self.pending = None, ()
         return step_aside(self.layout, world, human_cells)
@@ -267,7 +273,7 @@ class QmdpRobot:
             if taken is not None:
                 self.current = taken
                 return self.rollout.robot_move(world, taken, True)
-            human_cells = cells(human_task, world)
+            human_cells = self.human_targets(world)
             if not choices or in_the_way(self.layout, world, human_cells):
                 self.current = None
                 self.standoff = hold_aside(self.standoff, world.tick, self.cfg.standoff_ticks)

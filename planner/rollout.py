@@ -34,7 +34,8 @@ from planner.planner_config import PlannerConfig
 from planner.rules import Rules
 from planner.state import WorldState
 from planner.step import step
-from planner.subtasks import Believed, Subtask, available, beyond_orders, finished, targets, within_orders
+from planner.subtasks import (Believed, Subtask, available, beyond_orders, finished, resumable, resumed_targets,
+                              targets, within_orders)
 
 
 def potential(world: WorldState, cfg: PlannerConfig) -> float:
@@ -77,6 +78,8 @@ class RobotTasker:
         return finished(subtask, held_before, world.robot.held, world.boards, world.sinks, self.rules)
 
     def targets(self, subtask: Subtask, world: WorldState) -> tuple[Pos, ...]:
+        if world.robot.held is None and subtask in (Subtask.PICKUP_STEAK, Subtask.PICKUP_GARNISH):
+            return resumed_targets(subtask, world.objects)
         return targets(self.layout, subtask, world, self.rules)
 
     def nearest(self, world: WorldState, options: tuple[Subtask, ...], avoid: Subtask | None) -> Subtask:
@@ -119,6 +122,7 @@ def _robot_options(rules: Rules, held: str | None, human_held: str | None, order
             options.append(Subtask.PICKUP_CLEAN_PLATE)
     elif coming and held == CLEAN_PLATE and Subtask.PICKUP_STEAK not in options:
         options.append(Subtask.PICKUP_STEAK)
+    options += resumable(held, objects, boards, rules)
     return within_orders(tuple(options), beyond_orders(held, human_held, orders_left, objects, grills, boards, sinks))
 
 

@@ -194,6 +194,13 @@ def take_over(human_subtask: Subtask | None, choices: tuple[Subtask, ...]) -> Su
     return human_subtask if human_subtask in choices else None
 
 
+def out_of_the_way(layout: Layout, world: WorldState, human_cells: tuple[Pos, ...]) -> Action:
+    """With nothing to do (:data:`planner.subtasks.NOTHING_NEEDED`): stay, or step aside when every way from the
+    person to ``human_cells`` (the targets of its most likely subtask) passes the robot's cell."""
+    return step_aside(layout, world, human_cells) if _blocked(layout, world.human, world.robot.pos, human_cells) \
+        else Action.STAY
+
+
 def step_aside(layout: Layout, world: WorldState, human_cells: tuple[Pos, ...]) -> Action:
     """The move to a free neighbouring floor cell that is off the person's way to ``human_cells`` (the
     targets of its most likely subtask: from there the person can still reach one), farther from the person

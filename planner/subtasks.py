@@ -201,14 +201,40 @@ def beyond_orders(held: str | None, partner_held: str | None, orders_left: int,
     steaks = sum(g is not None for g in grills) + hands.count(MEAT) + plated
     garnishes = sum(b is not None for b in boards) + hands.count(ONION) + dishes
     plates = sum(s is not None for s in sinks) + hands.count(DIRTY_PLATE) + anywhere(CLEAN_PLATE) + plated
-    counts = ((Subtask.PICKUP_MEAT, steaks), (Subtask.PICKUP_ONION, garnishes), (Subtask.PICKUP_PLATE, plates),
-              (Subtask.PICKUP_CLEAN_PLATE, hands.count(CLEAN_PLATE) + plated), (Subtask.PICKUP_STEAK, plated),
-              (Subtask.PICKUP_GARNISH, dishes))
+    counts = [(Subtask.PICKUP_MEAT, steaks), (Subtask.PICKUP_ONION, garnishes), (Subtask.PICKUP_PLATE, plates),
+              (Subtask.PICKUP_CLEAN_PLATE, hands.count(CLEAN_PLATE) + plated)]
+    if held is not None:  # with empty hands these two only resume put-down work (:data:`RESUMED`)
+        counts += [(Subtask.PICKUP_STEAK, plated), (Subtask.PICKUP_GARNISH, dishes)]
     return frozenset(s for s, n in counts if n >= orders_left)
 
 
+NOTHING_NEEDED: tuple[Subtask, ...] = (Subtask.DROP_ON_COUNTER,)
+"""The robot's options when no step is needed of it: put its load down; with empty hands it keeps out of the
+way (:func:`planner.standoff.out_of_the_way`)."""
+
+
 def within_orders(options: tuple[Subtask, ...], unneeded: frozenset[Subtask]) -> tuple[Subtask, ...]:
-    """``options`` without the ``unneeded`` steps. When none is left: putting the load down on a free counter
-    (with empty hands the same subtask only parks the robot by a free counter: nothing is needed of it until
-    something changes)."""
-    return tuple(s for s in options if s not in unneeded) or (Subtask.DROP_ON_COUNTER,)
+    """``options`` without the ``unneeded`` steps; :data:`NOTHING_NEEDED` when none is left."""
+    return tuple(s for s in options if s not in unneeded) or NOTHING_NEEDED
+
+
+RESUMED: dict[Subtask, str] = {Subtask.PICKUP_STEAK: STEAK_PLATE, Subtask.PICKUP_GARNISH: DISH}
+"""For the robot with empty hands: a plated steak or a dish someone put down on a counter is picked up again by
+the subtask that makes it (picking it up finishes that subtask), so put-down work is resumed, not made anew."""
+
+
+def resumable(held: str | None, objects: tuple[tuple[Pos, str], ...], boards: tuple[int | None, ...],
+              rules: Rules) -> tuple[Subtask, ...]:
+    """The robot's options to resume put-down work (:data:`RESUMED`): with empty hands, a dish on a counter, and a
+    plated steak on a counter while a chopped garnish waits on a board (not before: holding the plate, the robot
+    could not chop the onion it would wait for)."""
+    if held is not None:
+        return ()
+    lying = {obj for _, obj in objects}
+    garnish = any(b is not None and b >= rules.chop_time for b in boards)
+    return tuple(s for s, obj in RESUMED.items() if obj in lying and (obj == DISH or garnish))
+
+
+def resumed_targets(subtask: Subtask, objects: tuple[tuple[Pos, str], ...]) -> tuple[Pos, ...]:
+    """The counters with what ``subtask`` resumes (:data:`RESUMED`), for an agent with empty hands."""
+    return tuple(p for p, obj in objects if obj == RESUMED.get(subtask))

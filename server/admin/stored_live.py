@@ -56,8 +56,11 @@ def _extras(session: Session, row: TrialRow, catalog: Catalog) -> dict[str, Any]
                               .order_by(EventRow.id.desc()).limit(1))
 
     link, start = last_event("connect", "disconnect"), last_event("trial_start", "resume")
-    misses = session.scalar(select(func.count()).select_from(EventRow).where(
-        EventRow.trial_id == row.id, EventRow.kind == "deadline_miss")) or 0
+    def count(kind: str) -> int:
+        return session.scalar(select(func.count()).select_from(EventRow).where(
+            EventRow.trial_id == row.id, EventRow.kind == kind)) or 0
+
+    misses, hints = count("deadline_miss"), count("stall_hint")
     lateness = list(session.scalars(select(TickRow.lateness_ms).where(TickRow.trial_id == row.id)
                                     .order_by(TickRow.tick.desc()).limit(LATENESS_TICKS)))[::-1]
     loaded = catalog.get(row.study_id)
@@ -65,7 +68,8 @@ def _extras(session: Session, row: TrialRow, catalog: Catalog) -> dict[str, Any]
     decisions, missed = trials.decision_counts(session, row.id)
     health = (RobotHealth(loaded.study.validity.max_missed_decisions_pct, loaded.rules.horizon, decisions, missed,
                           row.invalid_reason).to_dict() if loaded is not None else None)
-    return {"connected": link is not None and link.kind == "connect", "deadline_misses": misses, "health": health,
+    return {"connected": link is not None and link.kind == "connect", "deadline_misses": misses,
+            "stall_hints": hints, "health": health,
             "lateness_ms": snapshot.percentiles(lateness), "mode": timing.mode if timing else None,
             "tick_rate_hz": timing.tick_rate_hz if timing else None,
             "process": start.payload.get("process") if start is not None else None, "source": "store"}
@@ -78,7 +82,7 @@ def stored_summary(session: Session, row: TrialRow, catalog: Catalog) -> dict[st
         return None
     extras = _extras(session, row, catalog)
     return {**trial_meta(loaded, participant, row).to_dict(), "recruit_id": participant.recruit_id,
-            "tick": row.ticks, **{k: extras[k] for k in ("connected", "deadline_misses", "health", "lateness_ms",
+            "tick": row.ticks, **{k: extras[k] for k in ("connected", "deadline_misses", "stall_hints", "health", "lateness_ms",
                                                          "process", "source")}}
 
 

@@ -57,9 +57,11 @@ from server.game.health import RobotHealth
 from server.game.meta import TrialMeta
 from server.game.records import tick_row
 from server.game.round_time import RoundTime
+from server.game.stall_hint import Hint, StallWatch, advance as watch_stall
 from server.protocol.client import Blur, Focus, Heartbeat, Idle, InterruptMessage, SelectSubtask
 from server.protocol.inbound import Inbound, ProtocolError
 from server.protocol.server import Ack, Error, Nudge, Pong, State, TrialEnd
+from server.protocol.server import StallHint as StallHintMessage
 from server.robots import RobotChoice, RobotPool
 from server.store import trials
 from server.store.engine import Store
@@ -111,6 +113,8 @@ class LiveGame:
         self.misses = 0
         self._errors_logged = 0
         self.budget = EventBudget()
+        self.stall_watch, self.stall_hints = StallWatch(), 0
+        self.hint_ticks = timing.stall_hint_ticks()
 
     # -- connection ---------------------------------------------------------------------------------
 
@@ -252,6 +256,7 @@ class LiveGame:
             self._record(outcome, choice, max(started - scheduled, 0.0) * 1000)
             if outcome.blocked is not None:
                 self._blocked(outcome.blocked)
+            self._watch_stall(outcome)
             if choice.error == "worker_lost":
                 await self._reopen_planner()
             if not self.engine.done:
@@ -375,6 +380,20 @@ class LiveGame:
                                            "item": blocked.reason.item})
         if self.connection is not None:
             self.connection.send(snapshot.blocked_message(blocked))
+
+    def _watch_stall(self, outcome: TickOutcome) -> None:
+        """``server.game.stall_hint``: after ``stall_hint_seconds`` without team progress, hint and log it."""
+        engine = self.engine
+        self.stall_watch, hint = watch_stall(self.stall_watch, engine.layout, engine.rules, outcome.world,
+                                             outcome.kb, outcome.events, self.hint_ticks)
+        if hint is not None:
+            self._hint(hint)
+
+    def _hint(self, hint: Hint) -> None:
+        self.stall_hints += 1
+        self.event("stall_hint", {"code": hint.code, "text": hint.text})
+        if self.connection is not None:
+            self.connection.send(StallHintMessage(code=hint.code, text=hint.text))
 
     def event(self, kind: str, payload: dict[str, Any]) -> None:
         self.deps.writer.add_event({"participant_id": self.meta.participant_id, "trial_id": self.meta.trial_id,

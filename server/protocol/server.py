@@ -156,6 +156,21 @@ class Blocked(ServerMessage):
     ended: bool
 
 
+StallHintCode = Literal["standing_at_station", "onion_needs_chopping", "plate_needs_washing", "holding",
+                        "look_around"]
+"""Which hint a ``stall_hint`` gives (``server.game.stall_hint``)."""
+
+
+class StallHint(ServerMessage):
+    """The team has not got anything done for ``timing.stall_hint_seconds``: a hint phrased from what the
+    participant knows (where they stand, what they hold, what they have seen); never the robot's planner or the
+    condition."""
+
+    type: Literal["stall_hint"] = "stall_hint"
+    code: StallHintCode
+    text: str
+
+
 class Pong(ServerMessage):
     type: Literal["pong"] = "pong"
     ack: int
@@ -213,6 +228,6 @@ class TrialEnd(ServerMessage):
     next: str
 
 
-AnyServerMessage = Annotated[Hello | State | Ack | Blocked | Pong | Error | Waiting | Nudge | TrialEnd,
+AnyServerMessage = Annotated[Hello | State | Ack | Blocked | StallHint | Pong | Error | Waiting | Nudge | TrialEnd,
                              Field(discriminator="type")]
 server_adapter: TypeAdapter[AnyServerMessage] = TypeAdapter(AnyServerMessage)

@@ -59,6 +59,9 @@ class Timing(StudyModel):
     """Seconds the cook may stand with nothing to do (no task, no key waiting) before the page shows
     "Choose your next task" (a nudge naming nothing of the condition)."""
 
+    stall_hint_seconds: float = Field(default=8.0, gt=0, le=600)
+    """The team's potential unchanged this long gives the participant a hint (docs/client.md, "Stall hints")."""
+
     def blocked_ticks(self) -> int:
         """``blocked_subtask_seconds`` in ticks at the tick rate (at least one)."""
         return max(1, round(self.blocked_subtask_seconds * self.tick_rate_hz))
@@ -74,6 +77,10 @@ class Timing(StudyModel):
     def round_limit_seconds(self, horizon: int) -> float | None:
         """The wall-clock limit the server enforces (``None`` in ``fixed_rate``: the horizon ends a round)."""
         return self.round_seconds(horizon) if self.mode == "wait_for_participant" else None
+
+    def stall_hint_ticks(self) -> int:
+        """``stall_hint_seconds`` in ticks at the tick rate (at least one)."""
+        return max(1, round(self.stall_hint_seconds * self.tick_rate_hz))
 
     @model_validator(mode="after")
     def _limit_needs_waiting(self) -> Timing:

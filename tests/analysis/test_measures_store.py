@@ -48,6 +48,7 @@ WORLD_EVENTS = [[event("robot", "start_cooking")], [event("human", "dispense"), 
 EVENTS = [(0, "select_subtask", {"subtask": "pickup_meat"}), (1, "interrupt", {"action": "up"}),
           (1, "interrupt", {"action": "stop"}), (2, "select_subtask", {"subtask": "pickup_onion"}),
           (3, "select_subtask", {"subtask": "pickup_plate"}), (3, "blur", {}), (3, "idle", {"idle_ms": 5000}),
+          (3, "stall_hint", {"code": "holding", "text": "You are still holding the dirty plate."}),
           (3, "connect", {})]
 EXPECTED = {
     "ticks": 4, "finished": 1, "delivered": 1, "score": 20,
@@ -58,7 +59,7 @@ EXPECTED = {
     "human_prep_pct": 0.0, "human_plating_pct": math.nan, "collisions": 2,
     "decision_ms_mean": 55.0, "decision_ms_p95": 30.0 + 0.85 * 130.0,
     "lateness_ms_mean": 28.0, "lateness_ms_p99": 6.0 + 0.97 * 94.0, "deadline_misses": 1,
-    "disconnects": 0, "blurs": 1, "idle_events": 1, "errors": 0,
+    "disconnects": 0, "blurs": 1, "idle_events": 1, "errors": 0, "stall_hints": 1,
 }
 
 

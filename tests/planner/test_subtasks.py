@@ -13,6 +13,7 @@ from planner.layout import parse_layout
 from planner.objects import DISH, STEAK_PLATE
 from planner.planner_config import PlannerConfig
 from planner.robots import make_robot
+from planner.rollout import RobotTasker
 from planner.rules import Rules
 from planner.state import AgentState, WorldState, initial_state
 from planner.step import step
@@ -76,3 +77,16 @@ def test_with_nothing_needed_the_robot_puts_its_load_down():
     assert within_orders((Subtask.PICKUP_STEAK,), frozenset({Subtask.PICKUP_STEAK})) == (Subtask.DROP_ON_COUNTER,)
     assert within_orders((Subtask.PICKUP_MEAT, Subtask.CHOP_ONION), frozenset({Subtask.PICKUP_MEAT})) == (
         Subtask.CHOP_ONION,)
+
+
+def test_a_plated_steak_put_down_is_taken_up_again_once_the_garnish_is_ready():
+    # Counting the plated steaks on counters as dishes in progress asks that someone take them up again: with
+    # empty hands the robot's pickup_steak goes to such a counter when a chopped garnish is waiting.
+    tasker = RobotTasker(WALKTHROUGH, RULES)
+    plated = replace(initial_state(WALKTHROUGH, RULES), objects=(((5, 1), STEAK_PLATE),), boards=(RULES.chop_time,),
+                     orders_left=1)
+    assert Subtask.PICKUP_STEAK in tasker.options(plated, None)
+    assert tasker.targets(Subtask.PICKUP_STEAK, plated) == ((5, 1),)
+    assert Subtask.PICKUP_MEAT not in tasker.options(plated, None), "the plated steak is the order's steak"
+    unchopped = replace(plated, boards=(0,))
+    assert Subtask.PICKUP_STEAK not in tasker.options(unchopped, None), "holding it, nobody could chop the onion"

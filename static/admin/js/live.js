@@ -32,6 +32,7 @@ export function liveListPage(root, { api }) {
         ["Connected", (g) => (g.connected ? "yes" : badge("away", "warn"))],
         ["Lateness p99", (g) => ms(g.lateness_ms.p99), "num"],
         ["Deadline misses", (g) => String(g.deadline_misses), "num"],
+        ["Stall hints", (g) => String(g.stall_hints ?? 0), "num"],
         ["Robot health", (g) => healthBadge(g.health)],
         ["", (g) => h("a", { href: `#/live/${g.trial_id}` }, "Watch")],
       ], games, { id: "live-table", empty: "No trial is running.",

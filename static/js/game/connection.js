@@ -133,6 +133,9 @@ export class GameConnection {
       case "nudge":
         if (on.onNudge) on.onNudge(message);
         break;
+      case "stall_hint":
+        if (on.onStallHint) on.onStallHint(message);
+        break;
       case "pong":
         if (on.onLatency) on.onLatency(Math.max(0, performance.now() - message.client_time));
         break;

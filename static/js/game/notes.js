@@ -1,6 +1,7 @@
 /**
  * The short message in the HUD, beside "your task", that says why a task did nothing ("The onion is not
- * chopped yet"); never over the kitchen, whose cells it would hide. A polite live region, so screen readers
+ * chopped yet"), or, when the team has got nothing done for a while, a hint ("You are standing where the board
+ * is used"); never over the kitchen, whose cells it would hide. A polite live region, so screen readers
  * announce it too. A task that ended itself keeps its message a little longer than a passing notice.
  */
 
@@ -10,6 +11,7 @@ import { subtaskLabel } from "../labels.js";
 
 const NOTICE_MS = 3500;
 const ENDED_MS = 6000;
+const HINT_MS = 8000;
 
 export class TaskNote {
   constructor() {
@@ -34,6 +36,12 @@ export class TaskNote {
     const text = message.ended ? `${subtaskLabel(message.subtask)} stopped: ${why}.` : `${why}.`;
     this.node.dataset.reason = message.reason;
     this.say(text, "blocked", message.ended ? ENDED_MS : NOTICE_MS);
+  }
+
+  /** A server `stall_hint`: the team got nothing done for a while; a hint from what the participant knows. */
+  hint(message) {
+    this.node.dataset.reason = message.code;
+    this.say(message.text, "hint", HINT_MS);
   }
 
   clear() {

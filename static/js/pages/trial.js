@@ -178,6 +178,9 @@ function playRound(root, ctx, onFinished) {
     onNudge(message) {
       note.say(message.text, "nudge", 8000);
     },
+    onStallHint(message) {
+      note.hint(message);
+    },
     onLatency(ms) {
       hud.setLatency(ms);
     },
