@@ -89,7 +89,7 @@ def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run
     kept = {name: recruiting[name] for name in names if name in recruiting}
     recruit_id = participants.normalised_recruit_id(kept.get(names[0])) if names else None
     if recruit_id is None and study.recruiting.require_id and not (test_run or study.test_run or pilot_pace):
-        raise ApiError(422, "recruit_id_required", f"this study is joined from its link on the recruiting platform, "
+        raise ApiError(422, "recruit_id_required", "this study is joined from its link on the recruiting platform, "
                        f"which carries your {names[0]}; please open that link again")
     with store.transaction() as session:
         assignment.lock_study(session, study.id)
@@ -123,9 +123,10 @@ def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recrui
             return _rejoined(session, existing, token)
         if existing is not None:
             holder = participants.by_token(session, presented_token) if presented_token else None
-            if (presented_token is None or holder is None or holder.id != existing.id) and _claimable(existing):
+            other_browser = presented_token is None or holder is None or holder.id != existing.id
+            if other_browser and _claimable(existing):
                 return _claimed(session, existing)
-            if presented_token is None or holder is None or holder.id != existing.id:
+            if other_browser or presented_token is None:
                 session.add(EventRow(participant_id=existing.id, trial_id=None, tick=None, kind="join_refused",
                                      payload={"reason": "already_started", "had_token": presented_token is not None},
                                      created_at=utcnow()))

@@ -44,9 +44,10 @@ class Reason:
 
 @dataclass(frozen=True, slots=True)
 class Blocked:
-    """A subtask that is not getting anywhere: ``ended`` when it ended itself, else a notice while it goes on."""
+    """A subtask that is not getting anywhere: ``ended`` when it ended itself, else a notice while it goes on;
+    ``subtask`` ``None``: an ``interact`` key that did nothing (a notice)."""
 
-    subtask: Subtask
+    subtask: Subtask | None
     reason: Reason
     ended: bool
 

@@ -19,7 +19,8 @@
   (``available``) are a hint for the client.
 - A subtask that cannot work is explained, never silent (``server.game.blocked``): one that does not fit what
   the avatar holds is refused when chosen; one whose interaction does nothing gets a notice naming why; and
-  one that makes no progress for ``blocked_ticks`` steps ends itself with the last reason.
+  one that makes no progress for ``blocked_ticks`` steps ends itself with the last reason. An ``interact``
+  key that did nothing gets the same notice, without a subtask (``Blocked.subtask`` ``None``).
 """
 
 from __future__ import annotations
@@ -87,6 +88,8 @@ class ParticipantController:
         """Whether the avatar did anything (an interaction with an effect) during the current subtask."""
         self.ended: Subtask | None = None
         """The subtask :meth:`observe` ended at the last step, for :meth:`review`."""
+        self.key_interact = False
+        """Whether the last step's action was an ``interact`` key (an interrupt), for :meth:`review`."""
 
     def select(self, subtask: Subtask, held: str | None | Unchecked = UNCHECKED) -> Blocked | None:
         """Make ``subtask`` the current one (dropping queued interrupts), unless it cannot work with ``held``
@@ -121,9 +124,12 @@ class ParticipantController:
         robot = world.robot.pos
         self.robot_still = self.robot_still + 1 if robot == self.robot_last else 0
         self.robot_last = robot
+        self.key_interact = False
         if self.queue:
             self.intent = "idle"
-            return INTERRUPT_ACTION[self.queue.popleft()], "interrupt"
+            which = self.queue.popleft()
+            self.key_interact = which is Interrupt.INTERACT
+            return INTERRUPT_ACTION[which], "interrupt"
         if self.subtask is None:
             self.intent = "idle"
             return Action.STAY, "idle"
@@ -161,12 +167,18 @@ class ParticipantController:
         anywhere for a reason the participant should hear, or its end when it made no progress for
         ``blocked_ticks`` steps (the subtask is then dropped). Chopping or washing that ends with nothing done
         (no onion or plate waiting, as far as the participant knows) ends with its reason too."""
-        self.worked = self.worked or any(e.agent == "human" and e.kind is not EventKind.BLOCKED for e in events)
+        acted = any(e.agent == "human" and e.kind is not EventKind.BLOCKED for e in events)
+        self.worked = self.worked or acted
         ended, self.ended = self.ended, None
         if ended is not None:
             idle_end = ended in (Subtask.CHOP_ONION, Subtask.WASH_PLATE) and not self.worked
             self.worked, self.stall = False, Stall()
             return Blocked(ended, nothing_left(ended, kb, self.rules), ended=True) if idle_end else None
+        if self.key_interact and not acted:  # an interact key that did nothing: why, as for a task
+            reason = interaction_reason(self.layout, before, self.rules)
+            if reason is not None:
+                self.stall = Stall()
+                return Blocked(None, reason, ended=False)
         subtask = self.subtask
         if subtask is None or self.intent == "idle":
             self.stall = Stall()

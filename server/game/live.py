@@ -376,7 +376,8 @@ class LiveGame:
     def _blocked(self, blocked: Blocked) -> None:
         """Tell the participant why their subtask is not getting anywhere; log it when the subtask ended."""
         if blocked.ended:
-            self.event("subtask_blocked", {"subtask": blocked.subtask.value, "reason": blocked.reason.code,
+            self.event("subtask_blocked", {"subtask": blocked.subtask.value if blocked.subtask else None,
+                                           "reason": blocked.reason.code,
                                            "item": blocked.reason.item})
         if self.connection is not None:
             self.connection.send(snapshot.blocked_message(blocked))

@@ -149,7 +149,8 @@ class Blocked(ServerMessage):
     otherwise it goes on and this is a notice ("The steak is still cooking")."""
 
     type: Literal["blocked"] = "blocked"
-    subtask: str
+    subtask: str | None
+    """``null``: an ``interact`` key (an interrupt) that did nothing, for the reason given."""
     reason: BlockedReason
     item: str | None = None
     """The object the reason names: what is needed (``needs_item``) or what is in hand (``hands_full``)."""

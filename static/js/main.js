@@ -73,6 +73,10 @@ function failure(exc) {
     messagePage(root, "This ID has already started in another browser",
       ["Please continue in the browser where you started, or contact the researcher.",
        "For your privacy and the study's, a session can only continue in the browser it started in."]);
+  } else if (exc.status === 422 && exc.code === "recruit_id_required") {
+    messagePage(root, "This link is incomplete",
+      ["Please open the study from its link on the recruiting site: that link carries your participant ID.",
+       "If you did, contact the researcher."]);
   } else if (exc.status === 410 && exc.code === "link_invalid") {
     messagePage(root, "This link is no longer valid",
       "Resume links work once and for a limited time. Please contact the researcher for a new one.");

@@ -119,3 +119,27 @@ def test_incomplete_and_unknown_links_explain_themselves(study_server, new_page)
     expected = [p for p in problems if "status of 404" in p]
     assert len(expected) == 1, problems  # the browser logs the refused study look-up itself
     problems.remove(expected[0])
+
+
+def test_an_end_page_without_a_payment_code_says_to_contact_the_researcher(study_server, new_page):
+    """What a real participant of a study still carrying the shipped placeholder code gets from the server
+    (``completion.not_set_up``, tests/server/routes/test_participant_api.py): no code, a clear way on."""
+    page, _ = new_page()
+
+    def not_set_up(route):
+        response = route.fetch()
+        view = response.json()
+        view["completion"] = {**view["completion"], "code": None, "redirect_url": None, "not_set_up": True}
+        route.fulfill(response=response, json=view)
+
+    page.route("**/api/session/consent", not_set_up)
+    page.goto(study_server.link(PROLIFIC_PID="pid-unpaid"))
+    page.click("#consent-decline")
+    page.click("#consent-decline-confirm")
+    page.wait_for_selector("#not-set-up")
+    text = page.inner_text("#not-set-up")
+    assert "not set up for payment yet" in text and "contact the researcher" in text
+    public_id = page.evaluate("() => JSON.parse(localStorage.getItem('steakhouse.session.browser_flow')).participant")
+    assert public_id in text, "the participant number to quote"
+    assert page.query_selector("#completion-code") is None and page.query_selector("#redirect-note") is None
+    screenshot(page, "end_not_set_up")

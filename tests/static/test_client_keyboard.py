@@ -77,6 +77,9 @@ def test_a_key_that_does_nothing_says_why_and_the_hud_keeps_its_height(study_ser
     assert page.inner_text("#task-note").startswith("Q is not a game key")
     assert hud_height(page) == before, "the note appears inside the HUD's own height"
     screenshot(page, "keyboard_other_key_note")
+    page.keyboard.press("Space")  # the cook faces floor: the server says the key did nothing, and why
+    page.wait_for_function("() => document.querySelector('#task-note').textContent.startsWith('There is nothing')")
+    assert hud_height(page) == before
     page.keyboard.press("=")  # deliver dish with empty hands: refused with its reason, like a click
     page.wait_for_function("() => document.querySelector('#task-note').textContent.startsWith('Deliver dish')")
     assert hud_height(page) == before

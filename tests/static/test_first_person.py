@@ -166,3 +166,44 @@ def test_enter_vr_opens_a_session_with_an_emulated_headset(study_server, new_gl_
     before = int(page.eval_on_selector("#kitchen", "el => el.dataset.frames"))
     page.keyboard.press("w")
     wait_drawn(page, f"d.you === '5,2,east' && +d.frames > {before}")
+
+
+def test_a_first_person_study_teaches_its_own_keys_and_shows_the_dark_in_3d(study_server, new_gl_page):
+    page, _ = new_gl_page(viewport=(1280, 720))
+    page.goto(study_server.link(STUDY))
+    page.click("#consent-agree")
+    page.wait_for_selector("#instructions")
+    rows = page.eval_on_selector_all("#keys-first-person tbody tr", "rs => rs.map(r => r.innerText.split('\\t'))")
+    assert [r[0] for r in rows[:4]] == ["Forward", "Turn left", "Turn around", "Turn right"]
+    assert "walk one cell ahead" in rows[0][2] and "step there when the floor is free" in rows[1][2]
+    assert page.query_selector("#keys-top-down") is None, "no top-down key table for a first-person study"
+    assert page.query_selector("#instructions-picture") is None, "nor the top-down picture"
+    assert "The robot sees the whole kitchen" in page.inner_text("#fp-text")
+    page.wait_for_function("() => { const c = document.querySelector('#fp-picture-canvas');"
+                           " return c && +c.dataset.frames > 0; }", timeout=FIRST_FRAME_TIMEOUT_MS)
+    page.wait_for_timeout(300)
+    lit, lit_top = lit_fraction(page, "#fp-picture-canvas")
+    assert 0.2 < lit < 0.9, f"{lit:.0%} of the picture is lit: the kitchen ahead, the rest dark"
+    assert lit_top < 0.05
+    drawn = page.eval_on_selector("#fp-picture-canvas", "el => [el.dataset.you, el.dataset.robot, el.dataset.drawn]")
+    example = json.loads((Path(__file__).resolve().parents[2] / "static/data/example_view.json").read_text())
+    assert drawn[0] == "5,2,east" and drawn[1] == "", "the example's cook facing east; the robot behind is dark"
+    assert sorted(drawn[2].split(";")) == sorted(f"{x},{y}" for x, y in example["visible"])
+    page.locator("#fp-picture").scroll_into_view_if_needed()
+    keep(page, "first_person_instructions_picture")
+    page.locator("#keys-first-person").scroll_into_view_if_needed()
+    keep(page, "first_person_instructions_keys")
+
+
+def test_the_chopped_onion_has_the_same_colour_seen_from_above_and_in_3d(study_server, new_gl_page):
+    page, _ = new_gl_page()
+    page.goto(f"{study_server.url}/data/example_view.json")
+    colours = page.evaluate("""async () => {
+      const { COLORS } = await import('/js/game/palette.js');
+      const { itemModel } = await import('/js/firstperson/items.js');
+      const cubes = [];
+      itemModel('dish').traverse((o) => { if (o.isMesh && o.geometry.type === 'BoxGeometry'
+        && o.geometry.parameters.width < 0.05) cubes.push('#' + o.material.color.getHexString()); });
+      return { onion: COLORS.onion.toLowerCase(), cubes };
+    }""")
+    assert colours["cubes"] and set(colours["cubes"]) == {colours["onion"]}, colours

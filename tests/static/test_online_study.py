@@ -297,3 +297,17 @@ def test_a_second_tab_says_the_round_is_in_progress_and_leaving_asks_first(study
     screenshot(back, "round_ended_while_away")
     rows = study_server.trials(public_id)
     assert [(r["kind"], r["status"], r["end_reason"]) for r in rows] == [("practice", "abandoned", "grace_expired")]
+
+
+def test_a_link_without_the_participant_id_is_refused_but_a_test_run_is_not(study_server, new_page):
+    page, problems = new_page()
+    page.goto(study_server.link(STUDY))
+    page.wait_for_selector("#message-title")
+    assert page.inner_text("#message-title") == "This link is incomplete"
+    assert "recruiting site" in page.inner_text("#message")
+    expected = [p for p in problems if "status of 422" in p]
+    assert len(expected) == 1, problems  # the browser logs the refused join itself
+    problems.remove(expected[0])
+    tester, _ = new_page()
+    tester.goto(study_server.link(STUDY, test_run="1"))
+    tester.wait_for_selector("#consent-agree")

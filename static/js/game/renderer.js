@@ -124,7 +124,8 @@ export class KitchenView {
       return;
     }
     const robot = state.robot ? "The robot is in view." : "The robot is out of view.";
-    const label = `Kitchen, ${this.width} by ${this.height} cells. You face ${state.you.facing}, holding ` +
+    // No grid size: the canvas draws only the kitchen's reachable part (hello.bounds), and "cells" is our word.
+    const label = `The kitchen from above. You face ${state.you.facing}, holding ` +
       `${heldLabel(state.you.held)}. ${robot} Black cells are outside your view.`;
     if (this.canvas.getAttribute("aria-label") !== label) this.canvas.setAttribute("aria-label", label);
   }

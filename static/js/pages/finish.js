@@ -34,9 +34,10 @@ export function finishPage(root, ctx) {
     : SCREENED_OUT[completion.reason] || SCREENED_OUT.declined_consent));
 
   if (completion.not_set_up) {
-    parts.push(h("p", { id: "not-set-up", class: "page-notice", role: "status" },
-      "This study is not set up for payment yet, so there is no code to show. Please contact the researcher " +
-      "and quote your participant number: ", h("output", { class: "code" }, session.participant_id), "."));
+    parts.push(h("div", { id: "not-set-up", class: "page-notice", role: "status" },
+      h("p", {}, "This study is not set up for payment yet, so there is no code to show. Please contact the " +
+        "researcher and quote your participant number:"),
+      h("p", {}, h("code", { class: "participant-number", id: "participant-number" }, session.participant_id))));
   }
   if (completion.code) {
     const code = h("output", { class: "code", id: "completion-code" }, completion.code);

@@ -60,7 +60,7 @@ function firstPersonSection(angle) {
 const TOP_DOWN_KEYS_NOTE = "A move turns you toward that direction and walks one cell if it is free floor. ";
 const KEYS_NOTE = "Interrupts act at once, one per key press; afterwards your task continues from where you are. " +
   "Stop cancels the task. A task that cannot work with what you hold is greyed out, and the reason shows when you " +
-  "point at it. The number keys 1–9 choose the first nine tasks in the list (their number is shown on them).";
+  "point at it. The keys 1–9, 0, - and = choose a task: each task's key is shown on its button.";
 
 function topDownKeys() {
   return h("table", { class: "keys-table", id: "keys-top-down" },

@@ -178,3 +178,19 @@ def test_a_robot_blocking_the_only_way_is_named_once_seen_and_the_subtask_ends()
     stalled = [o for o in outcomes[: outcomes.index(told) + 1] if o.human_action is Action.STAY]
     assert len(stalled) >= NOTICE_AFTER_MOVES
     assert engine.controller.subtask is None and engine.world.robot.pos == (3, 2)
+
+
+def test_an_interact_key_that_does_nothing_says_why_and_one_that_works_says_nothing():
+    from server.game.controller import Interrupt
+
+    engine = engine_at(world_with(pos=SINK_SPOT, facing=Direction.NORTH, held=None, sink=None))
+    assert engine.controller.interrupt(Interrupt.INTERACT)
+    [outcome] = run(engine, 1)
+    assert outcome.source == "interrupt" and outcome.blocked is not None
+    assert (outcome.blocked.subtask, outcome.blocked.reason, outcome.blocked.ended) == (
+        None, Reason("nothing_to_wash"), False)
+    assert run(engine, 1)[0].blocked is None, "a step without a key says nothing"
+    engine = engine_at(world_with(pos=(7, 5), facing=Direction.EAST, held=None))  # facing the meat crate
+    assert engine.controller.interrupt(Interrupt.INTERACT)
+    [took] = run(engine, 1)
+    assert took.world.human.held == MEAT and took.blocked is None
