@@ -86,6 +86,7 @@ class QmdpRobot:
         self.traces: dict[tuple[Subtask, Subtask], Trace] = {}
         self.next_traces: dict[tuple[Subtask, Subtask], Trace] = {}
         self.followed: dict[tuple[Subtask, Subtask], Trace] = {}
+        self.dish_trip: tuple[int, int] | None = None
 
     def reset(self, world: WorldState, kb: KnowledgeBase | None = None) -> None:
         """Start on ``world`` (:meth:`planner.decision.Robot.reset`): the model of the person's KB is ``kb``
@@ -104,6 +105,7 @@ class QmdpRobot:
         self.standoff = Standoff()
         self.robot_before = None
         self.traces, self.next_traces = {}, {}
+        self.dish_trip = None
 
     def observe(self, world: WorldState, events: Sequence[Event]) -> None:
         if self.kb is None:
@@ -133,6 +135,8 @@ class QmdpRobot:
                                          or self.current not in self.tasker.options(judged, self.current)):
             self.current = None
         self.held_before = world.robot.held
+        if world.robot.held != DISH:
+            self.dish_trip = None
 
     def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,
                deadline: float | None = None) -> Decision:
@@ -296,7 +300,7 @@ class QmdpRobot:
         if show:
             candidates[show[0]] = show[1:]
         plans = [(move, rest, True) for move, rest in candidates.items()]
-        route = self.view_route(world, subtask) if not show else ()
+        route = self.view_route(world, subtask)
         if route and route[1:] != candidates.get(route[0]):
             plans.append((route[0], route[1:], False))
         if len(plans) < 2:
@@ -395,7 +399,10 @@ class QmdpRobot:
         """The walk to ``subtask``'s station, at most ``view_detour`` ticks longer than the shortest, with the
         most ticks in the person's current view (ties: the shorter), while the robot carries a dish and
         ``seen_carrying`` values that (docs/domain.md §5, "The person's knowing": a delivery route through
-        their view). Empty when it carries no dish, is at its station, or no such walk passes the view."""
+        their view). The ``view_detour`` is for the whole trip: the extra ticks the dish has already taken
+        (ticks since it was taken less the shortest way shortened) count against it, so the robot cannot
+        wait in view tick after tick. Empty when it carries no dish, is at its station, has no detour left,
+        or no such walk passes the view."""
         if world.robot.held != DISH or not self.cfg.seen_carrying:
             return ()
         cells = self.tasker.targets(subtask, world)
@@ -411,14 +418,19 @@ class QmdpRobot:
         base = to_target(start)
         if base == 0:
             return ()
+        if self.dish_trip is None:
+            self.dish_trip = (world.tick, base)
+        detour = self.cfg.view_detour - (world.tick - self.dish_trip[0] - (self.dish_trip[1] - base))
+        if detour <= 0:
+            return ()
         layer: dict[Pose, tuple[int, tuple[Action, ...]]] = {start: (0, ())}
         best: tuple[int, int, tuple[Action, ...]] | None = None
-        for steps in range(1, base + self.cfg.view_detour + 1):
+        for steps in range(1, base + detour + 1):
             nxt: dict[Pose, tuple[int, tuple[Action, ...]]] = {}
             for pose, (count, actions) in layer.items():
                 for d in DIRECTIONS:
                     after = next_pose(self.layout, pose, d)
-                    if after[0] == human.pos or steps + to_target(after) > base + self.cfg.view_detour:
+                    if after[0] == human.pos or steps + to_target(after) > base + detour:
                         continue
                     score = count + (after[0] in seen)
                     if after not in nxt or nxt[after][0] < score:
