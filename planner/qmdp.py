@@ -49,6 +49,7 @@ from planner.decision import Decision
 from planner.events import Event
 from planner.fov import view
 from planner.geometry import DIRECTIONS, Action, manhattan, move_action
+from planner.human import HumanMemory
 from planner.kb import KnowledgeBase, initial_kb, omniscient_kb, update_kb
 from planner.layout import Layout
 from planner.paths import Pose, best_moves, distance, next_pose
@@ -87,6 +88,7 @@ class QmdpRobot:
         self.next_traces: dict[tuple[Subtask, Subtask], Trace] = {}
         self.followed: dict[tuple[Subtask, Subtask], Trace] = {}
         self.dish_trip: tuple[int, int] | None = None
+        self.known: dict[tuple[Subtask, Subtask], float] = {}
 
     def reset(self, world: WorldState, kb: KnowledgeBase | None = None) -> None:
         """Start on ``world`` (:meth:`planner.decision.Robot.reset`): the model of the person's KB is ``kb``
@@ -159,6 +161,7 @@ class QmdpRobot:
             return Decision(action=action, belief=self.belief.as_dict(),
                             elapsed_ms=(time.perf_counter() - start) * 1000)
         self.pending = ()
+        self.known = {}
         self.traces, self.next_traces = self.next_traces, {}
         options = self.tasker.options(world, self.current)
         around = self.around_standoff(world, options)
@@ -309,8 +312,8 @@ class QmdpRobot:
         for i, (move, rest, _) in enumerate(plans):
             if deadline is not None and scored and time.perf_counter() > deadline:
                 break
-            if move is default and not rest and not self.cfg.values_knowing:
-                v = direct_value
+            if move is default and not rest:
+                v = direct_value + sum(p * self.known.get((subtask, s), 0.0) for s, p in likely)
             else:
                 plan = (move,) + rest
                 v = sum(p * self.sampled(world, s, subtask, horizon, seed, plan, self.cfg.values_knowing)
@@ -335,6 +338,13 @@ class QmdpRobot:
                                self.human_still)
             self.next_traces[key] = trace
             return trace.value(self.cfg.tick_discount, horizon)
+        if not prefix and self.explore and self.cfg.values_knowing:
+            # The subtask's value is the progress alone; the same rollouts' knowing is kept for its first move.
+            sums = [self.rollout.parts(world, self.kb, HumanMemory(subtask=human_subtask, held=world.human.held),
+                                       np.random.default_rng(seed + 7919 * i), robot_subtask, horizon,
+                                       parked_for=self.human_still, knowing=True) for i in range(n)]
+            self.known[(robot_subtask, human_subtask)] = sum(k for _, k in sums) / n
+            return sum(v for v, _ in sums) / n
         return sum(self.rollout.value(world, self.kb, human_subtask, robot_subtask, horizon, seed + 7919 * i,
                                       prefix=prefix, parked_for=self.human_still, knowing=knowing)
                    for i in range(n)) / n

@@ -156,22 +156,30 @@ class Rollout:
             robot_subtask: Subtask, horizon: int, prefix: tuple[Action, ...] = (), parked_for: int = 0,
             knowing: bool = False) -> float:
         """:meth:`value` from a given human memory and random stream (``rng`` is consumed)."""
+        progress, known = self.parts(world, kb, memory, rng, robot_subtask, horizon, prefix, parked_for, knowing)
+        return progress + known
+
+    def parts(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory, rng: np.random.Generator,
+              robot_subtask: Subtask, horizon: int, prefix: tuple[Action, ...] = (), parked_for: int = 0,
+              knowing: bool = False) -> tuple[float, float]:
+        """:meth:`run`'s two sums apart: the discounted progress, and the discounted :meth:`knowing` (0 unless
+        ``knowing``), so one rollout serves a subtask's value and its first move's."""
         sim = self.start(world, kb, memory, robot_subtask, parked_for)
-        total, discount = 0.0, 1.0
+        total, known, discount = 0.0, 0.0, 1.0
         knowing = knowing and not self.omniscient
         showing = world.robot.held
         for t in range(horizon):
             before = sim
             sim, gain = self.tick(sim, rng, prefix[t] if t < len(prefix) else None)
             if knowing:
-                gain += self.knowing(before, sim.world, sim.kb, showing)
+                known += discount * self.knowing(before, sim.world, sim.kb, showing)
                 if sim.world.robot.held != showing:
                     showing = None
             total += discount * gain
             discount *= self.cfg.tick_discount
             if sim.world.orders_left == 0:
                 break
-        return total
+        return total, known
 
     def start(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory, robot_subtask: Subtask,
               parked_for: int = 0) -> SimState:
