@@ -47,7 +47,8 @@ class PlannerConfig:
     now while it still holds it; ``seen_carrying`` per tick while it carries a dish in the person's view.
     ``view_detour``: the most extra ticks of a plan that shows the robot (walk into view and stay
     ``human_delay`` ticks) or carries a dish through the view. Tuned on generated
-    kitchens of generator seeds 0–29 only."""
+    kitchens of generator seeds 0–29 only. (With ``reuse_rollouts`` the kept rollouts carry no knowing value,
+    so the direct move is scored without it: not measured.)"""
 
     human_angle: float = FOV_ANGLE
     human_delay: int = KB_DELAY
