@@ -62,6 +62,7 @@ from planner.standoff import (Standoff, advance, alternatives, arrive, beside, c
                               in_the_way, step_aside, take_over, unaided, visit_done, within_reach)
 from planner.objects import DISH
 from planner.subtasks import Subtask
+from planner.view_route import view_route
 
 TICKS_PER_SUBTASK = 6
 
@@ -404,28 +405,20 @@ class QmdpRobot:
             return ()
         return best[2] + (Action.STAY,) * max(self.cfg.human_delay - 1, 0)
 
-
     def view_route(self, world: WorldState, subtask: Subtask) -> tuple[Action, ...]:
-        """The walk to ``subtask``'s station, at most ``view_detour`` ticks longer than the shortest, with the
-        most ticks in the person's current view (ties: the shorter), while the robot carries a dish and
-        ``seen_carrying`` values that (docs/domain.md §5, "The person's knowing": a delivery route through
-        their view). The ``view_detour`` is for the whole trip: the extra ticks the dish has already taken
-        (ticks since it was taken less the shortest way shortened) count against it, so the robot cannot
-        wait in view tick after tick. Empty when it carries no dish, is at its station, has no detour left,
-        or no such walk passes the view."""
+        """Behaviour 2's plan while the robot carries a dish and ``seen_carrying`` values that (docs/domain.md §5,
+        "The person's knowing": a delivery route through their view): :func:`planner.view_route.view_route`
+        with what is left of the trip's ``view_detour``. The detour is for the whole dish trip: the extra ticks
+        the dish has taken so far (ticks since it was taken less how much shorter the way has become) count
+        against it, so the robot cannot wait in view tick after tick. Empty when it carries no dish, is at its
+        station or has no detour left."""
         if world.robot.held != DISH or not self.cfg.seen_carrying:
             return ()
         cells = self.tasker.targets(subtask, world)
         if not cells:
             return ()
-        human = world.human
-        seen = view(self.layout, human.pos, human.facing, self.cfg.human_angle).cells
-        start = (world.robot.pos, world.robot.facing)
-
-        def to_target(pose: Pose) -> int:
-            return min(distance(self.layout, pose, c) for c in cells)
-
-        base = to_target(start)
+        pose = (world.robot.pos, world.robot.facing)
+        base = min(distance(self.layout, pose, c) for c in cells)
         if base == 0:
             return ()
         if self.dish_trip is None:
@@ -433,23 +426,8 @@ class QmdpRobot:
         detour = self.cfg.view_detour - (world.tick - self.dish_trip[0] - (self.dish_trip[1] - base))
         if detour <= 0:
             return ()
-        layer: dict[Pose, tuple[int, tuple[Action, ...]]] = {start: (0, ())}
-        best: tuple[int, int, tuple[Action, ...]] | None = None
-        for steps in range(1, base + detour + 1):
-            nxt: dict[Pose, tuple[int, tuple[Action, ...]]] = {}
-            for pose, (count, actions) in layer.items():
-                for d in DIRECTIONS:
-                    after = next_pose(self.layout, pose, d)
-                    if after[0] == human.pos or steps + to_target(after) > base + detour:
-                        continue
-                    score = count + (after[0] in seen)
-                    if after not in nxt or nxt[after][0] < score:
-                        nxt[after] = (score, actions + (move_action(d),))
-            for pose, (count, actions) in nxt.items():
-                if to_target(pose) == 0 and (best is None or count > best[0]):
-                    best = (count, steps, actions)
-            layer = nxt
-        return best[2] if best is not None and best[0] > 0 else ()
+        seen = view(self.layout, world.human.pos, world.human.facing, self.cfg.human_angle).cells
+        return view_route(self.layout, pose, cells, seen, world.human.pos, detour)
 
 
 def _infer_action(before: AgentState | None, now: AgentState, interacted: bool) -> Action | None:
