@@ -51,6 +51,7 @@ from planner.decision import Decision
 from planner.events import Event, EventKind
 from planner.fov import view
 from planner.geometry import DIRECTIONS, Action, Pos, manhattan, move_action
+from planner.human import HumanMemory
 from planner.kb import KnowledgeBase, initial_kb, omniscient_kb, update_kb
 from planner.layout import Layout
 from planner.paths import Pose, best_moves, distance, next_pose
@@ -63,6 +64,7 @@ from planner.standoff import (Standoff, advance, alternatives, arrive, beside, c
                               in_the_way, out_of_the_way, step_aside, take_over, unaided, visit_done, within_reach)
 from planner.objects import DISH
 from planner.subtasks import NOTHING_NEEDED, Subtask, targets
+from planner.view_route import view_route
 
 TICKS_PER_SUBTASK = 6
 
@@ -91,6 +93,8 @@ class QmdpRobot:
         self.traces: dict[tuple[Subtask, Subtask], Trace] = {}
         self.next_traces: dict[tuple[Subtask, Subtask], Trace] = {}
         self.followed: dict[tuple[Subtask, Subtask], Trace] = {}
+        self.dish_trip: tuple[int, int] | None = None
+        self.known: dict[tuple[Subtask, Subtask], float] = {}
 
     def reset(self, world: WorldState, kb: KnowledgeBase | None = None) -> None:
         """Start on ``world`` (:meth:`planner.decision.Robot.reset`): the model of the person's KB is ``kb``
@@ -111,6 +115,7 @@ class QmdpRobot:
         self.standoff = Standoff()
         self.robot_before = None
         self.traces, self.next_traces = {}, {}
+        self.dish_trip = None
 
     def observe(self, world: WorldState, events: Sequence[Event]) -> None:
         if self.kb is None:
@@ -144,6 +149,8 @@ class QmdpRobot:
                                          or self.current not in self.tasker.options(judged, self.current)):
             self.current = None
         self.held_before = world.robot.held
+        if world.robot.held != DISH:
+            self.dish_trip = None
 
     def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,
                deadline: float | None = None) -> Decision:
@@ -174,6 +181,7 @@ class QmdpRobot:
             return Decision(action=action, belief=self.belief.as_dict(),
                             elapsed_ms=(time.perf_counter() - start) * 1000)
         self.pending = ()
+        self.known = {}
         self.traces, self.next_traces = self.next_traces, {}
         options = self.tasker.options(world, self.current)
         around = self.around_standoff(world, options)
@@ -343,7 +351,7 @@ class QmdpRobot:
         if show:
             candidates[show[0]] = show[1:]
         plans = [(move, rest, True) for move, rest in candidates.items()]
-        route = self.view_route(world, subtask) if not show else ()
+        route = self.view_route(world, subtask)
         if route and route[1:] != candidates.get(route[0]):
             plans.append((route[0], route[1:], False))
         if len(plans) < 2:
@@ -352,8 +360,8 @@ class QmdpRobot:
         for i, (move, rest, _) in enumerate(plans):
             if deadline is not None and scored and time.perf_counter() > deadline:
                 break
-            if move is default and not rest and not self.cfg.values_knowing:
-                v = direct_value
+            if move is default and not rest:
+                v = direct_value + sum(p * self.known.get((subtask, s), 0.0) for s, p in likely)
             else:
                 plan = (move,) + rest
                 v = sum(p * self.sampled(world, s, subtask, horizon, seed, plan, self.cfg.values_knowing)
@@ -378,6 +386,13 @@ class QmdpRobot:
                                self.human_still)
             self.next_traces[key] = trace
             return trace.value(self.cfg.tick_discount, horizon)
+        if not prefix and self.explore and self.cfg.values_knowing:
+            # The subtask's value is the progress alone; the same rollouts' knowing is kept for its first move.
+            sums = [self.rollout.parts(world, self.kb, HumanMemory(subtask=human_subtask, held=world.human.held),
+                                       np.random.default_rng(seed + 7919 * i), robot_subtask, horizon,
+                                       parked_for=self.human_still, knowing=True) for i in range(n)]
+            self.known[(robot_subtask, human_subtask)] = sum(k for _, k in sums) / n
+            return sum(v for v, _ in sums) / n
         return sum(self.rollout.value(world, self.kb, human_subtask, robot_subtask, horizon, seed + 7919 * i,
                                       prefix=prefix, parked_for=self.human_still, knowing=knowing)
                    for i in range(n)) / n
@@ -437,44 +452,29 @@ class QmdpRobot:
             return ()
         return best[2] + (Action.STAY,) * max(self.cfg.human_delay - 1, 0)
 
-
     def view_route(self, world: WorldState, subtask: Subtask) -> tuple[Action, ...]:
-        """The walk to ``subtask``'s station, at most ``view_detour`` ticks longer than the shortest, with the
-        most ticks in the person's current view (ties: the shorter), while the robot carries a dish and
-        ``seen_carrying`` values that (docs/domain.md §5, "The person's knowing": a delivery route through
-        their view). Empty when it carries no dish, is at its station, or no such walk passes the view."""
+        """Behaviour 2's plan while the robot carries a dish and ``seen_carrying`` values that (docs/domain.md §5,
+        "The person's knowing": a delivery route through their view): :func:`planner.view_route.view_route`
+        with what is left of the trip's ``view_detour``. The detour is for the whole dish trip: the extra ticks
+        the dish has taken so far (ticks since it was taken less how much shorter the way has become) count
+        against it, so the robot cannot wait in view tick after tick. Empty when it carries no dish, is at its
+        station or has no detour left."""
         if world.robot.held != DISH or not self.cfg.seen_carrying:
             return ()
         cells = self.tasker.targets(subtask, world)
         if not cells:
             return ()
-        human = world.human
-        seen = view(self.layout, human.pos, human.facing, self.cfg.human_angle).cells
-        start = (world.robot.pos, world.robot.facing)
-
-        def to_target(pose: Pose) -> int:
-            return min(distance(self.layout, pose, c) for c in cells)
-
-        base = to_target(start)
+        pose = (world.robot.pos, world.robot.facing)
+        base = min(distance(self.layout, pose, c) for c in cells)
         if base == 0:
             return ()
-        layer: dict[Pose, tuple[int, tuple[Action, ...]]] = {start: (0, ())}
-        best: tuple[int, int, tuple[Action, ...]] | None = None
-        for steps in range(1, base + self.cfg.view_detour + 1):
-            nxt: dict[Pose, tuple[int, tuple[Action, ...]]] = {}
-            for pose, (count, actions) in layer.items():
-                for d in DIRECTIONS:
-                    after = next_pose(self.layout, pose, d)
-                    if after[0] == human.pos or steps + to_target(after) > base + self.cfg.view_detour:
-                        continue
-                    score = count + (after[0] in seen)
-                    if after not in nxt or nxt[after][0] < score:
-                        nxt[after] = (score, actions + (move_action(d),))
-            for pose, (count, actions) in nxt.items():
-                if to_target(pose) == 0 and (best is None or count > best[0]):
-                    best = (count, steps, actions)
-            layer = nxt
-        return best[2] if best is not None and best[0] > 0 else ()
+        if self.dish_trip is None:
+            self.dish_trip = (world.tick, base)
+        detour = self.cfg.view_detour - (world.tick - self.dish_trip[0] - (self.dish_trip[1] - base))
+        if detour <= 0:
+            return ()
+        seen = view(self.layout, world.human.pos, world.human.facing, self.cfg.human_angle).cells
+        return view_route(self.layout, pose, cells, seen, world.human.pos, detour)
 
 
 def _infer_action(before: AgentState | None, now: AgentState, interacted: bool) -> Action | None:

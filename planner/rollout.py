@@ -160,19 +160,30 @@ class Rollout:
             robot_subtask: Subtask, horizon: int, prefix: tuple[Action, ...] = (), parked_for: int = 0,
             knowing: bool = False) -> float:
         """:meth:`value` from a given human memory and random stream (``rng`` is consumed)."""
+        progress, known = self.parts(world, kb, memory, rng, robot_subtask, horizon, prefix, parked_for, knowing)
+        return progress + known
+
+    def parts(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory, rng: np.random.Generator,
+              robot_subtask: Subtask, horizon: int, prefix: tuple[Action, ...] = (), parked_for: int = 0,
+              knowing: bool = False) -> tuple[float, float]:
+        """:meth:`run`'s two sums apart: the discounted progress, and the discounted :meth:`knowing` (0 unless
+        ``knowing``), so one rollout serves a subtask's value and its first move's."""
         sim = self.start(world, kb, memory, robot_subtask, parked_for)
-        total, discount = 0.0, 1.0
+        total, known, discount = 0.0, 0.0, 1.0
         knowing = knowing and not self.omniscient
+        showing = world.robot.held
         for t in range(horizon):
             before = sim
             sim, gain = self.tick(sim, rng, prefix[t] if t < len(prefix) else None)
             if knowing:
-                gain += self.knowing(before, sim.world, sim.kb)
+                known += discount * self.knowing(before, sim.world, sim.kb, showing)
+                if sim.world.robot.held != showing:
+                    showing = None
             total += discount * gain
             discount *= self.cfg.tick_discount
             if sim.world.orders_left == 0:
                 break
-        return total
+        return total, known
 
     def start(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory, robot_subtask: Subtask,
               parked_for: int = 0) -> SimState:
@@ -203,18 +214,19 @@ class Rollout:
             next_task = None
         return SimState(world, kb, memory, next_task, human_still, phi), phi - sim.phi
 
-    def knowing(self, before: SimState, world: WorldState, kb: KnowledgeBase) -> float:
-        """This tick's value of what the modelled person knows of the robot (docs/domain.md §5, "The person's
-        knowing"): ``−unknown_held_cost`` while their KB is wrong about what the robot holds, ``+shown_reward``
-        at the tick their KB comes to be right about it, ``+seen_carrying`` while the robot is
-        in their view with a dish (on the way to the serving counter). Zero for a person who sees everything."""
+    def knowing(self, before: SimState, world: WorldState, kb: KnowledgeBase, showing: str | None) -> float:
+        """This tick's value of what the modelled person comes to know of the robot (docs/domain.md §5, "The
+        person's knowing"): ``+shown_value`` at the tick their KB acknowledges ``showing`` (what the robot held
+        when the decision was made) while the robot still holds it, and ``+seen_carrying`` while the robot is
+        in their view with a dish (on the way to the serving counter). Zero for a person who sees everything.
+        Only the object held now earns the shown value: a cost for every unknown load in the lookahead made
+        the robot avoid and delay work, and one for a KB that still believes the robot holds what it put
+        down made it keep its load in view (measured, docs/domain.md §5)."""
         held = world.robot.held
         value = 0.0
-        wrong = kb.robot is None or kb.robot.held != held
-        if wrong:
-            value -= self.cfg.unknown_held_cost
-        elif before.kb.robot is None or before.kb.robot.held != before.world.robot.held:
-            value += self.cfg.shown_reward
+        if showing is not None and held == showing and kb.robot is not None and kb.robot.held == held and (
+                before.kb.robot is None or before.kb.robot.held != held):
+            value += self.cfg.shown_value
         if held == DISH and self.cfg.seen_carrying:
             human = world.human
             if world.robot.pos in view(self.layout, human.pos, human.facing, self.cfg.human_angle).cells:

@@ -4,6 +4,12 @@ The robot has just plated a steak out of the human's view; the human last saw it
 The FOV-aware robot steps into the human's view and stays there until the human can acknowledge what
 it holds (``kb_delay`` ticks), then goes on to the board; the baseline, and the no-rollout robot, which
 shares the FOV-aware belief but does not explore, walk straight to the board out of view.
+
+The person here stands still while the robot's model of them expects them to carry their plate west to the
+sink, ahead of the robot. Valuing the person's knowing (the default, docs/domain.md §5) the FOV-aware robot
+expects to be seen on that way anyway and walks straight on; so these scenes run the exploration on the
+shaping potential alone (``shown_value`` and ``seen_carrying`` 0), where the show plan wins on what the
+person's knowing does for the team. The default robot's show plan: ``test_planner_behaviour_pickup.py``.
 """
 
 from __future__ import annotations
@@ -15,6 +21,7 @@ import numpy as np
 from planner.fov import visible_cells
 from planner.geometry import Action, Direction
 from planner.objects import CLEAN_PLATE, DIRTY_PLATE, STEAK_PLATE
+from planner.planner_config import PlannerConfig
 from planner.robots import make_robot
 from planner.rules import Rules
 from planner.state import AgentState, initial_state
@@ -24,6 +31,7 @@ from study_config import load_layout
 RULES = Rules()
 LAYOUT = load_layout("none_3")
 HUMAN = AgentState((9, 2), Direction.NORTH, DIRTY_PLATE)
+POTENTIAL_ONLY = PlannerConfig(shown_value=0.0, seen_carrying=0.0)
 
 
 def situation():
@@ -35,7 +43,7 @@ def situation():
 
 def first_decision(name: str):
     before, now = situation()
-    robot = make_robot(name, LAYOUT, RULES)
+    robot = make_robot(name, LAYOUT, RULES, POTENTIAL_ONLY)
     robot.reset(before)
     return robot, now, robot.decide(now, (), np.random.default_rng(0))
 

@@ -16,12 +16,16 @@ from planner.behaviours import frame_of, measure
 from planner.fov import visible_cells
 from planner.geometry import Action, Direction
 from planner.layout import parse_layout
-from planner.objects import MEAT
+from planner.objects import DISH, MEAT
+from planner.paths import distance, next_pose
+from planner.planner_config import PlannerConfig
+from planner.qmdp import make_qmdp_robot
 from planner.perception import FOV_ANGLE, KB_DELAY
 from planner.robots import make_robot
 from planner.rules import Rules
 from planner.state import AgentState, initial_state
 from planner.step import step
+from planner.subtasks import Subtask
 
 RULES = Rules(chop_time=12)
 LAYOUT = parse_layout("\n".join([
@@ -73,3 +77,25 @@ def test_the_baseline_carries_it_to_the_grill_unseen(seed):
     assert world.grills[0] is not None and world.robot.held is None
     b = measure(frames, KB_DELAY)
     assert (b.holdings, b.shown) == (1, 0)
+
+
+def test_the_dish_route_passes_through_the_persons_view_within_the_detour():
+    """Behaviour 2's plan (:meth:`planner.qmdp.QmdpRobot.view_route`): with a dish, the walk to the serving
+    counter (7, 4) that the person sees most, at most ``view_detour`` ticks longer than the shortest (along the
+    top row, unseen); its last pose faces the counter."""
+    config = replace(PlannerConfig(), seen_carrying=max(PlannerConfig().seen_carrying, 1.0))
+    world = replace(initial_state(LAYOUT, RULES), human=PERSON, robot=AgentState((1, 2), Direction.NORTH, DISH),
+                    boards=(0,))
+    robot = make_qmdp_robot("fov_aware", LAYOUT, RULES, config)
+    robot.reset(world)
+    route = robot.view_route(world, Subtask.DELIVER_DISH)
+    seen = visible_cells(LAYOUT, PERSON.pos, PERSON.facing, FOV_ANGLE)
+    pose = (world.robot.pos, world.robot.facing)
+    cells = []
+    for action in route:
+        assert action.direction is not None
+        pose = next_pose(LAYOUT, pose, action.direction)
+        cells.append(pose[0])
+    assert any(c in seen for c in cells)
+    assert distance(LAYOUT, pose, (7, 4)) == 0
+    assert len(route) <= distance(LAYOUT, ((1, 2), Direction.NORTH), (7, 4)) + config.view_detour
