@@ -458,6 +458,6 @@ class LiveGame:
             "connected": self.connection is not None, "mode": self.mode, "tick_rate_hz": self.rate,
             "decision": self.last_choice.info if self.last_choice else None,
             "decision_ms": self.last_choice.decision_ms if self.last_choice else None,
-            "deadline_misses": self.misses, "health": self.health.to_dict(),
+            "deadline_misses": self.misses, "stall_hints": self.stall_hints, "health": self.health.to_dict(),
             "lateness_ms": snapshot.percentiles(list(self.lateness)),
         })
