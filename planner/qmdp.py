@@ -337,8 +337,8 @@ class QmdpRobot:
         human's view held for ``kb_delay`` ticks), each scored by a rollout that tracks the modelled KB.
         ``direct_value`` is the direct move's score, already computed for ``Q`` (same rollouts, same seeds)."""
         default = self.rollout.robot_move(world, subtask, self.human_still >= 2)
-        if not self.explore or self.cfg.exploration_depth <= 0 or default is Action.INTERACT:
-            return default, 0
+        if not self.explore or self.cfg.exploration_depth <= 0 or default is Action.INTERACT or self.alone:
+            return default, 0  # nothing to show a person who has stopped (planner.alone): the robot works alone
         assert self.kb is not None
         candidates: dict[Action, tuple[Action, ...]] = {default: ()}
         cells = self.tasker.targets(subtask, world)
