@@ -62,7 +62,7 @@ def trial_public(row: TrialRow, participant: str | None = None, recruit_id: str 
         "trial_id": row.id, "study_id": row.study_id, "participant_id": participant, "recruit_id": recruit_id,
         "kind": row.kind,
         "index": row.index, "attempt": row.attempt, "condition": row.condition_id, "kitchen": row.kitchen,
-        "robot": row.robot, "view": row.view, "seed": str(row.seed), "config_hash": row.config_hash, "status": row.status,
+        "robot": row.robot, "view": row.view, "fov_angle": row.fov_angle, "seed": str(row.seed), "config_hash": row.config_hash, "status": row.status,
         "end_reason": row.end_reason, "ticks": row.ticks, "delivered": row.delivered, "score": row.score,
         "started_at": row.started_at.isoformat(), "ended_at": row.ended_at.isoformat() if row.ended_at else None,
         "decisions": row.decisions, "missed_decisions": row.missed_decisions,
