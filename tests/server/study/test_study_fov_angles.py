@@ -8,6 +8,7 @@ from pathlib import Path
 
 import pytest
 
+from server.cli import main
 from server.flow.plan import build_plan
 from server.study import load_study, validate_study_file
 
@@ -54,6 +55,13 @@ def test_a_study_without_angles_keeps_its_world_angle_ids_and_hash(tmp_path) -> 
     assert [c.id for c in study.conditions][0] == "fov_aware@none_3"
     assert {c.fov_angle for c in study.conditions} == {100.0}
     assert study.trial_angle(None) == 100.0 and study.trial_angle(150.0) == 150.0
+
+
+def test_validate_names_the_groups_and_the_angles(tmp_path, capsys) -> None:
+    assert main(["study", "validate", str(write(tmp_path, "fov_angles: [90, 150]\nbetween: [fov_angle]\n"))]) == 0
+    out = capsys.readouterr().out
+    assert "8 condition orders (latin_square, in 2 groups of fov_angle between participants)" in out
+    assert "field of view 90° / 150°" in out
 
 
 @pytest.mark.parametrize(("text", "field", "reason"), [
