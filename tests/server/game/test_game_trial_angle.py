@@ -1,12 +1,13 @@
 """A stored trial is masked with its own field of view: in a study with ``fov_angles: [90, 150]`` between
 participants, the participant of the 150° group sees cells at the start of their trial that the 90° participant,
-in the same kitchen and pose, does not; and a trial rebuilt from the store (a resume, the admin's view of another
-process's trial) keeps the angle."""
+in the same kitchen and pose, does not; a trial rebuilt from the store (a resume, the admin's view of another
+process's trial) keeps the angle, and the admin's live view shows the same field of view."""
 
 from __future__ import annotations
 
 from steakhouse_testing import write_study
 
+from server.admin.live import scene_view
 from server.catalog import load_one
 from server.flow import service
 from server.flow.progress import Move
@@ -41,6 +42,8 @@ def test_each_angle_level_masks_its_own_trials(db_url, tmp_path) -> None:
             assert engine.angle == trial.fov_angle
             cells = state(engine, mode="wait_for_participant", rate=5.0, ack=0).cells
             seen[trial.fov_angle] = {(c.x, c.y) for c in cells}
+            admin = scene_view({}, engine)["frame"]["fov"]
+            assert {tuple(cell) for cell in admin} == seen[trial.fov_angle], "the admin's live view draws it too"
     finally:
         store.dispose()
     assert sorted(seen) == [90.0, 150.0], "one trial in each group"
