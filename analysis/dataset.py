@@ -200,7 +200,8 @@ def _trial_row(p: StoredParticipant, trial: StoredTrial, measures: dict[str, Any
     return {
         "participant": p.public_id, "trial_id": trial.id, "kind": trial.kind, "index": trial.index,
         "attempt": trial.attempt, "condition": trial.condition, "robot": trial.robot, "kitchen": trial.kitchen,
-        "view": trial.view, "fov_angle": angle_value(trial.fov_angle), "seed": trial.seed, "status": trial.status, "end_reason": trial.end_reason,
+        "view": trial.view, "fov_angle": angle_value(trial.fov_angle), "seed": trial.seed, "status": trial.status,
+        "end_reason": trial.end_reason,
         "started_at": iso_time(trial.started_at), "ended_at": iso_time(trial.ended_at),
         "config_hash": trial.config_hash,
         "in_cells": int(in_cells), "participant_test_run": int(p.test_run), "participant_excluded": int(p.excluded),

@@ -5,8 +5,8 @@ Read from the resolved configuration stored with the study (``studies.config``):
 
 * factors: ``factors`` (default ``[robot, kitchen]``); the levels of ``robot`` are ``robots``, of ``kitchen`` the
   names in ``kitchens``, of ``view`` the ``views`` (or the single ``view``), of ``fov_angle`` the ``fov_angles`` (or
-  the single ``world.fov_angle``), spelt as :func:`server.study.fov_angles.angle_level`. A factor named in ``factors`` with a
-  single level is not a factor of the analysis (it is reported as such).
+  the single ``world.fov_angle``), spelt as :func:`server.study.fov_angles.angle_level`. A factor named in
+  ``factors`` with a single level is not a factor of the analysis (it is reported as such).
 * questionnaire items: ``type`` ``rating`` (the default) are analysed, with their ``scale`` range and
   ``reverse: true`` for reverse-coded items; ``choice`` (a nominal index) and ``text`` items are not.
   ``scales: [{id, title, items}]`` of a questionnaire shown after each trial become measures of the cell

@@ -59,12 +59,12 @@ class Study(StudyModel):
     (or in ``factors``): each trial masks the participant's view and models the person at its own angle
     (``server.study.fov_angles``). Without it every trial has ``world.fov_angle``; write one of the two."""
     between: tuple[Factor, ...] = ()
-    """Factors between participants (``robot``, ``kitchen``, ``view``, ``fov_angle``), e.g. ``[view]`` with ``views: [top_down,
-    first_person]``: each participant plays one level (one group per combination of levels), groups are filled in
+    """Factors between participants (``robot``, ``kitchen``, ``view``, ``fov_angle``), e.g. ``[view]`` with
+    ``views: [top_down, first_person]``: each participant plays one level (one group per combination of levels), groups are filled in
     balance, and the within ``factors`` are counterbalanced inside each group (``server/study/groups.py``)."""
     factors: Annotated[tuple[Factor, ...], NotEmpty] = Field(default=("robot", "kitchen"), validate_default=True)
-    """Within-subject factors (``robot``, ``kitchen``, ``view``, ``fov_angle``), crossed into the conditions; the first varies
-    slowest in the condition list. A dimension left out must have a single level (e.g. one kitchen with
+    """Within-subject factors (``robot``, ``kitchen``, ``view``, ``fov_angle``), crossed into the conditions; the
+    first varies slowest in the condition list. A dimension left out must have a single level (e.g. one kitchen with
     ``factors: [robot]``)."""
     counterbalancing: Counterbalancing = Counterbalancing()
     """How each participant's condition order is chosen."""
