@@ -31,6 +31,7 @@ from analysis.store_reader import (
 )
 from analysis.study_design import ScaleSpec
 from analysis.work import redundant_action_flags, subtask_switch_flags
+from server.study.fov_angles import angle_value
 
 FILES = ("ticks.csv", "trials.csv", "cells.csv", "wide.csv", "answers.csv", "participants.csv", "excluded.csv")
 
@@ -100,7 +101,7 @@ def export_columns(design: Design) -> dict[str, tuple[Column, ...]]:
         "ticks.csv": TICK_COLUMNS,
         "trials.csv": TRIAL_COLUMNS,
         "cells.csv": (*CELL_COLUMNS, *design.trial_value_columns),
-        "wide.csv": tuple(wide_columns(per_cell, design.conditions, design.end_value_columns)),
+        "wide.csv": tuple(wide_columns(per_cell, design.conditions, design.end_value_columns, design.fields)),
         "answers.csv": ANSWER_COLUMNS,
         "participants.csv": PARTICIPANT_COLUMNS,
         "excluded.csv": EXCLUDED_COLUMNS,
@@ -144,7 +145,7 @@ def _tick_rows(participant: str, trial: StoredTrial, ticks: Sequence[StoredTick]
         row: dict[str, Any] = {
             "participant": participant, "trial_id": trial.id, "kind": trial.kind, "index": trial.index,
             "attempt": trial.attempt, "robot": trial.robot, "kitchen": trial.kitchen, "view": trial.view,
-            "tick": tick.tick,
+            "fov_angle": angle_value(trial.fov_angle), "tick": tick.tick,
             "human_action": tick.human_action, "robot_action": tick.robot_action,
             "action_source": tick.action_source, "subtask": tick.subtask, "subtask_switch": switch,
             "redundant_action": extra, "human_held": tick.world_state.get("human", {}).get("held"),
@@ -177,7 +178,8 @@ def _cell_rows(p: StoredParticipant, used: dict[int, StoredTrial], measures: dic
     rows = []
     for index, trial in sorted(used.items()):
         row: dict[str, Any] = {"participant": p.public_id, "robot": trial.robot, "kitchen": trial.kitchen,
-                               "view": trial.view, "condition": trial.condition, "trial_id": trial.id, "position": index + 1}
+                               "view": trial.view, "fov_angle": angle_value(trial.fov_angle),
+                               "condition": trial.condition, "trial_id": trial.id, "position": index + 1}
         row.update({m: measures[trial.id][m] for m in TRIAL_MEASURES})
         row.update(_questionnaire_values(answers.get(index, {}), design.trial_items, design.trial_scales, design))
         rows.append(row)
@@ -198,7 +200,8 @@ def _trial_row(p: StoredParticipant, trial: StoredTrial, measures: dict[str, Any
     return {
         "participant": p.public_id, "trial_id": trial.id, "kind": trial.kind, "index": trial.index,
         "attempt": trial.attempt, "condition": trial.condition, "robot": trial.robot, "kitchen": trial.kitchen,
-        "view": trial.view, "seed": trial.seed, "status": trial.status, "end_reason": trial.end_reason,
+        "view": trial.view, "fov_angle": angle_value(trial.fov_angle), "seed": trial.seed, "status": trial.status,
+        "end_reason": trial.end_reason,
         "started_at": iso_time(trial.started_at), "ended_at": iso_time(trial.ended_at),
         "config_hash": trial.config_hash,
         "in_cells": int(in_cells), "participant_test_run": int(p.test_run), "participant_excluded": int(p.excluded),
@@ -222,10 +225,10 @@ def _wide_rows(participants: Sequence[StoredParticipant], cell_rows: list[dict[s
         if not cells:
             continue
         row: dict[str, Any] = {"participant": p.public_id, "order_index": p.order_index}
-        present = {design.cell_of(c["robot"], c["kitchen"], c["view"]) for c in cells}
+        present = {design.cell_of(c["robot"], c["kitchen"], c["view"], c["fov_angle"]) for c in cells}
         row["complete"] = int(all(cond in present for cond in design.expected_cells(p.condition_order)))
         for cell in cells:
-            levels = design.cell_of(cell["robot"], cell["kitchen"], cell["view"])
+            levels = design.cell_of(cell["robot"], cell["kitchen"], cell["view"], cell["fov_angle"])
             for name in values:
                 row[wide_column(name, *levels)] = cell[name]
         row.update(_questionnaire_values(answers.get(p.id, {}).get(None, {}), design.end_items, design.end_scales,

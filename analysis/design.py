@@ -1,8 +1,10 @@
 """The study design as the export needs it, read from the resolved configuration stored with the study.
 
-Conditions are the robot × kitchen (× view, when the view is a factor) cross in study order (the first factor
-varies slowest, as in ``server.study.conditions``; condition ids are ``robot@kitchen`` or ``robot@kitchen@view``).
-A condition's cell is the tuple of its levels: ``(robot, kitchen)``, or ``(robot, kitchen, view)``. Questionnaire items are split into those
+Conditions are the robot × kitchen (× view, × fov_angle, when these are factors) cross in study order (the first
+factor varies slowest, as in ``server.study.conditions``; condition ids are ``robot@kitchen``, ``robot@kitchen@view``,
+``robot@kitchen@angle`` or ``robot@kitchen@view@angle``). A condition's cell is the tuple of its levels in
+:attr:`Design.fields` order: ``(robot, kitchen)``, ``(robot, kitchen, view)``, ``(robot, kitchen, fov_angle)`` or all
+four, an angle spelt as :func:`server.study.fov_angles.angle_level` (``90``). Questionnaire items are split into those
 answered after each main trial (one value per condition: measures of the cell) and those answered once at
 the end of the study (one value per participant).
 
@@ -21,11 +23,12 @@ from dataclasses import dataclass
 from typing import Any
 
 from analysis.dictionary import NUM, Column, item_column, item_columns
-from analysis.study_design import RatingItem, ScaleSpec, rating_specs
+from analysis.study_design import RatingItem, ScaleSpec, factor_levels, rating_specs
+from server.study.fov_angles import angle_level
 
 
-CELL_FIELDS = ("robot", "kitchen", "view")
-"""The fields of a cell tuple, in order."""
+CELL_FIELDS = ("robot", "kitchen", "view", "fov_angle")
+"""The fields a cell tuple may have, in order (robot and kitchen always; view and fov_angle when factors)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -33,7 +36,7 @@ class Design:
     robots: tuple[str, ...]
     kitchens: tuple[str, ...]
     conditions: tuple[tuple[str, ...], ...]
-    """Cells in study order: (robot, kitchen), or (robot, kitchen, view) when the view is a factor."""
+    """Cells in study order: their levels of :attr:`fields`."""
     trial_items: tuple[tuple[str, str, str], ...]
     """(questionnaire, item, text) answered after each main trial."""
     end_items: tuple[tuple[str, str, str], ...]
@@ -46,6 +49,8 @@ class Design:
     """Named scales of the end-of-study questionnaires (a score per participant)."""
     between: tuple[str, ...] = ()
     """Factors between participants: a participant is expected in the conditions of their group only."""
+    fields: tuple[str, ...] = ("robot", "kitchen")
+    """The fields of a cell: robot, kitchen, then view and fov_angle when they are factors (within or between)."""
 
     @classmethod
     def from_config(cls, config: dict[str, Any]) -> Design:
@@ -54,10 +59,9 @@ class Design:
         between = tuple(str(f) for f in config.get("between") or ())
         factors = (*between, *(str(f) for f in config.get("factors", ("robot", "kitchen"))))
         levels = {"robot": robots, "kitchen": kitchens}
-        if "view" in factors:
-            levels["view"] = tuple(str(v) for v in config.get("views") or [config.get("view", "top_down")])
+        levels.update({f: factor_levels(config, f) for f in CELL_FIELDS[2:] if f in factors})
         order = [f for f in factors if f in levels] + [f for f in levels if f not in factors]
-        fields = tuple(levels)  # robot, kitchen[, view]: the cell's field order
+        fields = tuple(levels)  # robot, kitchen[, view][, fov_angle]: the cell's field order
         conditions = tuple(
             tuple(dict(zip(order, combination))[f] for f in fields)
             for combination in itertools.product(*(levels[f] for f in order)))
@@ -73,7 +77,7 @@ class Design:
         trial_ratings, trial_scales = rating_specs(questionnaires, "after_each_trial")
         end_ratings, end_scales = rating_specs(questionnaires, "end_of_study")
         return cls(robots, kitchens, conditions, tuple(trial_items), tuple(end_items),
-                   trial_ratings + end_ratings, trial_scales, end_scales, between)
+                   trial_ratings + end_ratings, trial_scales, end_scales, between, fields)
 
     def condition_of(self, condition_id: str) -> tuple[str, str] | None:
         """``(robot, kitchen)`` of a condition id (``robot@kitchen``, or ``robot@kitchen@view`` in a study with
@@ -87,18 +91,20 @@ class Design:
         if not self.between or not condition_order:
             return self.conditions
         first = condition_order[0].split("@")
-        fields = CELL_FIELDS[:len(self.conditions[0])] if self.conditions else ()
+        fields = self.fields
         group = {fields.index(f): first[fields.index(f)] for f in self.between
                  if f in fields and fields.index(f) < len(first)}
         return tuple(c for c in self.conditions if all(c[i] == level for i, level in group.items()))
 
     @property
     def view_is_factor(self) -> bool:
-        return bool(self.conditions) and len(self.conditions[0]) == 3
+        return "view" in self.fields
 
-    def cell_of(self, robot: str, kitchen: str, view: str) -> tuple[str, ...]:
+    def cell_of(self, robot: str, kitchen: str, view: str, fov_angle: float | None = None) -> tuple[str, ...]:
         """The cell (a member of ``conditions``) a trial with these levels belongs to."""
-        return (robot, kitchen, view) if self.view_is_factor else (robot, kitchen)
+        levels = {"robot": robot, "kitchen": kitchen, "view": view,
+                  "fov_angle": angle_level(fov_angle) if fov_angle is not None else ""}
+        return tuple(levels[f] for f in self.fields)
 
     @property
     def trial_value_columns(self) -> list[Column]:

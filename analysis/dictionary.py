@@ -80,13 +80,18 @@ _ROBOT = Column("robot", TEXT, "robot planner of the condition (within factor)")
 _KITCHEN = Column("kitchen", TEXT, "kitchen of the condition (within factor)")
 _VIEW = Column("view", TEXT, "how the participant saw the kitchen: top_down or first_person (within factor when "
                              "the study lists views)")
+_CONDITION_ID = ("condition id robot@kitchen (robot@kitchen@view with a view factor, …@angle with a field-of-view "
+                 "factor)")
+_FOV_ANGLE = Column("fov_angle", NUM, "the participant's field of view in degrees (a factor when the study lists "
+                                      "fov_angles; empty for a trial stored before angles were recorded whose study "
+                                      "has changed since)")
 
 TICK_COLUMNS: tuple[Column, ...] = (
     _PARTICIPANT, _TRIAL_ID,
     Column("kind", TEXT, "practice or main"),
     Column("index", INT, "trial index within its kind (0-based, in the participant's order)"),
     Column("attempt", INT, "attempt number at this trial (a restarted trial has several)"),
-    _ROBOT, _KITCHEN, _VIEW,
+    _ROBOT, _KITCHEN, _VIEW, _FOV_ANGLE,
     Column("tick", INT, "world step (1, 2, …)"),
     Column("human_action", TEXT, "the participant's avatar action in this step"),
     Column("robot_action", TEXT, "the robot's action in this step"),
@@ -136,8 +141,7 @@ PARTICIPATION_COLUMNS: tuple[Column, ...] = (
 
 TRIAL_COLUMNS: tuple[Column, ...] = (
     _PARTICIPANT, _TRIAL_ID, *TICK_COLUMNS[2:5],
-    Column("condition", TEXT, "condition id robot@kitchen (robot@kitchen@view with a view factor)"), _ROBOT,
-    _KITCHEN, _VIEW,
+    Column("condition", TEXT, _CONDITION_ID), _ROBOT, _KITCHEN, _VIEW, _FOV_ANGLE,
     Column("seed", INT, "the trial's random seed"),
     Column("status", TEXT, "finished, abandoned or running"),
     Column("end_reason", TEXT, "delivered, horizon, grace_expired or restarted"),
@@ -162,8 +166,8 @@ TRIAL_COLUMNS: tuple[Column, ...] = (
 )
 
 CELL_COLUMNS: tuple[Column, ...] = (
-    _PARTICIPANT, _ROBOT, _KITCHEN, _VIEW,
-    Column("condition", TEXT, "condition id robot@kitchen (robot@kitchen@view with a view factor)"),
+    _PARTICIPANT, _ROBOT, _KITCHEN, _VIEW, _FOV_ANGLE,
+    Column("condition", TEXT, _CONDITION_ID),
     _TRIAL_ID,
     Column("position", INT, "position of the condition in the participant's order (1 = first main trial)"),
     *(MEASURES[m] for m in TRIAL_MEASURES),
@@ -225,7 +229,7 @@ EXCLUDED_COLUMNS: tuple[Column, ...] = (
 
 
 def wide_column(measure: str, *levels: str) -> str:
-    """``measure__robot__kitchen`` (``…__view`` appended when the view is a factor)."""
+    """``measure__robot__kitchen`` (``…__view``, ``…__angle`` appended when the view, the angle are factors)."""
     return WIDE_SEPARATOR.join((measure, *levels))
 
 
@@ -235,7 +239,7 @@ def item_columns(items: Iterable[tuple[str, str, str]]) -> list[Column]:
 
 
 def wide_columns(measures: Sequence[Column], conditions: Sequence[tuple[str, ...]],
-                 end_items: Sequence[Column]) -> list[Column]:
+                 end_items: Sequence[Column], fields: Sequence[str] = ("robot", "kitchen")) -> list[Column]:
     columns = [
         _PARTICIPANT,
         Column("order_index", INT, "counterbalancing order assigned"),
@@ -243,7 +247,7 @@ def wide_columns(measures: Sequence[Column], conditions: Sequence[tuple[str, ...
     ]
     for measure in measures:
         for cell in conditions:
-            named = ", ".join(f"{factor} {level}" for factor, level in zip(("robot", "kitchen", "view"), cell))
+            named = ", ".join(f"{factor} {level}" for factor, level in zip(fields, cell, strict=True))
             columns.append(Column(wide_column(measure.name, *cell), measure.type,
                                   f"{measure.description} — {named}"))
     return columns + list(end_items)

@@ -90,11 +90,11 @@ def _category(missing: Sequence[str]) -> str:
 
 def _missing_cells(p: StoredParticipant, trials: Sequence[StoredTrial], used: Used, design: Design) -> list[str]:
     """``missing cell robot=…, kitchen=… (why)`` for each condition without a cell."""
-    present = {design.cell_of(t.robot, t.kitchen, t.view) for t in used.get(p.id, {}).values()}
+    present = {design.cell_of(t.robot, t.kitchen, t.view, t.fov_angle) for t in used.get(p.id, {}).values()}
     out = []
     for cell in design.expected_cells(p.condition_order):
         if cell not in present:
-            label = cell_label(("robot", "kitchen", "view")[:len(cell)], cell)
+            label = cell_label(design.fields, cell)
             out.append(f"missing cell {label} ({_why_missing(p, trials, '@'.join(cell))})")
     return out
 

@@ -66,6 +66,8 @@ class StoredTrial:
     kitchen: str
     robot: str
     view: str
+    fov_angle: float | None
+    """Degrees; ``None`` for a trial stored before angles were recorded (``server.store.tables.TrialRow``)."""
     seed: int
     config_hash: str
     status: str
@@ -258,7 +260,8 @@ def _trials(conn: Connection, study_id: str, include_pilot: bool) -> tuple[Store
     t = TrialRow
     rows = conn.execute(_real(
         select(t.id, t.participant_id, t.kind, t.index, t.attempt, t.condition_id.label("condition"), t.kitchen,
-               t.robot, t.view, t.seed, t.config_hash, t.status, t.end_reason, t.started_at, t.ended_at, t.ticks,
+               t.robot, t.view, t.fov_angle, t.seed, t.config_hash, t.status, t.end_reason, t.started_at, t.ended_at,
+               t.ticks,
                t.delivered, t.score, t.initial_state, t.decisions, t.missed_decisions, t.invalid_reason,
                t.key_actions, t.idle_pct, t.refused_steps, t.delivered_by_participant, t.delivered_by_robot,
                t.engagement_reason)

@@ -59,7 +59,8 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
     export = export_study(source, study_id, out / DATA_DIR,
                           include_invalid=INVALID.name in include or LOW_ENGAGEMENT.name in include,
                           include_pilot=PILOT in include)
-    cells = pd.read_csv(out / DATA_DIR / "cells.csv", dtype={SUBJECT: str})
+    # Levels are read as written: an angle's level is ``90`` (as in the design), not the float ``90.0``.
+    cells = pd.read_csv(out / DATA_DIR / "cells.csv", dtype={SUBJECT: str, "fov_angle": str})
     trials = pd.read_csv(out / DATA_DIR / "trials.csv", dtype={SUBJECT: str})
     if cells.empty:
         raise AnalysisInputError(

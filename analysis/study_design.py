@@ -4,8 +4,9 @@ order, the horizon, and the after-trial rating items and scales.
 Read from the resolved configuration stored with the study (``studies.config``):
 
 * factors: ``factors`` (default ``[robot, kitchen]``); the levels of ``robot`` are ``robots``, of ``kitchen`` the
-  names in ``kitchens``, of ``view`` the ``views`` (or the single ``view``). A factor named in ``factors`` with a
-  single level is not a factor of the analysis (it is reported as such).
+  names in ``kitchens``, of ``view`` the ``views`` (or the single ``view``), of ``fov_angle`` the ``fov_angles`` (or
+  the single ``world.fov_angle``), spelt as :func:`server.study.fov_angles.angle_level`. A factor named in
+  ``factors`` with a single level is not a factor of the analysis (it is reported as such).
 * questionnaire items: ``type`` ``rating`` (the default) are analysed, with their ``scale`` range and
   ``reverse: true`` for reverse-coded items; ``choice`` (a nominal index) and ``text`` items are not.
   ``scales: [{id, title, items}]`` of a questionnaire shown after each trial become measures of the cell
@@ -21,6 +22,8 @@ from typing import Any
 
 from analysis.dictionary import item_column
 from analysis.dictionary_items import scale_key
+from planner.perception import FOV_ANGLE
+from server.study.fov_angles import angle_level
 
 LEVEL_KEYS = {"robot": ("robots", "robot"), "kitchen": ("kitchens", "kitchen"), "view": ("views", "view")}
 """Config keys listing a factor's levels, then the key of its single level."""
@@ -77,6 +80,10 @@ class StudyDesign:
 
 def factor_levels(config: Mapping[str, Any], factor: str) -> tuple[str, ...]:
     """The levels of ``factor`` in the study's order (``kitchens`` entries may be ``{name: ...}`` mappings)."""
+    if factor == "fov_angle":
+        world = config.get("world") or {}
+        single = world.get("fov_angle", FOV_ANGLE) if isinstance(world, Mapping) else FOV_ANGLE
+        return tuple(angle_level(float(a)) for a in config.get("fov_angles") or [single])
     many, one = LEVEL_KEYS.get(factor, (f"{factor}s", factor))
     values = config.get(many)
     if not values:

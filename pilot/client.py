@@ -42,11 +42,13 @@ def trial_rng(seed: tuple[int, ...], trial: int) -> np.random.Generator:
 
 
 def respond(mind: Mind, seen: Perception, message: dict[str, Any], needs: dict[str, str], loaded: LoadedStudy,
-            config: ParticipantConfig, rng: np.random.Generator) -> tuple[Perception, Mind, dict[str, Any]]:
+            config: ParticipantConfig, rng: np.random.Generator, angle: float | None = None
+            ) -> tuple[Perception, Mind, dict[str, Any]]:
     """One ``state`` frame in, the knowledge, mind and message body (without ``v`` / ``seq``) out: everything
-    the simulated participant does with a frame, and all it uses (besides the study file and its config)."""
+    the simulated participant does with a frame, and all it uses (besides the study file and its config).
+    ``angle`` is the trial's field of view (``hello.fov_angle``; the study's ``world.fov_angle`` without it)."""
     world = loaded.study.world
-    seen = seen.observe(message, world.fov_angle, world.kb_delay)
+    seen = seen.observe(message, angle if angle is not None else world.fov_angle, world.kb_delay)
     reply, mind = decide(mind, seen, message, needs, loaded.rules, config, rng)
     body = reply.body()
     if body["type"] == "heartbeat":
@@ -192,6 +194,7 @@ class SimulatedParticipant:
         mind = Mind()
         seen: Perception | None = None
         needs: dict[str, str] = {}
+        angle = loaded.study.world.fov_angle
         latest: dict[str, Any] = {}
         thinking: asyncio.Task[None] | None = None
         self.on_trial(1)
@@ -228,18 +231,19 @@ class SimulatedParticipant:
                     kind = message["type"]
                     if kind == "hello":
                         needs = dict(message["needs"])
+                        angle = float(message["fov_angle"])  # the trial's: a level when the angle is a factor
                         seen = Perception(message["width"], message["height"],
                                           tuple(loaded.layouts.values()))
                     elif kind == "state" and seen is not None:
                         latest = message
                         if thinking is not None and not thinking.done():
-                            seen = seen.observe(message, loaded.study.world.fov_angle, loaded.study.world.kb_delay)
+                            seen = seen.observe(message, angle, loaded.study.world.kb_delay)
                             continue
                         if realtime and message["subtask"] is None:
-                            seen = seen.observe(message, loaded.study.world.fov_angle, loaded.study.world.kb_delay)
+                            seen = seen.observe(message, angle, loaded.study.world.kb_delay)
                             thinking = asyncio.create_task(think_then_choose(ws, think_time()))
                             continue
-                        seen, mind, body = respond(mind, seen, message, needs, loaded, config, rng)
+                        seen, mind, body = respond(mind, seen, message, needs, loaded, config, rng, angle)
                         await send(ws, body)
                     elif (kind == "ack" and realtime and message["subtask"] is None and not message["queued"]
                           and latest and (thinking is None or thinking.done())):

@@ -37,12 +37,10 @@ class LoadedStudy:
         """The between-participants group of each of ``orders`` (``server/study/groups.py``)."""
         return tuple(self.study.order_groups())
 
-    @property
-    def planner_config(self) -> PlannerConfig:
-        """The robot's model of the person this study shows: its FOV angle and KB delay (docs/domain.md §5);
-        the kitchen's numbers reach the robot as :attr:`rules`."""
-        world = self.study.world
-        return PlannerConfig(human_angle=world.fov_angle, human_delay=world.kb_delay)
+    def planner_config(self, angle: float) -> PlannerConfig:
+        """The robot's model of the person a trial of this study shows: the trial's FOV ``angle`` and the study's
+        KB delay (docs/domain.md §5); the kitchen's numbers reach the robot as :attr:`rules`."""
+        return PlannerConfig(human_angle=angle, human_delay=self.study.world.kb_delay)
 
 
 class DuplicateStudyError(ValueError):

@@ -3,7 +3,8 @@ each the whole world with the participant's field of view (:mod:`server.admin.sc
 kitchen, and what was recorded at that tick (actions, subtask, KB-gap components, robot in view, lateness,
 the robot's decision with its belief over the participant's subtask).
 
-The field of view is recomputed from the stored human pose with the study's current ``world.fov_angle``;
+The field of view is recomputed from the stored human pose with the trial's stored ``fov_angle`` (the study's
+current ``world.fov_angle`` for trials stored before it was recorded);
 ``config_changed`` says when the study file now differs from the one the trial was played with.
 """
 
@@ -33,7 +34,7 @@ def replay(loaded: LoadedStudy | None, row: TrialRow, ticks: Sequence[TickRow], 
     if loaded is None or row.kitchen not in loaded.layouts:
         raise ApiError(410, "study_gone", "the study or kitchen of this trial is no longer served, so it cannot "
                                           "be drawn; its ticks are still in GET /api/admin/trials/{id}")
-    layout, rules, angle = loaded.layout(row.kitchen), loaded.rules, loaded.study.world.fov_angle
+    layout, rules, angle = loaded.layout(row.kitchen), loaded.rules, loaded.study.trial_angle(row.fov_angle)
     frames: list[dict[str, Any]] = []
     if start == 0:
         frames.append(_initial(layout, WorldState.from_dict(row.initial_state), rules, angle))

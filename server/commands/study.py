@@ -28,6 +28,7 @@ def register(subparsers: Any) -> None:
 def validate_files(args: argparse.Namespace) -> int:
     """Validate each file in ``args.files``; 0 when all are valid, 1 otherwise."""
     from server.study import StudyConfigError, load_study
+    from server.study.fov_angles import angle_level
     from server.study.warnings import study_warnings
 
     invalid = 0
@@ -47,7 +48,9 @@ def validate_files(args: argparse.Namespace) -> int:
             f"{orders} condition order{'s' if orders != 1 else ''} ({scheme}"
             + (f", in {len(set(study.order_groups()))} groups of {' × '.join(study.between)} between participants"
                if study.between else "") + "); "
-            f"view {' / '.join(study.view_levels)}; config {study.config_hash()[:12]}"
+            f"view {' / '.join(study.view_levels)}; "
+            f"field of view {' / '.join(f'{angle_level(a)}°' for a in study.fov_angle_levels)}; "
+            f"config {study.config_hash()[:12]}"
         )
         for warning in study_warnings(study):
             print(f"{file}: {warning}", file=sys.stderr)

@@ -22,7 +22,7 @@ TrialKind = Literal["practice", "main"]
 @dataclass(frozen=True, slots=True)
 class Step:
     """One step. Trial steps name the trial (kind, index within kind, 1-based number of all trials, total,
-    condition, robot, kitchen, view); questionnaire steps the questionnaire and the main trial it follows
+    condition, robot, kitchen, view, field of view); questionnaire steps the questionnaire and the main trial it follows
     (``None`` for end-of-study questionnaires)."""
 
     kind: StepKind
@@ -37,6 +37,9 @@ class Step:
     after_trial: int | None = None
     view: str | None = None
     """``None`` in plans stored before views existed: those trials are top-down (``DEFAULT_VIEW``)."""
+    fov_angle: float | None = None
+    """The trial's field of view; ``None`` in plans stored before it was a factor (the study's
+    ``world.fov_angle``: :meth:`Study.trial_angle`)."""
 
     def to_dict(self) -> dict[str, Any]:
         return {k: v for k, v in asdict(self).items() if v is not None}
@@ -50,19 +53,20 @@ def build_plan(study: Study, order: Sequence[str]) -> tuple[Step, ...]:
     """The steps for a participant assigned ``order`` (condition ids) in ``study``."""
     conditions = {c.id: c for c in study.conditions}
     practice = [(p.kitchen.name, p.robot, study.practice_view(p)) for p in study.practice for _ in range(p.count)]
+    practice_angle = study.practice_angle(order)
     total = len(practice) + len(order)
     steps: list[Step] = [Step("consent"), Step("instructions")]
     if study.quiz is not None:
         steps.append(Step("quiz"))
     for i, (kitchen, robot, view) in enumerate(practice):
         steps.append(Step("trial", "practice", i, i + 1, total, condition_id(robot, kitchen), robot, kitchen,
-                          view=view))
+                          view=view, fov_angle=practice_angle))
     after_each = [q.id for q in study.questionnaires if q.when == "after_each_trial"]
     for i, cid in enumerate(order):
         condition = conditions[cid]
         number = len(practice) + i + 1
         steps.append(Step("trial", "main", i, number, total, cid, condition.robot, condition.kitchen,
-                          view=condition.view))
+                          view=condition.view, fov_angle=condition.fov_angle))
         steps += [Step("questionnaire", questionnaire=q, after_trial=i) for q in after_each]
     steps += [Step("questionnaire", questionnaire=q.id) for q in study.questionnaires if q.when == "end_of_study"]
     steps.append(Step("done"))

@@ -1,8 +1,9 @@
 """What ``GET /api/session`` answers: the participant's state and what to show next.
 
 Never a condition, robot, kitchen or the participant's condition order (nor its index): the pages show "round 2 of
-5", not which robot is playing (blinding, ``docs/protocol.md`` §1). ``fov_angle`` (the study's field of view, the
-same in every trial) lets the instructions draw the cone the participant will have; a trial's ``view`` (top-down
+5", not which robot is playing (blinding, ``docs/protocol.md`` §1). ``fov_angle`` (the field of view of the
+participant's current, else first, trial: the study's one angle, or their group's with ``fov_angle`` a factor) lets
+the instructions draw the cone the participant will have; a trial's ``view`` (top-down
 or first-person) lets the round's intro card explain its controls (the participant sees the view anyway). Consent
 and instructions have their duration placeholders filled in from the study (:mod:`server.study.duration`).
 """
@@ -14,12 +15,14 @@ from typing import Any
 from sqlalchemy.orm import Session
 
 from server.catalog import LoadedStudy
+from server.flow.plan import Step
 from server.flow.progress import Phase
 from server.flow.rounds import RoundFacts, round_facts
 from server.flow import payment
 from server.flow.service import completion, progress_of, quiz_attempts
 from server.store.tables import ParticipantRow
 from server.store.types import utcnow
+from server.study import Study
 from server.study.device import DeviceRequirements
 from server.study.duration import fill_placeholders, study_length
 from server.study.questionnaire import Item
@@ -54,7 +57,7 @@ def session_view(loaded: LoadedStudy, row: ParticipantRow,
         "trials_done": done,
         "trials_total": len(trial_steps),
         "test_run": row.test_run,
-        "fov_angle": study.world.fov_angle,
+        "fov_angle": _angle(study, step if step.kind == "trial" else next(iter(trial_steps), None)),
         "device": _device(row, study.device),
         "notice": "round_ended_away" if facts is not None and facts.previous_ended_away else None,
     }
@@ -106,3 +109,9 @@ def _device(row: ParticipantRow, required: DeviceRequirements) -> dict[str, Any]
     problems = list(row.device.get("problems", []))
     return {"ok": not problems, "problems": problems, "min_width": required.min_width,
             "min_height": required.min_height}
+
+
+def _angle(study: Study, step: Step | None) -> float:
+    """The field of view the participant plays (or will first play) with: the instructions draw their cone with
+    it, and the first-person camera shows it anyway; a plain number, never named as a condition."""
+    return study.trial_angle(step.fov_angle if step is not None else None)

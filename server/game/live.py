@@ -364,7 +364,8 @@ class LiveGame:
     async def _reopen_planner(self) -> None:
         try:
             await self.deps.pool.open(self.meta.trial_id, self.meta.robot, self.engine.layout, self.engine.rules,
-                                      self.loaded.planner_config, self.engine.world, self.engine.kb)
+                                      self.loaded.planner_config(self.engine.angle), self.engine.world,
+                                      self.engine.kb)
         except Exception as exc:  # noqa: BLE001 - the robot stays until a worker is back
             log.error("cannot re-open the planner of trial %d: %s", self.meta.trial_id, exc)
 

@@ -32,7 +32,7 @@ def trial_meta(loaded: LoadedStudy, participant: ParticipantRow, row: TrialRow) 
 def trial_engine(loaded: LoadedStudy, row: TrialRow, last: TickRow | None) -> TrialEngine:
     study = loaded.study
     layout, rules = loaded.layout(row.kitchen), loaded.rules
-    angle, delay = study.world.fov_angle, study.world.kb_delay
+    angle, delay = study.trial_angle(row.fov_angle), study.world.kb_delay
     blocked = study.timing.blocked_ticks()
     if last is not None:
         return TrialEngine(layout, rules, angle=angle, kb_delay=delay, seed=row.seed,

@@ -72,7 +72,8 @@ def _create(session: Session, loaded: LoadedStudy, participant_id: int, step: St
     world: WorldState = initial_state(loaded.layout(step.kitchen), loaded.rules)
     return trials.create(session, study_id=loaded.id, participant_id=participant_id, kind=str(step.trial_kind),
                          index=int(step.index or 0), condition_id=step.condition, kitchen=step.kitchen,
-                         robot=step.robot, view=step.view or DEFAULT_VIEW, seed=secrets.randbits(62),
+                         robot=step.robot, view=step.view or DEFAULT_VIEW,
+                         fov_angle=loaded.study.trial_angle(step.fov_angle), seed=secrets.randbits(62),
                          config_hash=loaded.study.config_hash(),
                          initial_state=world.to_dict())
 

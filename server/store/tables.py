@@ -4,7 +4,7 @@
 - ``participants``: recruiting ids, the hash of their token (never the token), their step plan and
   progress, test-run / exclusion flags with a reason.
 - ``assignments``: the condition order each participant got (index into the study's orders).
-- ``trials``: one row per attempt at a practice or main trial: condition, kitchen, robot, view, seed, config
+- ``trials``: one row per attempt at a practice or main trial: condition, kitchen, robot, view, FOV angle, seed, config
   hash, status (``running`` / ``finished`` / ``abandoned``) and outcome (ticks, delivered, score).
 - ``ticks``: one row per world step (primary key ``(trial_id, tick)``, so a tick can never be stored
   twice): joint action, the participant's subtask, modelled KB and world summaries, KB-gap components,
@@ -120,6 +120,10 @@ class TrialRow(Base):
     view: Mapped[str] = mapped_column(String(16), server_default="top_down")
     """How the participant saw the kitchen (``server.study.views``); ``top_down`` for trials stored before
     revision 0003."""
+    fov_angle: Mapped[float | None] = mapped_column(Float, nullable=True)
+    """The participant's field of view in degrees (``server.study.fov_angles``); for trials stored before
+    revision 0008, the angle of the study's stored configuration when it is the one they were played with, else
+    ``NULL`` (unknown)."""
     seed: Mapped[int] = mapped_column(BigInteger)
     config_hash: Mapped[str] = mapped_column(String(64))
     status: Mapped[str] = mapped_column(String(16), default="running")

@@ -23,13 +23,14 @@ RUNNING, FINISHED, ABANDONED = "running", "finished", "abandoned"
 
 def create(session: Session, *, study_id: str, participant_id: int, kind: str, index: int, condition_id: str,
            kitchen: str, robot: str, seed: int, config_hash: str, initial_state: dict[str, Any],
-           view: str = DEFAULT_VIEW) -> TrialRow:
+           view: str = DEFAULT_VIEW, fov_angle: float | None = None) -> TrialRow:
     """A new running attempt at trial ``(kind, index)`` (attempt = previous attempts + 1)."""
     previous = session.scalar(select(func.max(TrialRow.attempt)).where(
         TrialRow.participant_id == participant_id, TrialRow.kind == kind, TrialRow.index == index)) or 0
     now = utcnow()
     row = TrialRow(study_id=study_id, participant_id=participant_id, kind=kind, index=index,
                    attempt=previous + 1, condition_id=condition_id, kitchen=kitchen, robot=robot, view=view,
+                   fov_angle=fov_angle,
                    seed=seed,
                    config_hash=config_hash, status=RUNNING, started_at=now, last_active_at=now, ticks=0,
                    delivered=0, score=0, initial_state=initial_state)

@@ -1,7 +1,7 @@
 """Factors between participants: the study's groups and what cannot be balanced.
 
-A study's ``between`` factors (robot, kitchen, view) are crossed before its within ``factors``, so the conditions
-of one group (one combination of between levels) form one consecutive block of the condition list, and each
+A study's ``between`` factors (robot, kitchen, view, fov_angle) are crossed before its within ``factors``, so the
+conditions of one group (one combination of between levels) form one consecutive block of the condition list, and each
 group's within conditions are counterbalanced on their own: the study's orders are group 0's orders, then group
 1's, and so on. A participant is assigned to one order, hence to one group (``server/store/group_assignment.py``
 fills the groups in balance, then the orders inside the chosen group).
@@ -26,6 +26,8 @@ def level_count(data: Mapping[str, Any], factor: str) -> int:
     """How many levels ``factor`` has in the (partly validated) study ``data``."""
     if factor == "view":
         return len(data.get("views") or [data.get("view") or DEFAULT_VIEW])
+    if factor == "fov_angle":
+        return len(data.get("fov_angles") or [None])  # without levels: the one world.fov_angle
     return len(data.get(LEVEL_FIELDS[factor]) or ())
 
 

@@ -15,6 +15,7 @@ from typing import Annotated, Any
 
 from pydantic import Field, ValidationInfo, field_validator
 
+from planner.perception import FOV_ANGLE
 from planner.registry import PLANNER_NAMES
 from server.study.base import (Loc, NotEmpty, RobotName, Slug, StudyModel, duplicate_problems, raise_problems,
                                robot_problem)
@@ -22,6 +23,7 @@ from server.study.conditions import Condition, Factor, cross_conditions
 from server.study.counterbalance import MAX_FULL_CONDITIONS, condition_orders
 from server.study.groups import between_problems, groups_of, scheme_problems
 from server.study.device import DeviceRequirements
+from server.study.fov_angles import angle_level
 from server.study.kitchens import Kitchen, KitchenEntry, base_dir_of, entry_name, resolve_kitchens
 from server.study.questionnaire import Questionnaire
 from server.study.quiz import Quiz
@@ -30,7 +32,7 @@ from server.study.texts import DEFAULT_CONSENT, DEFAULT_INSTRUCTIONS
 from server.study.validity import Validity
 from server.study.views import DEFAULT_VIEW, ViewName
 
-_FACTOR_LEVELS = {"robot": "robots", "kitchen": "kitchens", "view": "views"}
+_FACTOR_LEVELS = {"robot": "robots", "kitchen": "kitchens", "view": "views", "fov_angle": "fov_angles"}
 
 
 class Study(StudyModel):
@@ -52,13 +54,17 @@ class Study(StudyModel):
     views: Annotated[tuple[ViewName, ...], NotEmpty] | None = None
     """Levels of the view factor, e.g. ``[top_down, first_person]`` with ``view`` in ``factors``. The stored
     study always has ``views`` (from ``view`` when only that was written)."""
+    fov_angles: Annotated[tuple[Annotated[float, Field(gt=0, le=360)], ...], NotEmpty] | None = None
+    """Levels of the field-of-view factor in degrees, e.g. ``[90, 120, 150]`` with ``fov_angle`` in ``between``
+    (or in ``factors``): each trial masks the participant's view and models the person at its own angle
+    (``server.study.fov_angles``). Without it every trial has ``world.fov_angle``; write one of the two."""
     between: tuple[Factor, ...] = ()
-    """Factors between participants (``robot``, ``kitchen``, ``view``), e.g. ``[view]`` with ``views: [top_down,
-    first_person]``: each participant plays one level (one group per combination of levels), groups are filled in
+    """Factors between participants (``robot``, ``kitchen``, ``view``, ``fov_angle``), e.g. ``[view]`` with
+    ``views: [top_down, first_person]``: each participant plays one level (one group per combination of levels), groups are filled in
     balance, and the within ``factors`` are counterbalanced inside each group (``server/study/groups.py``)."""
     factors: Annotated[tuple[Factor, ...], NotEmpty] = Field(default=("robot", "kitchen"), validate_default=True)
-    """Within-subject factors (``robot``, ``kitchen``, ``view``), crossed into the conditions; the first varies
-    slowest in the condition list. A dimension left out must have a single level (e.g. one kitchen with
+    """Within-subject factors (``robot``, ``kitchen``, ``view``, ``fov_angle``), crossed into the conditions; the
+    first varies slowest in the condition list. A dimension left out must have a single level (e.g. one kitchen with
     ``factors: [robot]``)."""
     counterbalancing: Counterbalancing = Counterbalancing()
     """How each participant's condition order is chosen."""
@@ -125,14 +131,19 @@ class Study(StudyModel):
         raise_problems(problems, views)
         return views
 
-    @field_validator("between", mode="before")
+    @field_validator("fov_angles", mode="before")
     @classmethod
-    def _check_between(cls, between: Any) -> Any:
-        if isinstance(between, (list, tuple)) and "fov_angle" in between:
-            raise_problems([((list(between).index("fov_angle"),), "fov_angle as a between factor is not supported "
-                             "yet: the field of view is one per study (world.fov_angle); between factors may be "
-                             "robot, kitchen or view")], between)
-        return between
+    def _remember_fov_angles(cls, angles: Any, info: ValidationInfo) -> Any:
+        if isinstance(angles, (list, tuple)):
+            _remember_levels(info, "fov_angles", list(angles))
+        return angles
+
+    @field_validator("fov_angles")
+    @classmethod
+    def _check_fov_angles(cls, angles: tuple[float, ...] | None) -> tuple[float, ...] | None:
+        if angles is not None:
+            raise_problems(duplicate_problems([angle_level(a) for a in angles], "field-of-view angle"), angles)
+        return angles
 
     @field_validator("factors")
     @classmethod
@@ -140,7 +151,7 @@ class Study(StudyModel):
         between = tuple(info.data.get("between") or ())
         problems = duplicate_problems(factors, "factor") + between_problems(factors, between)
         for factor, field in _FACTOR_LEVELS.items():
-            levels = _view_levels(info.data) if factor == "view" else _levels(info, field)
+            levels = _factor_levels(info, factor, field)
             if factor in between and levels is not None and len(levels) < 2:
                 problems.append(((), f"between factor {factor!r} needs at least two {field}"))
             if factor not in factors and factor not in between and levels is not None and len(levels) != 1:
@@ -156,7 +167,7 @@ class Study(StudyModel):
     def _check_counterbalancing(cls, value: Counterbalancing, info: ValidationInfo) -> Counterbalancing:
         data = {**info.data, **{field: _levels(info, field) for field in ("kitchens", "robots")}}
         if not all(data.get(field) is not None for field in ("kitchens", "robots", "factors")) or not all(
-                field in data for field in ("view", "views")):
+                field in data for field in ("view", "views", "fov_angles")):
             return value
         ids = [c.id for c in _conditions(data)]
         problems: list[tuple[Loc, str]] = list(scheme_problems(value.scheme, tuple(data.get("between") or ())))
@@ -179,6 +190,14 @@ class Study(StudyModel):
         raise_problems(problems, value)
         return value
 
+    @field_validator("world")
+    @classmethod
+    def _one_fov_angle_field(cls, world: World, info: ValidationInfo) -> World:
+        if info.data.get("fov_angles") is not None and "fov_angle" in world.model_fields_set:
+            raise_problems([(("fov_angle",), "write either world.fov_angle (one field of view for every trial) or "
+                                             "fov_angles (the levels of the fov_angle factor), not both")], world)
+        return world
+
     @field_validator("questionnaires")
     @classmethod
     def _unique_questionnaires(cls, value: tuple[Questionnaire, ...]) -> tuple[Questionnaire, ...]:
@@ -191,10 +210,18 @@ class Study(StudyModel):
         return _view_levels({"view": self.view, "views": self.views})
 
     @property
+    def fov_angle_levels(self) -> tuple[float, ...]:
+        """The fields of view trials are played with: ``fov_angles``, else ``(world.fov_angle,)``."""
+        return self.fov_angles or (self.world.fov_angle,)
+
+    @property
     def conditions(self) -> tuple[Condition, ...]:
-        """Every robot × kitchen (× view) condition, in study order (first factor slowest)."""
-        return _conditions({"robots": self.robots, "kitchens": self.kitchens, "view": self.view,
-                            "views": self.views, "factors": self.factors, "between": self.between})
+        """Every robot × kitchen (× view × fov_angle) condition, in study order (first factor slowest)."""
+        return _conditions(self._level_data())
+
+    def _level_data(self) -> dict[str, Any]:
+        return {"robots": self.robots, "kitchens": self.kitchens, "view": self.view, "views": self.views,
+                "fov_angles": self.fov_angles, "world": self.world, "factors": self.factors, "between": self.between}
 
     def condition_orders(self) -> list[tuple[str, ...]]:
         """The condition orders participants are assigned to (lists of condition ids); with between factors,
@@ -209,13 +236,24 @@ class Study(StudyModel):
                 for _ in condition_orders(group, scheme.scheme, scheme.order)]
 
     def _groups(self) -> list[list[str]]:
-        return groups_of([c.id for c in self.conditions], {"between": self.between, "robots": self.robots,
-                                                           "kitchens": self.kitchens, "view": self.view,
-                                                           "views": self.views})
+        return groups_of([c.id for c in self.conditions], self._level_data())
 
     def practice_view(self, practice: Practice) -> ViewName:
         """The view of a practice round: its own ``view``, else the study's first view level."""
         return practice.view or self.view_levels[0]
+
+    def practice_angle(self, order: Sequence[str]) -> float:
+        """The field of view of the practice rounds of a participant assigned ``order`` (condition ids): their
+        group's angle when ``fov_angle`` is between participants (they practise with the view they will play),
+        else the first angle level."""
+        if "fov_angle" in self.between and order:
+            return next(c.fov_angle for c in self.conditions if c.id == order[0])
+        return self.fov_angle_levels[0]
+
+    def trial_angle(self, stored: float | None) -> float:
+        """The field of view of a stored trial: its own ``fov_angle``, else (stored before trials recorded it,
+        and not known from the store's copy of the study) the study's ``world.fov_angle``."""
+        return stored if stored is not None else self.world.fov_angle
 
     def kitchen(self, name: str) -> Kitchen:
         """The kitchen called ``name`` among the study's and the practice kitchens."""
@@ -233,8 +271,9 @@ class Study(StudyModel):
                      "practice": {"__all__": {"kitchen": {"path"}}}},
         )
         data["views"] = list(self.view_levels)
-        if not data["between"]:
-            del data["between"]  # studies without between factors keep the hash they had before the field
+        for field in ("between", "fov_angles"):
+            if not data[field]:
+                del data[field]  # studies without these fields keep the hash they had before the fields existed
         return json.dumps(data, sort_keys=True, separators=(",", ":"), ensure_ascii=False)
 
     def config_hash(self) -> str:
@@ -248,6 +287,23 @@ def _view_levels(data: dict[str, Any]) -> tuple[ViewName, ...]:
         return views
     view: ViewName | None = data.get("view")
     return (view or DEFAULT_VIEW,)
+
+
+def _factor_levels(info: ValidationInfo, factor: str, field: str) -> Any:
+    """The levels of ``factor`` for the checks of ``factors``: a view or a field of view not given as levels is
+    one level (the study's ``view`` or ``world.fov_angle``)."""
+    if factor == "view":
+        return _view_levels(info.data)
+    if factor == "fov_angle":
+        return _levels(info, field) or (FOV_ANGLE,)
+    return _levels(info, field)
+
+
+def _fov_levels(data: dict[str, Any]) -> tuple[float, ...]:
+    """``fov_angles``, else the world's angle (the paper's while ``world`` is not validated yet: it is not part of
+    a condition's id then, and ids are all the checks before ``world`` need)."""
+    world = data.get("world")
+    return data.get("fov_angles") or (world.fov_angle if isinstance(world, World) else FOV_ANGLE,)
 
 
 def _remember_levels(info: ValidationInfo, field: str, names: list[str | None]) -> None:
@@ -268,6 +324,7 @@ def _levels(info: ValidationInfo, field: str) -> Any:
 
 def _conditions(data: dict[str, Any]) -> tuple[Condition, ...]:
     kitchens = [k if isinstance(k, str) else k.name for k in data["kitchens"]]
-    levels: dict[Factor, Sequence[str]] = {"robot": data["robots"], "kitchen": kitchens, "view": _view_levels(data)}
+    levels: dict[Factor, Sequence[object]] = {"robot": data["robots"], "kitchen": kitchens,
+                                              "view": _view_levels(data), "fov_angle": _fov_levels(data)}
     return cross_conditions(levels, [*(data.get("between") or ()), *data["factors"]])
 

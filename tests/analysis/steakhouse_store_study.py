@@ -98,7 +98,8 @@ def play_stored_trial(store: Store, loaded: LoadedStudy, participant_id: int, wh
     prepared = prepare_trial(store, loaded, participant_id, step)
     row, study = prepared.trial, loaded.study
     layout, rules = loaded.layout(row.kitchen), loaded.rules
-    engine = TrialEngine(layout, rules, angle=study.world.fov_angle, kb_delay=study.world.kb_delay, seed=row.seed,
+    engine = TrialEngine(layout, rules, angle=study.trial_angle(row.fov_angle), kb_delay=study.world.kb_delay,
+                         seed=row.seed,
                          world=WorldState.from_dict(row.initial_state))
     policy = study_robots(row.robot, layout, rules)
     policy.reset(engine.world)

@@ -1,8 +1,8 @@
 """``steakhouse analyze --study`` on studies stored through the server's own store and flow functions (SQLite and
 PostgreSQL): a measure that does not vary no longer stops the analysis (issue 15's ``KeyError: 'F'``), a
 one-factor study with three robots is analysed in the study's order with sphericity and pairwise comparisons, a
-robot × kitchen × view study gets its three-factor ANOVA, a study with the view between participants gets the
-mixed ANOVA, and the report opens with data quality."""
+robot × kitchen × view study gets its three-factor ANOVA, a study with the view (or the field of view's angle)
+between participants gets the mixed ANOVA, and the report opens with data quality."""
 
 from __future__ import annotations
 
@@ -36,6 +36,8 @@ def stored(module_db_url, tmp_path_factory):
             views=["top_down", "first_person"], factors=["robot", "kitchen", "view"], practice=[]))),
         "groups": load_one(write_study(folder, "groups", **study_overrides(
             views=["top_down", "first_person"], between=["view"], factors=["robot", "kitchen"], practice=[]))),
+        "angles": load_one(write_study(folder, "angles", **study_overrides(
+            fov_angles=[90, 150], between=["fov_angle"], factors=["robot", "kitchen"]))),
     }
     for loaded in studies.values():
         with store.transaction() as session:
@@ -52,6 +54,9 @@ def stored(module_db_url, tmp_path_factory):
     for n in range(6):
         play_participant(store, studies["groups"], join(store, studies["groups"], f"g{n}"),
                          Participant(seed=30 + n, interrupt_rate=0.05))
+    for n in range(6):
+        play_participant(store, studies["angles"], join(store, studies["angles"], f"a{n}"),
+                         Participant(seed=40 + n, interrupt_rate=0.05))
     store.dispose()
     return module_db_url
 
@@ -143,4 +148,30 @@ def test_a_view_between_participants_gets_the_mixed_anova(stored, tmp_path) -> N
     assert ticks["effect"].tolist() == ["view", "robot", "view * robot", "kitchen", "view * kitchen",
                                         "robot * kitchen", "view * robot * kitchen"]
     assert ticks.loc[ticks["effect"] == "view", "df2"].tolist() == [4], "6 participants in 2 groups"
+    assert "mixed (split-plot) ANOVA" in (tmp_path / "report.md").read_text()
+
+
+def test_a_field_of_view_between_participants_gets_the_mixed_anova(stored, tmp_path) -> None:
+    assert analyze(stored, "angles", tmp_path, "--dv", "ticks,robot_in_fov_pct") == 0
+    data = tmp_path / "data"
+    cells = pd.read_csv(data / "cells.csv")
+    assert (cells.groupby("participant")["fov_angle"].nunique() == 1).all(), "one angle per participant"
+    assert sorted(cells.drop_duplicates("participant")["fov_angle"].value_counts().tolist()) == [3, 3]
+    assert set(zip(cells["condition"].str.rsplit("@", n=1).str[1].astype(int), cells["fov_angle"])) == {
+        (90, 90), (150, 150)}
+    trials = pd.read_csv(data / "trials.csv")
+    practice = trials[trials["kind"] == "practice"].set_index("participant")["fov_angle"]
+    assert practice.to_dict() == cells.drop_duplicates("participant").set_index("participant")["fov_angle"].to_dict(), \
+        "each participant practised at their group's angle"
+    assert set(pd.read_csv(data / "ticks.csv")["fov_angle"]) == {90, 150}
+    assert (pd.read_csv(data / "participants.csv")["complete"] == 1).all()
+    wide = pd.read_csv(data / "wide.csv")
+    assert (wide["complete"] == 1).all() and {"ticks__stay__none_3__90", "ticks__stay__none_3__150"} <= set(wide)
+    anova = pd.read_csv(tmp_path / "anova.csv")
+    ticks = anova[anova["measure"] == "ticks"]
+    assert ticks["effect"].tolist() == ["fov_angle", "robot", "fov_angle * robot", "kitchen", "fov_angle * kitchen",
+                                        "robot * kitchen", "fov_angle * robot * kitchen"]
+    assert ticks.loc[ticks["effect"] == "fov_angle", "df2"].tolist() == [4], "6 participants in 2 groups"
+    descriptives = pd.read_csv(tmp_path / "descriptives.csv", dtype={"fov_angle": str})
+    assert descriptives["fov_angle"].drop_duplicates().tolist() == ["90", "150"], "the study's order"
     assert "mixed (split-plot) ANOVA" in (tmp_path / "report.md").read_text()

@@ -101,7 +101,8 @@ def test_measures_of_a_hand_made_trial_read_from_the_store(tiny) -> None:
 
 def test_interrupts_per_selection_is_empty_without_any_input() -> None:
     trial = StoredTrial(id=1, participant_id=1, kind="main", index=0, attempt=1, condition="stay@x", kitchen="x",
-                        robot="stay", view="top_down", seed=1, config_hash="h", status="finished", end_reason="horizon",
+                        robot="stay", view="top_down", fov_angle=90.0,
+                        seed=1, config_hash="h", status="finished", end_reason="horizon",
                         started_at=None, ended_at=None, ticks=0, delivered=0, score=0,  # type: ignore[arg-type]
                         initial_state=INITIAL)
     measures = trial_measures(trial, [], [])

@@ -17,7 +17,7 @@ def test_migrations_match_the_models(db_url):
     store = Store(db_url)
     try:
         store.migrate()
-        assert current_revision(store.engine) == "0007"
+        assert current_revision(store.engine) == "0008"
         with store.engine.connect() as conn:
             context = MigrationContext.configure(conn, opts={"compare_type": True})
             diff = compare_metadata(context, Base.metadata)
@@ -47,7 +47,7 @@ def test_migrating_again_and_concurrently_is_harmless(db_url):
             thread.join()
         stores[0].migrate()
         assert errors == []
-        assert current_revision(stores[0].engine) == "0007"
+        assert current_revision(stores[0].engine) == "0008"
     finally:
         for store in stores:
             store.dispose()
@@ -63,5 +63,41 @@ def test_the_sqlite_store_creates_its_folder_and_uses_wal(tmp_path):
             conn.rollback()
         assert (tmp_path / "new" / "dir" / "s.sqlite3").exists()
         assert store.ping()
+    finally:
+        store.dispose()
+
+
+def test_revision_0008_gives_older_trials_their_studys_angle_where_the_config_is_the_one_they_played(
+        db_url, study_file):
+    """Trials stored before the angle was recorded get the study's ``world.fov_angle`` when the study's stored
+    configuration is the one they were played with (same hash); a trial of an older configuration stays unknown."""
+    from alembic import command
+
+    from server.catalog import load_one
+    from server.flow import service
+    from server.store import trials
+    from server.store.migrate import alembic_config
+    from server.store.studies import sync_study
+    from server.store.tables import TrialRow
+
+    loaded = load_one(study_file(world={"fov_angle": 100}))
+    store = Store(db_url)
+    try:
+        store.migrate()
+        with store.transaction() as session:
+            sync_study(session, loaded.study)
+        pid = service.join(store, loaded, {}, False).participant.id
+        with store.transaction() as session:
+            ids = [trials.create(session, study_id=loaded.id, participant_id=pid, kind="main", index=i,
+                                 condition_id="stay@practice", kitchen="practice", robot="stay", seed=1,
+                                 config_hash=config_hash, initial_state={}, fov_angle=55.0).id
+                   for i, config_hash in enumerate((loaded.study.config_hash(), "an-older-configuration"))]
+        config = alembic_config()
+        for step, revision in ((command.downgrade, "0007"), (command.upgrade, "head")):
+            with store.engine.begin() as conn:
+                config.attributes["connection"] = conn
+                step(config, revision)
+        with store.transaction() as session:
+            assert [session.get(TrialRow, i).fov_angle for i in ids] == [100.0, None]  # type: ignore[union-attr]
     finally:
         store.dispose()

@@ -36,7 +36,7 @@ def test_a_study_without_between_factors_keeps_its_canonical_form(tmp_path) -> N
 @pytest.mark.parametrize(("text", "field", "reason"), [
     ("views: [top_down, first_person]\nbetween: [view]\ncounterbalancing: {scheme: fixed, order: "
      "[fov_aware@none_3@top_down]}\n", "counterbalancing.scheme", "a fixed order cannot serve the groups"),
-    ("between: [fov_angle]\n", "between[0]", "fov_angle as a between factor is not supported yet"),
+    ("between: [fov_angle]\n", "factors", "between factor 'fov_angle' needs at least two fov_angles"),
     ("between: [robot]\n", "factors", "'robot' is both a within factor (factors) and a between factor"),
     ("robots: [fov_aware]\nbetween: [robot]\nfactors: [kitchen]\n", "factors",
      "between factor 'robot' needs at least two robots"),
