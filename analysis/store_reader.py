@@ -18,11 +18,14 @@ from datetime import datetime
 from pathlib import Path
 from typing import Any
 
+from alembic.runtime.migration import MigrationContext
+from alembic.script import ScriptDirectory
 from sqlalchemy import Connection, Engine, create_engine, event, inspect, select
 from sqlalchemy.engine import make_url
 from sqlalchemy.exc import SQLAlchemyError
 
 from analysis.errors import AnalysisInputError
+from server.store.migrate import alembic_config
 from server.store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, StudyRow, TickRow, TrialRow
 
 
@@ -199,6 +202,7 @@ def read_study(conn: Connection, study_id: str, include_pilot: bool = False) -> 
         raise StoreReadError(f"cannot read the store: {exc}") from exc
     if missing:
         raise StoreReadError(f"the database has no Steakhouse store (tables missing: {', '.join(sorted(missing))})")
+    _check_schema(conn)
     study = conn.execute(select(StudyRow.title, StudyRow.config_hash, StudyRow.config)
                          .where(StudyRow.id == study_id)).first()
     if study is None:
@@ -207,6 +211,17 @@ def read_study(conn: Connection, study_id: str, include_pilot: bool = False) -> 
     return StudyData(id=study_id, title=study.title, config_hash=study.config_hash, config=dict(study.config),
                      participants=_participants(conn, study_id, include_pilot),
                      trials=_trials(conn, study_id, include_pilot), answers=_answers(conn, study_id, include_pilot))
+
+
+def _check_schema(conn: Connection) -> None:
+    """Reading never migrates: a store written by an older (or newer) version of the platform is refused with
+    what to do, rather than failing on a missing column."""
+    stored = MigrationContext.configure(conn).get_current_revision()
+    head = ScriptDirectory.from_config(alembic_config()).get_current_head()
+    if stored != head:
+        raise StoreReadError(
+            f"the store's schema is at revision {stored}, this version of the platform reads revision {head}: "
+            f"start `steakhouse serve` once on this database (it migrates the store at start), then read it again")
 
 
 def read_ticks(conn: Connection, trial_id: int) -> list[StoredTick]:

@@ -184,6 +184,19 @@ def test_unknown_study_and_missing_database_are_usage_errors(store, loaded_2x2, 
     assert "study nope: no study 'nope' in the store" in capsys.readouterr().err
 
 
+def test_a_store_of_another_schema_revision_is_refused_with_what_to_do(tmp_path, capsys) -> None:
+    from server.store.migrate import upgrade
+
+    url = f"sqlite:///{tmp_path / 'old.sqlite3'}"
+    old = Store(url)
+    upgrade(old.engine, "0006")
+    old.dispose()
+    assert main(["export", "--study", "two_by_two", "--out", str(tmp_path / "o"), "--database-url", url]) == 2
+    err = capsys.readouterr().err
+    assert "the store's schema is at revision 0006" in err and "start `steakhouse serve` once" in err
+    assert "Traceback" not in err and not (tmp_path / "o").exists()
+
+
 def test_the_analysis_package_does_not_import_the_server_app() -> None:
     code = ("import sys, analysis.export, analysis.study; "
             "bad = [m for m in sys.modules if m.startswith(('server.app', 'server.routes', 'server.game', "
