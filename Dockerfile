@@ -16,6 +16,7 @@ WORKDIR /app
 COPY pyproject.toml README.m[d] ./
 COPY planner ./planner
 COPY server ./server
+COPY store ./store
 COPY analysis ./analysis
 COPY study_config ./study_config
 RUN pip install . \

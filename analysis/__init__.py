@@ -9,7 +9,7 @@ and Huynh–Feldt corrections), ``effect_sizes``, ``followups`` (simple main eff
 ``report*`` modules; ``measure_run`` analyses one measure and ``run.analyze_long`` ties them together.
 
 The store half reads a study from the SQL store (``store_reader``: queries of the tables in
-``server.store.tables``, never the running server), computes per-trial measures (``measures``, ``work``),
+``store.tables``, never the running server), computes per-trial measures (``measures``, ``work``),
 builds the tidy tables (``design``, ``roster``, ``dataset``, ``dictionary``), writes them (``export``) and
 hands the cells to the statistics with the design the study declares (``study_design``, ``study``).
 Submodules are imported on demand so that the command line stays fast.

@@ -31,7 +31,7 @@ from analysis.store_reader import (
 )
 from analysis.study_design import ScaleSpec
 from analysis.work import redundant_action_flags, subtask_switch_flags
-from server.study.fov_angles import angle_value
+from study_config.study.fov_angles import angle_value
 
 FILES = ("ticks.csv", "trials.csv", "cells.csv", "wide.csv", "answers.csv", "participants.csv", "excluded.csv")
 

@@ -1,10 +1,10 @@
 """The study design as the export needs it, read from the resolved configuration stored with the study.
 
 Conditions are the robot × kitchen (× view, × fov_angle, when these are factors) cross in study order (the first
-factor varies slowest, as in ``server.study.conditions``; condition ids are ``robot@kitchen``, ``robot@kitchen@view``,
+factor varies slowest, as in ``study_config.study.conditions``; condition ids are ``robot@kitchen``, ``robot@kitchen@view``,
 ``robot@kitchen@angle`` or ``robot@kitchen@view@angle``). A condition's cell is the tuple of its levels in
 :attr:`Design.fields` order: ``(robot, kitchen)``, ``(robot, kitchen, view)``, ``(robot, kitchen, fov_angle)`` or all
-four, an angle spelt as :func:`server.study.fov_angles.angle_level` (``90``). Questionnaire items are split into those
+four, an angle spelt as :func:`study_config.study.fov_angles.angle_level` (``90``). Questionnaire items are split into those
 answered after each main trial (one value per condition: measures of the cell) and those answered once at
 the end of the study (one value per participant).
 
@@ -24,7 +24,7 @@ from typing import Any
 
 from analysis.dictionary import NUM, Column, item_column, item_columns
 from analysis.study_design import RatingItem, ScaleSpec, factor_levels, rating_specs
-from server.study.fov_angles import angle_level
+from study_config.study.fov_angles import angle_level
 
 
 CELL_FIELDS = ("robot", "kitchen", "view", "fov_angle")

@@ -1,6 +1,6 @@
 """Reading a study from the store: SQLAlchemy Core queries of the store's tables, never the running server.
 
-The table definitions come from ``server.store.tables`` (the schema only: no app, route, game or flow
+The table definitions come from ``store.tables`` (the schema only: no app, route, game or flow
 code is imported; data flows one way: server writes, analysis reads). Everything is returned as frozen records, so the measures
 and the export are pure functions of what is stored. Large columns the analysis does not need (the full KB
 state, the robot's decision record) are never loaded.
@@ -25,8 +25,8 @@ from sqlalchemy.engine import make_url
 from sqlalchemy.exc import SQLAlchemyError
 
 from analysis.errors import AnalysisInputError
-from server.store.migrate import alembic_config
-from server.store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, StudyRow, TickRow, TrialRow
+from store.migrate import alembic_config
+from store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, StudyRow, TickRow, TrialRow
 
 
 class StoreReadError(AnalysisInputError):
@@ -70,7 +70,7 @@ class StoredTrial:
     robot: str
     view: str
     fov_angle: float | None
-    """Degrees; ``None`` for a trial stored before angles were recorded (``server.store.tables.TrialRow``)."""
+    """Degrees; ``None`` for a trial stored before angles were recorded (``store.tables.TrialRow``)."""
     seed: int
     config_hash: str
     status: str

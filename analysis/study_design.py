@@ -5,7 +5,7 @@ Read from the resolved configuration stored with the study (``studies.config``):
 
 * factors: ``factors`` (default ``[robot, kitchen]``); the levels of ``robot`` are ``robots``, of ``kitchen`` the
   names in ``kitchens``, of ``view`` the ``views`` (or the single ``view``), of ``fov_angle`` the ``fov_angles`` (or
-  the single ``world.fov_angle``), spelt as :func:`server.study.fov_angles.angle_level`. A factor named in
+  the single ``world.fov_angle``), spelt as :func:`study_config.study.fov_angles.angle_level`. A factor named in
   ``factors`` with a single level is not a factor of the analysis (it is reported as such).
 * questionnaire items: ``type`` ``rating`` (the default) are analysed, with their ``scale`` range and
   ``reverse: true`` for reverse-coded items; ``choice`` (a nominal index) and ``text`` items are not.
@@ -23,7 +23,7 @@ from typing import Any
 from analysis.dictionary import item_column
 from analysis.dictionary_items import scale_key
 from planner.perception import FOV_ANGLE
-from server.study.fov_angles import angle_level
+from study_config.study.fov_angles import angle_level
 
 LEVEL_KEYS = {"robot": ("robots", "robot"), "kitchen": ("kitchens", "kitchen"), "view": ("views", "view")}
 """Config keys listing a factor's levels, then the key of its single level."""

@@ -29,7 +29,7 @@ from pilot.answers import answer
 from pilot.config import ParticipantConfig
 from pilot.mind import Mind, decide
 from pilot.perception import Perception
-from server.catalog import LoadedStudy
+from study_config.catalog import LoadedStudy
 
 
 ANSWERS_STREAM = 2**31

@@ -19,7 +19,7 @@ from fastapi import FastAPI
 
 from planner.decision import RobotFactory
 from server import errors, security
-from server.catalog import Catalog, load_catalog
+from study_config.catalog import Catalog, load_catalog
 from server.game.admission import Admission
 from server.game.clock import Clock, MonotonicClock
 from server.game.live import GameDeps
@@ -30,10 +30,10 @@ from server.routes import admin, admin_exports, health, participant, play
 from server.routes.static import client_files
 from server.services import Services
 from server.settings import Settings
-from server.store.engine import Store
-from server.store.migrate import startup_lock
-from server.store.studies import sync_study
-from server.store.writer import BatchWriter
+from store.engine import Store
+from store.migrate import startup_lock
+from store.studies import sync_study
+from store.writer import BatchWriter
 
 log = logging.getLogger("server")
 

@@ -15,8 +15,8 @@ from typing import Any
 from sqlalchemy import select
 from store_metrics import percentile
 
-from server.store.engine import Store
-from server.store.tables import EventRow, TrialRow
+from store.engine import Store
+from store.tables import EventRow, TrialRow
 
 
 def admission_metrics(database_url: str) -> dict[str, Any]:

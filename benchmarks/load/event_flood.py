@@ -30,7 +30,7 @@ import server.game.live as live
 from server.app import create_app
 from server.game.budget import EventBudget
 from server.settings import Settings
-from server.store.tables import EventRow
+from store.tables import EventRow
 
 STUDY = {"id": "flood", "title": "Flood", "kitchens": ["practice"], "robots": ["stay"], "factors": ["robot"],
          "timing": {"tick_rate_hz": 5}, "world": {"orders": 1, "horizon": 100000, "kb_delay": 1},

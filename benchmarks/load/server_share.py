@@ -51,8 +51,8 @@ from server.game import snapshot  # noqa: E402
 from server.game.engine import TrialEngine  # noqa: E402
 from server.game.records import tick_row  # noqa: E402
 from server.robots.choice import RobotChoice, run_decision  # noqa: E402
-from server.store.engine import Store  # noqa: E402
-from server.store.writer import write_batch  # noqa: E402
+from store.engine import Store  # noqa: E402
+from store.writer import write_batch  # noqa: E402
 
 PHASES = ("step", "record", "mask", "json", "to_worker", "store")
 ROBOT_PHASES = ("robot", "reply")
@@ -130,7 +130,7 @@ def run(trials: int, ticks: int, seed: int, store: Store, timer: Callable[[], fl
 
 def prepared_store(folder: Path, trials: int) -> Store:
     """A migrated SQLite store with one study, participant and trial row per simulated trial."""
-    from server.store.tables import ParticipantRow, StudyRow, TrialRow
+    from store.tables import ParticipantRow, StudyRow, TrialRow
 
     store = Store(f"sqlite:///{folder / 'share.sqlite3'}")
     store.migrate()

@@ -25,8 +25,8 @@ from typing import Any
 
 from sqlalchemy import func, select
 
-from server.store.engine import Store
-from server.store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, TickRow, TrialRow
+from store.engine import Store
+from store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, TickRow, TrialRow
 
 TABLES = {"participants": ParticipantRow, "assignments": AssignmentRow, "trials": TrialRow, "ticks": TickRow,
           "events": EventRow, "questionnaire_answers": AnswerRow}

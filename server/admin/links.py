@@ -11,8 +11,8 @@ from __future__ import annotations
 from typing import Any
 from urllib.parse import quote
 
-from server.catalog import Catalog, LoadedStudy
-from server.study.warnings import study_warnings
+from study_config.catalog import Catalog, LoadedStudy
+from study_config.study.warnings import study_warnings
 
 
 def placeholder(name: str) -> str:

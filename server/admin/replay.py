@@ -19,9 +19,9 @@ from planner.rules import Rules
 from planner.state import WorldState
 from planner.summary import gap_components, summarize
 from server.admin.scenes import frame, grid, kb_frame
-from server.catalog import LoadedStudy
+from study_config.catalog import LoadedStudy
 from server.errors import ApiError
-from server.store.tables import TickRow, TrialRow
+from store.tables import TickRow, TrialRow
 
 RECORDED = ("human_action", "robot_action", "action_source", "subtask", "kb_gap", "kb_gap_total", "kb_summary",
             "world_summary", "robot_in_fov", "lateness_ms", "decision_ms", "robot_missed")

@@ -30,12 +30,12 @@ from sqlalchemy import func, select
 from sqlalchemy.orm import Session
 
 from server.admin.live import scene_view
-from server.catalog import Catalog
+from study_config.catalog import Catalog
 from server.game import snapshot
 from server.game.health import RobotHealth
 from server.game.restore import trial_engine, trial_meta
-from server.store import trials
-from server.store.tables import EventRow, ParticipantRow, TickRow, TrialRow
+from store import trials
+from store.tables import EventRow, ParticipantRow, TickRow, TrialRow
 
 LATENESS_TICKS = 5000
 """Ticks over which the lateness percentiles are taken (as ``LiveGame.lateness`` keeps)."""

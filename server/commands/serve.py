@@ -93,9 +93,9 @@ def serve(args: argparse.Namespace) -> int:
     from planner.layout import LayoutError
     from server.admin.links import start_banner
     from server.app import create_app
-    from server.catalog import DuplicateStudyError
+    from study_config.catalog import DuplicateStudyError
     from server.settings import Settings
-    from server.study import StudyConfigError
+    from study_config.study import StudyConfigError
 
     overrides: dict[str, Any] = {name: getattr(args, name) for name in
                                  ("host", "port", "database_url", "robot_workers", "static_dir", "log_level")

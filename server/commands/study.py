@@ -27,9 +27,9 @@ def register(subparsers: Any) -> None:
 
 def validate_files(args: argparse.Namespace) -> int:
     """Validate each file in ``args.files``; 0 when all are valid, 1 otherwise."""
-    from server.study import StudyConfigError, load_study
-    from server.study.fov_angles import angle_level
-    from server.study.warnings import study_warnings
+    from study_config.study import StudyConfigError, load_study
+    from study_config.study.fov_angles import angle_level
+    from study_config.study.warnings import study_warnings
 
     invalid = 0
     for file in args.files:

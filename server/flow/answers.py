@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from server.study.questionnaire import Item, Questionnaire
+from study_config.study.questionnaire import Item, Questionnaire
 
 
 def check_answers(questionnaire: Questionnaire, answers: dict[str, Any]) -> list[dict[str, Any]]:

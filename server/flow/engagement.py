@@ -1,5 +1,5 @@
 """Engagement as a validity rule: a main trial played without the participant taking part is ``low_engagement``
-(docs/operations.md, "Engagement"). Judged when the trial ends, from its activity (``server.store.activity``)
+(docs/operations.md, "Engagement"). Judged when the trial ends, from its activity (``store.activity``)
 and the study's ``validity`` section; pure.
 
 A finished main trial is low-engagement when
@@ -14,8 +14,8 @@ Practice trials and abandoned trials are not judged (an abandoned round is its o
 
 from __future__ import annotations
 
-from server.store.activity import Activity
-from server.study.validity import Validity
+from store.activity import Activity
+from study_config.study.validity import Validity
 
 LOW_ENGAGEMENT = "low_engagement"
 

@@ -1,7 +1,7 @@
 """The end page of a real participant never shows a placeholder code.
 
 A study whose ``recruiting.completion_code`` (or ``screen_out_code``) is still the placeholder shipped with the
-example (``REPLACE-WITH-YOUR-…``, :data:`server.study.warnings.PLACEHOLDER_PREFIX`) has not been set up for
+example (``REPLACE-WITH-YOUR-…``, :data:`study_config.study.warnings.PLACEHOLDER_PREFIX`) has not been set up for
 payment: a real participant who reached its end gets no code and no redirect, and their end page says so and
 asks them to contact the researcher (``not_set_up: true``). Test runs and pilot participants still see the
 placeholder, so an experimenter trying the study sees where the code will appear; ``steakhouse serve`` warns
@@ -12,8 +12,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from server.store.tables import ParticipantRow
-from server.study.warnings import PLACEHOLDER_PREFIX
+from store.tables import ParticipantRow
+from study_config.study.warnings import PLACEHOLDER_PREFIX
 
 
 def is_placeholder(code: str | None) -> bool:

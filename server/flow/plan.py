@@ -13,7 +13,7 @@ from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 from typing import Any, Literal
 
-from server.study import Study, condition_id
+from study_config.study import Study, condition_id
 
 StepKind = Literal["consent", "instructions", "quiz", "trial", "questionnaire", "done"]
 TrialKind = Literal["practice", "main"]

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from server.flow.answers import answer_problem
-from server.study.quiz import Quiz
+from study_config.study.quiz import Quiz
 
 
 @dataclass(frozen=True)

@@ -11,9 +11,9 @@ from sqlalchemy.orm import Session
 
 from server.flow.plan import Step
 from server.flow.progress import Progress
-from server.store import trials
-from server.store.tables import TrialRow
-from server.study.sections import Reconnect
+from store import trials
+from store.tables import TrialRow
+from study_config.study.sections import Reconnect
 
 Return = Literal["resume", "restart", "abandon"]
 RoundStatus = Literal["new", "in_progress", "ended_away", "restart"]

@@ -1,11 +1,11 @@
 """The participant operations behind the REST API and the game: each one transaction over the store.
 
-- :func:`join`: least-filled condition order (see :mod:`server.store.assignment`), plan, token. A recruiting
+- :func:`join`: least-filled condition order (see :mod:`store.assignment`), plan, token. A recruiting
   id (the study's first URL parameter, e.g. ``PROLIFIC_PID``) is not a password: a second join with it
   answers the same participant only from the browser holding that participant's token (the token is kept);
   from any other browser it is refused (``409 already_started``), the attempt stored as a ``join_refused``
   event, and the participant's session and token are left as they were. Never two assignments. Ids are
-  compared normalised (:func:`server.store.participants.normalised_recruit_id`: ``" ABC"`` is ``abc``). The
+  compared normalised (:func:`store.participants.normalised_recruit_id`: ``" ABC"`` is ``abc``). The
   exception is a session that holds nothing yet: its device was refused on landing and it has not moved past
   the first step (a phone user sent to a laptop): the next browser with the id claims it (a new token, the
   phone's stops working, a ``session_claimed`` event). A study with ``recruiting.require_id`` refuses a join
@@ -34,7 +34,7 @@ from sqlalchemy import func, select
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
-from server.catalog import LoadedStudy
+from study_config.catalog import LoadedStudy
 from server.errors import AnswerProblems, ApiError
 from server.flow import standing
 from server.flow.answers import check_answers, stored_answer
@@ -42,14 +42,14 @@ from server.flow.engagement import engagement_problem
 from server.flow.quiz import QuizResult, quiz_problems
 from server.flow.plan import build_plan, plan_from_json, plan_to_json
 from server.flow.progress import IllegalTransition, Move, Phase, Progress
-from server.store import activity, assignment, participants, trials
-from server.store.engine import Store
-from server.store.group_assignment import least_filled_grouped
-from server.store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, QuizAttemptRow
-from server.study import Study
-from server.study.device import DeviceInfo, device_problems
-from server.study.device import refused as device_refused
-from server.store.types import utcnow
+from store import activity, assignment, participants, trials
+from store.engine import Store
+from store.group_assignment import least_filled_grouped
+from store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, QuizAttemptRow
+from study_config.study import Study
+from study_config.study.device import DeviceInfo, device_problems
+from study_config.study.device import refused as device_refused
+from store.types import utcnow
 
 
 log = logging.getLogger(__name__)

@@ -1,7 +1,7 @@
 """Whether a participant still counts, and whether they took part: the one home of both rules
 (docs/operations.md, "Engagement"; issue 25).
 
-**Counting toward a condition order** (:mod:`server.store.assignment`): a participant counts only while every
+**Counting toward a condition order** (:mod:`store.assignment`): a participant counts only while every
 main round of theirs can still become an analysable cell. They stop counting (``participants.uncounted_reason``,
 kept once set) when a main round ends abandoned (grace window expired), ``low_engagement``
 (:mod:`server.flow.engagement`) or invalid for the robot's health (``server.game.health``); and while their
@@ -22,9 +22,9 @@ from collections.abc import Sequence
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
-from server.store import trials
-from server.store.tables import ParticipantRow, TrialRow
-from server.study.validity import Validity
+from store import trials
+from store.tables import ParticipantRow, TrialRow
+from study_config.study.validity import Validity
 
 log = logging.getLogger(__name__)
 

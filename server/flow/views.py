@@ -5,7 +5,7 @@ Never a condition, robot, kitchen or the participant's condition order (nor its 
 participant's current, else first, trial: the study's one angle, or their group's with ``fov_angle`` a factor) lets
 the instructions draw the cone the participant will have; a trial's ``view`` (top-down
 or first-person) lets the round's intro card explain its controls (the participant sees the view anyway). Consent
-and instructions have their duration placeholders filled in from the study (:mod:`server.study.duration`).
+and instructions have their duration placeholders filled in from the study (:mod:`study_config.study.duration`).
 """
 
 from __future__ import annotations
@@ -14,19 +14,19 @@ from typing import Any
 
 from sqlalchemy.orm import Session
 
-from server.catalog import LoadedStudy
+from study_config.catalog import LoadedStudy
 from server.flow.plan import Step
 from server.flow.progress import Phase
 from server.flow.rounds import RoundFacts, round_facts
 from server.flow import payment
 from server.flow.service import completion, progress_of, quiz_attempts
-from server.store.tables import ParticipantRow
-from server.store.types import utcnow
-from server.study import Study
-from server.study.device import DeviceRequirements
-from server.study.duration import fill_placeholders, study_length
-from server.study.questionnaire import Item
-from server.study.views import DEFAULT_VIEW
+from store.tables import ParticipantRow
+from store.types import utcnow
+from study_config.study import Study
+from study_config.study.device import DeviceRequirements
+from study_config.study.duration import fill_placeholders, study_length
+from study_config.study.questionnaire import Item
+from study_config.study.views import DEFAULT_VIEW
 
 
 def load_session_view(session: Session, loaded: LoadedStudy, participant_id: int) -> dict[str, Any]:

@@ -45,7 +45,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from server.catalog import LoadedStudy
+from study_config.catalog import LoadedStudy
 from server.flow import service
 from server.game import snapshot
 from server.game.blocked import Blocked
@@ -63,10 +63,10 @@ from server.protocol.inbound import Inbound, ProtocolError
 from server.protocol.server import Ack, Error, Nudge, Pong, State, TrialEnd
 from server.protocol.server import StallHint as StallHintMessage
 from server.robots import RobotChoice, RobotPool
-from server.store import trials
-from server.store.engine import Store
-from server.store.types import utcnow
-from server.store.writer import BatchWriter
+from store import trials
+from store.engine import Store
+from store.types import utcnow
+from store.writer import BatchWriter
 
 log = logging.getLogger(__name__)
 MAX_LOGGED_ERRORS = 50

@@ -19,18 +19,18 @@ import math
 import time
 from typing import Literal
 
-from server.catalog import Catalog
+from study_config.catalog import Catalog
 from server.flow import service
 from server.flow.plan import Step
 from server.flow.progress import IllegalTransition, Move
 from server.game.admission import DEFAULT_MAX_WAIT_S, Admission, Ticket
 from server.game.connection import Connection
 from server.protocol.server import Waiting
-from server.store import trials
-from server.store.engine import Store
-from server.store.tables import ParticipantRow
-from server.store.types import utcnow
-from server.store.writer import BatchWriter
+from store import trials
+from store.engine import Store
+from store.tables import ParticipantRow
+from store.types import utcnow
+from store.writer import BatchWriter
 
 log = logging.getLogger(__name__)
 

@@ -24,7 +24,7 @@ class TrialMeta:
     robot: str
     kitchen: str
     view: str
-    """How the participant sees the kitchen (``server.study.views``); the one condition fact they may be told."""
+    """How the participant sees the kitchen (``study_config.study.views``); the one condition fact they may be told."""
     seed: int
     test_run: bool
     pilot_pace: str | None = None

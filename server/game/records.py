@@ -1,4 +1,4 @@
-"""The row stored for each tick (see ``server.store.tables.TickRow`` for the columns' meaning)."""
+"""The row stored for each tick (see ``store.tables.TickRow`` for the columns' meaning)."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ from typing import Any
 
 from server.game.engine import TickOutcome
 from server.robots import RobotChoice
-from server.store.types import utcnow
+from store.types import utcnow
 
 
 def tick_row(trial_id: int, outcome: TickOutcome, choice: RobotChoice, lateness_ms: float,

@@ -22,7 +22,7 @@ import os
 import socket
 from typing import Any
 
-from server.catalog import Catalog, LoadedStudy
+from study_config.catalog import Catalog, LoadedStudy
 from server.flow.progress import Phase
 from server.flow.service import progress_of
 from server.game.admission import Admission, Ticket
@@ -33,9 +33,9 @@ from server.game.lobby import Lobby
 from server.game.restore import trial_engine, trial_meta
 from server.game.resume import Prepared, abandon_stale, prepare_trial
 from server.protocol.server import Error
-from server.store import trials
-from server.store.tables import ParticipantRow
-from server.store.types import utcnow
+from store import trials
+from store.tables import ParticipantRow
+from store.types import utcnow
 
 log = logging.getLogger(__name__)
 

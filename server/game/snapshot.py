@@ -17,7 +17,7 @@ from server.game.needs import NEEDS
 from server.game.view import agent_view, drawn_bounds, visible_world
 from server.protocol.server import Blocked as BlockedMessage
 from server.protocol.server import Bounds, Hello, Hud, State, TrialInfo
-from server.study.views import ViewName
+from study_config.study.views import ViewName
 
 TrialKind = Literal["practice", "main"]
 Mode = Literal["fixed_rate", "wait_for_participant"]

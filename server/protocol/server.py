@@ -13,7 +13,7 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, TypeAdapter
 
-from server.study.views import ViewName
+from study_config.study.views import ViewName
 
 BlockedReason = Literal[
     "hands_full", "hands_empty", "needs_item", "nothing_there", "counter_empty", "grill_busy", "steak_cooking",

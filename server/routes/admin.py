@@ -4,7 +4,7 @@ Studies with the fill of each condition order and their recruiting links, partic
 questionnaire answers, setting flags, one-time resume links (a participant moving to a new device), live trials
 (summary and the full spectator view with the scene the dashboard draws), stored trials, their ticks and events,
 and their frames for the replay viewer, and the robot worker pool. The logic lives in ``server.admin`` and
-``server.store``; these routes only wire it.
+``store``; these routes only wire it.
 """
 
 from __future__ import annotations
@@ -22,17 +22,17 @@ from server.admin.live import live_view
 from server.admin.stored_live import running_elsewhere, stored_live_view, stored_summary
 from server.admin.replay import replay
 from server.admin.resume import link_secret, make_code, resume_path
-from server.catalog import LoadedStudy
+from study_config.catalog import LoadedStudy
 from server.deps import ServicesDep, path_study, require_admin
 from server.services import Services
 from server.errors import ApiError
-from server.store import participants, trials
-from server.store.overview import (
+from store import participants, trials
+from store.overview import (
     invalid_trial_counts, low_engagement_counts, order_breakdown, participant_names, participant_public, trial_public,
 )
-from server.study.warnings import study_warnings
-from server.store.tables import EventRow, TrialRow
-from server.store.types import utcnow
+from study_config.study.warnings import study_warnings
+from store.tables import EventRow, TrialRow
+from store.types import utcnow
 from server.game.registry import process_name
 from server.text_input import storable_body
 

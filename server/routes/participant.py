@@ -17,7 +17,7 @@ from anyio import from_thread
 from fastapi import APIRouter, Depends, Request
 
 from server.admin.resume import link_secret, read_code, verify
-from server.catalog import LoadedStudy
+from study_config.catalog import LoadedStudy
 from server.deps import ParticipantDep, ServicesDep, bearer, is_admin, participant_study, path_study
 from server.errors import ApiError
 from server.flow import payment, service
@@ -27,8 +27,8 @@ from server.flow.schemas import (ConsentRequest, JoinRequest, JoinResponse, Ques
 from server.flow.views import load_session_view
 from server.security import limit_joins
 from server.services import Services
-from server.store import participants
-from server.study.device import DeviceInfo
+from store import participants
+from study_config.study.device import DeviceInfo
 from server.text_input import storable_body
 
 router = APIRouter(prefix="/api", tags=["participant"], dependencies=[Depends(storable_body)])

@@ -25,8 +25,8 @@ from server.deps import SUBPROTOCOL, ServicesDep, find_participant, offered_subp
 from server.game.connection import Connection
 from server.game.registry import GameRegistry, NoTrial, TrialAbandoned
 from server.protocol.server import Error, ServerMessage, TrialEnd
-from server.store.tables import ParticipantRow
-from server.study.device import refused as device_refused
+from store.tables import ParticipantRow
+from study_config.study.device import refused as device_refused
 
 router = APIRouter()
 log = logging.getLogger(__name__)

@@ -1,9 +1,8 @@
 """Shared data for the analysis tests: a synthetic robot × kitchen long table, and stored studies.
 
-The store fixtures are the server tests' own (``tests/server/conftest.py``: ``db_url`` on SQLite and
-PostgreSQL, ``postgres_database``, ``study_file``, ``make_settings``, ``live_server``), loaded from that file so
-the analysis tests run on both databases exactly like the store tests (in CI they fail instead of skipping
-when PostgreSQL is unreachable).
+The store fixtures (``db_url`` on SQLite and PostgreSQL, ``study_file``) come from ``tests/conftest.py``, as for
+the store tests (in CI they fail instead of skipping when PostgreSQL is unreachable); the running apps
+(``make_settings``, ``live_server``) are the server tests' own, loaded from ``tests/server/conftest.py``.
 """
 
 from __future__ import annotations
@@ -31,9 +30,6 @@ def _server_fixtures() -> object:
 
 
 _server = _server_fixtures()
-postgres_database = _server.postgres_database  # type: ignore[attr-defined]
-db_url = _server.db_url  # type: ignore[attr-defined]
-study_file = _server.study_file  # type: ignore[attr-defined]
 make_settings = _server.make_settings  # type: ignore[attr-defined]
 live_server = _server.live_server  # type: ignore[attr-defined]
 
@@ -67,33 +63,10 @@ def cells() -> Callable[..., pd.DataFrame]:
     return make_cells
 
 
-@pytest.fixture(scope="module", params=["sqlite", pytest.param("postgresql", marks=pytest.mark.postgres)])
-def module_db_url(request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
-    """Like ``db_url`` but shared by the tests of one module (for stored studies that take seconds to play)."""
-    import uuid
-
-    from sqlalchemy import text
-
-    if request.param == "sqlite":
-        yield f"sqlite:///{tmp_path_factory.mktemp('store') / 'store.sqlite3'}"
-        return
-    database = request.getfixturevalue("postgres_database")
-    schema = f"m_{uuid.uuid4().hex[:12]}"
-    engine = _server._admin_engine(database)  # type: ignore[attr-defined]
-    with engine.connect() as conn:
-        conn.execute(text(f'CREATE SCHEMA "{schema}"'))
-    try:
-        yield _server._schema_url(database, schema)  # type: ignore[attr-defined]
-    finally:
-        with engine.connect() as conn:
-            conn.execute(text(f'DROP SCHEMA IF EXISTS "{schema}" CASCADE'))
-        engine.dispose()
-
-
 @pytest.fixture
 def store(db_url: str) -> Iterator[object]:
     """A migrated, empty store on ``db_url``."""
-    from server.store.engine import Store
+    from store.engine import Store
 
     opened = Store(db_url)
     opened.migrate()
@@ -114,8 +87,8 @@ def study_2x2(study_file: Callable[..., Path]) -> Path:
 @pytest.fixture
 def loaded_2x2(study_2x2: Path, store: object) -> object:
     """The 2 × 2 study loaded and recorded in ``store``."""
-    from server.catalog import load_one
-    from server.store.studies import sync_study
+    from study_config.catalog import load_one
+    from store.studies import sync_study
 
     loaded = load_one(study_2x2)
     with store.transaction() as session:  # type: ignore[attr-defined]

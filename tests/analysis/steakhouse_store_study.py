@@ -19,7 +19,7 @@ from planner.geometry import Action
 from planner.partner import SimulatedPartner
 from planner.robots import StayRobot
 from planner.state import WorldState
-from server.catalog import LoadedStudy
+from study_config.catalog import LoadedStudy
 from server.flow import service
 from server.flow.progress import Move
 from server.game.controller import Interrupt
@@ -27,11 +27,11 @@ from server.game.engine import TrialEngine
 from server.game.records import tick_row
 from server.game.resume import prepare_trial
 from server.robots.choice import RobotChoice, run_decision
-from server.store import trials
-from server.store.engine import Store
-from server.store.tables import ParticipantRow
-from server.store.types import utcnow
-from server.store.writer import write_batch
+from store import trials
+from store.engine import Store
+from store.tables import ParticipantRow
+from store.types import utcnow
+from store.writer import write_batch
 
 INTERRUPTS = tuple(Interrupt)
 

@@ -18,7 +18,7 @@ from steakhouse_testing import Player, play_to_end
 from analysis.dataset import FILES
 from analysis.export import DICTIONARY_FILES, export_study
 from analysis.spss import SAV_FILE
-from server.store.tables import EventRow
+from store.tables import EventRow
 
 ADMIN = {"Authorization": "Bearer admin-secret"}
 PATH = "/api/admin/studies/two_by_two/export.zip"

@@ -12,10 +12,10 @@ from steakhouse_store_study import Participant, join, play_participant, study_ov
 from steakhouse_testing import write_study
 
 from analysis.study import attach_trial_columns
-from server.catalog import load_one
+from study_config.catalog import load_one
 from server.cli import main
-from server.store.engine import Store
-from server.store.studies import sync_study
+from store.engine import Store
+from store.studies import sync_study
 
 THREE_ROBOTS = ("stay", "baseline", "fov_aware")
 

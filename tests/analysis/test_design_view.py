@@ -35,7 +35,7 @@ def test_the_analysis_reads_the_same_cells_as_the_server_crosses_with_view_and_a
     ids (``90``), whether the angle is within (with a view factor) or between participants."""
     import json
 
-    from server.study import load_study
+    from study_config.study import load_study
 
     for factors in ("fov_angles: [90, 112.5]\nviews: [top_down, first_person]\nfactors: [robot, view, fov_angle]\n",
                     "fov_angles: [90, 150]\nviews: [top_down, first_person]\nbetween: [fov_angle]\n"

@@ -18,11 +18,11 @@ from steakhouse_testing import ThreadServer, write_study
 from analysis.dataset import FILES
 from analysis.export import DICTIONARY_FILES, export_study
 from analysis.spss import SAV_FILE
-from server.catalog import load_one
+from study_config.catalog import load_one
 from server.cli import main
 from server.flow import service
-from server.store.engine import Store
-from server.store.studies import sync_study
+from store.engine import Store
+from store.studies import sync_study
 
 STUDY = "every_item"
 AFTER_TRIAL = {"id": "post", "items": [

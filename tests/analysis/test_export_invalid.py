@@ -8,8 +8,8 @@ from steakhouse_store_study import Participant, join, play_participant
 
 from analysis.export import export_study
 from server.cli import main
-from server.store import trials
-from server.store.tables import ParticipantRow, TrialRow
+from store import trials
+from store.tables import ParticipantRow, TrialRow
 
 REASON = "robot decisions missed their deadline: 40 of 120 (33.3 % > 5 %)"
 

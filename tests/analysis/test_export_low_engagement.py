@@ -7,8 +7,8 @@ from __future__ import annotations
 from steakhouse_store_study import Participant, join, play_participant
 
 from analysis.export import export_study
-from server.store import activity
-from server.store.tables import ParticipantRow, TrialRow
+from store import activity
+from store.tables import ParticipantRow, TrialRow
 
 REASON = "low_engagement: 0 participant action(s), fewer than 1"
 

@@ -12,10 +12,10 @@ from steakhouse_testing import write_study
 
 from analysis.dictionary_items import spreadsheet_safe
 from analysis.export import export_study
-from server.catalog import load_one
+from study_config.catalog import load_one
 from server.flow import service
-from server.store.engine import Store
-from server.store.studies import sync_study
+from store.engine import Store
+from store.studies import sync_study
 
 ITEMS = [
     {"id": "fluency", "text": "Fluent.", "scale": {"min": 1, "max": 7, "labels": {1: "No", 7: "Yes"}}},

@@ -9,7 +9,7 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from server.catalog import LoadedStudy, load_one  # noqa: E402
+from study_config.catalog import LoadedStudy, load_one  # noqa: E402
 from study_config import STUDY_DIR  # noqa: E402
 
 

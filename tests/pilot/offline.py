@@ -15,7 +15,7 @@ from pilot.perception import Perception
 from planner.human import HumanMemory, HumanModel
 from planner.kb import omniscient_kb
 from planner.subtasks import Subtask
-from server.catalog import LoadedStudy
+from study_config.catalog import LoadedStudy
 from server.game import snapshot
 from server.game.controller import Interrupt
 from server.game.engine import TrialEngine

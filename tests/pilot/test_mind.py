@@ -19,7 +19,7 @@ from planner.layout import Layout
 from planner.objects import MEAT
 from planner.state import AgentState
 from planner.subtasks import Subtask
-from server.catalog import LoadedStudy
+from study_config.catalog import LoadedStudy
 from server.game import snapshot
 from server.game.engine import TrialEngine
 from server.game.needs import NEEDS

@@ -1,90 +1,17 @@
-"""Fixtures of the server tests: a store URL on SQLite and on PostgreSQL, test studies, running apps.
-
-PostgreSQL: ``TEST_POSTGRES_URL`` (default ``postgresql+psycopg://postgres@127.0.0.1:5432/test``) names a
-server where a fresh database is created for the test session and dropped after it; each test gets its own
-schema in it. When ``CI=true`` and the server cannot be reached the tests **fail**; elsewhere they are
-skipped with the reason.
-"""
+"""Fixtures of the server tests: test apps on the store URL of ``tests/conftest.py`` and running servers."""
 
 from __future__ import annotations
 
-import os
 import sys
-import uuid
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
 import pytest
-from sqlalchemy import create_engine, text
-from sqlalchemy.engine import make_url
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from steakhouse_testing import ThreadServer, write_study  # noqa: E402
-
-DEFAULT_PG = "postgresql+psycopg://postgres@127.0.0.1:5432/test"
-
-
-def _admin_engine(url: str) -> Any:
-    return create_engine(url, isolation_level="AUTOCOMMIT", connect_args={"connect_timeout": 3})
-
-
-@pytest.fixture(scope="session")
-def postgres_database() -> Iterator[str]:
-    """A fresh PostgreSQL database for this test session (dropped afterwards)."""
-    base = os.environ.get("TEST_POSTGRES_URL", DEFAULT_PG)
-    try:
-        admin = _admin_engine(base)
-        with admin.connect() as conn:
-            conn.execute(text("SELECT 1"))
-    except Exception as exc:  # noqa: BLE001 - any failure means unreachable
-        reason = f"PostgreSQL at {make_url(base).render_as_string(hide_password=True)} unreachable: {exc}"
-        if os.environ.get("CI", "").lower() == "true":
-            pytest.fail(f"CI requires PostgreSQL for the store tests: {reason}")
-        pytest.skip(reason)
-    name = f"steakhouse_test_{uuid.uuid4().hex[:12]}"
-    with admin.connect() as conn:
-        conn.execute(text(f'CREATE DATABASE "{name}"'))
-    url = make_url(base).set(database=name).render_as_string(hide_password=False)
-    try:
-        yield url
-    finally:
-        with admin.connect() as conn:
-            conn.execute(text(f'DROP DATABASE IF EXISTS "{name}" WITH (FORCE)'))
-        admin.dispose()
-
-
-def _schema_url(database_url: str, schema: str) -> str:
-    return make_url(database_url).update_query_dict({"options": f"-csearch_path={schema}"}).render_as_string(
-        hide_password=False)
-
-
-@pytest.fixture(params=["sqlite", pytest.param("postgresql", marks=pytest.mark.postgres)])
-def db_url(request: pytest.FixtureRequest, tmp_path: Path) -> Iterator[str]:
-    """A store URL for an empty database: a SQLite file, or a fresh schema on PostgreSQL."""
-    if request.param == "sqlite":
-        yield f"sqlite:///{tmp_path / 'store.sqlite3'}"
-        return
-    database = request.getfixturevalue("postgres_database")
-    schema = f"t_{uuid.uuid4().hex[:12]}"
-    engine = _admin_engine(database)
-    with engine.connect() as conn:
-        conn.execute(text(f'CREATE SCHEMA "{schema}"'))
-    try:
-        yield _schema_url(database, schema)
-    finally:
-        with engine.connect() as conn:
-            conn.execute(text(f'DROP SCHEMA IF EXISTS "{schema}" CASCADE'))
-        engine.dispose()
-
-
-@pytest.fixture
-def study_file(tmp_path: Path) -> Callable[..., Path]:
-    """``study_file(study_id="tiny", **overrides)`` writes a small test study (see ``write_study``)."""
-    folder = tmp_path / "studies"
-    folder.mkdir(exist_ok=True)
-    return lambda study_id="tiny", **overrides: write_study(folder, study_id, **overrides)
+from steakhouse_testing import ThreadServer  # noqa: E402
 
 
 @pytest.fixture

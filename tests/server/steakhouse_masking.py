@@ -11,8 +11,8 @@ from planner.fov import view
 from planner.geometry import Direction
 from planner.state import WorldState
 from server.game.view import drawn_bounds, station_view
-from server.store import trials
-from server.store.tables import TrialRow
+from store import trials
+from store.tables import TrialRow
 from study_config import load_layout
 
 

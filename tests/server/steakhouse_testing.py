@@ -165,7 +165,7 @@ class ProcessServer:
 def condition_order(services: Any, public_id: str) -> list[str]:
     """The participant's condition order as the store has it (the participant's own answers never carry it:
     they are blind to their conditions)."""
-    from server.store import participants
+    from store import participants
 
     with services.store.transaction() as session:
         row = participants.by_public_id(session, public_id)

@@ -12,8 +12,8 @@ import pytest
 from sqlalchemy import func, select
 from steakhouse_testing import ProcessServer
 
-from server.store.engine import Store
-from server.store.tables import AssignmentRow, ParticipantRow
+from store.engine import Store
+from store.tables import AssignmentRow, ParticipantRow
 from study_config import STUDY_DIR
 
 pytestmark = pytest.mark.slow

@@ -24,9 +24,9 @@ from websockets.exceptions import ConnectionClosed
 
 from planner.kb import KnowledgeBase
 from planner.state import WorldState
-from server.store import trials
-from server.store.engine import Store
-from server.store.tables import EventRow, TickRow, TrialRow
+from store import trials
+from store.engine import Store
+from store.tables import EventRow, TickRow, TrialRow
 
 pytestmark = pytest.mark.slow
 PLAYERS = 4

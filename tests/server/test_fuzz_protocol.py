@@ -29,7 +29,7 @@ from steakhouse_testing import Player
 from planner.subtasks import SUBTASKS
 from server.game.controller import Interrupt
 from server.protocol.server import server_adapter
-from server.store.tables import EventRow
+from store.tables import EventRow
 
 CODES = {"bad_frame", "too_large", "bad_json", "invalid_message", "unknown_type", "unsupported_version",
          "bad_seq", "queue_full", "not_playing", "rate_limited"}

@@ -7,7 +7,7 @@ import asyncio
 
 from steakhouse_testing import Player, eventually, play_to_end
 
-from server.store.tables import EventRow
+from store.tables import EventRow
 
 STUDY = {"world": {"orders": 1, "horizon": 60, "kb_delay": 1}}
 

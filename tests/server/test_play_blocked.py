@@ -10,7 +10,7 @@ from steakhouse_testing import Player, eventually
 
 from server.game.needs import NEEDS
 from server.game.view import drawn_bounds
-from server.store import trials
+from store import trials
 from study_config import load_layout
 
 

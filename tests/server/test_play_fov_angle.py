@@ -16,7 +16,7 @@ from planner.layout import Layout
 from planner.planner_config import PlannerConfig
 from planner.robots import make_robot
 from planner.rules import Rules
-from server.store.tables import TrialRow
+from store.tables import TrialRow
 
 STUDY = {"robots": ["stay"], "kitchens": ["practice"], "fov_angles": [90, 150], "between": ["fov_angle"],
          "factors": ["robot"], "practice": [{"kitchen": "practice", "robot": "stay"}],

@@ -8,8 +8,8 @@ import logging
 import httpx
 from steakhouse_testing import Player, play_to_end
 
-from server.store import trials
-from server.store.tables import EventRow, TrialRow
+from store import trials
+from store.tables import EventRow, TrialRow
 
 ADMIN = {"Authorization": "Bearer admin-secret"}
 

@@ -10,7 +10,7 @@ import pytest
 from steakhouse_testing import Player, ProcessServer, play_to_end
 from websockets.exceptions import ConnectionClosed
 
-from server.store.tables import EventRow
+from store.tables import EventRow
 
 BAD = [
     ("not json at all", "bad_json", None),

@@ -11,7 +11,7 @@ import httpx
 import pytest
 from steakhouse_testing import ManualClock, Player, condition_order, play_to_end, until_unloaded
 
-from server.store.tables import TrialRow
+from store.tables import TrialRow
 
 CLOCKS = ["fixed_rate", "wait_for_participant"]
 ADMIN = {"Authorization": "Bearer admin-secret"}

@@ -8,8 +8,8 @@ import asyncio
 import pytest
 from steakhouse_testing import Player, play_to_end, play_until, until_unloaded
 
-from server.store import trials
-from server.store.tables import EventRow, ParticipantRow, TrialRow
+from store import trials
+from store.tables import EventRow, ParticipantRow, TrialRow
 
 
 def trial_rows(server, participant_token_owner: str) -> list[TrialRow]:

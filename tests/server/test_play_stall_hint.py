@@ -9,7 +9,7 @@ import asyncio
 from steakhouse_testing import Player, eventually
 
 from planner.registry import PLANNER_NAMES
-from server.store import trials
+from store import trials
 
 
 def test_a_stalled_team_gets_a_hint_that_is_logged(live_server, study_file):

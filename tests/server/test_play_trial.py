@@ -7,8 +7,8 @@ import contextlib
 
 from steakhouse_testing import Player, condition_order, play_to_end
 
-from server.store import trials
-from server.store.tables import TrialRow
+from store import trials
+from store.tables import TrialRow
 
 
 def stored_ticks(server, trial_id: int) -> list[int]:
@@ -93,7 +93,7 @@ def test_wait_for_participant_steps_only_when_the_avatar_has_something_to_do(liv
 def test_missed_robot_deadlines_are_logged_and_the_robot_stays(live_server, study_file, monkeypatch):
     from steakhouse_test_robots import slow
 
-    from server.store.tables import EventRow
+    from store.tables import EventRow
 
     monkeypatch.setenv("STEAKHOUSE_TEST_SLOW_S", "0.1")
     server = live_server([study_file(world={"orders": 1, "horizon": 20, "kb_delay": 1})], robot_factory=slow)

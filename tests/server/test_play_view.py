@@ -9,7 +9,7 @@ import asyncio
 from steakhouse_testing import Player, condition_order, play_every_trial
 
 from analysis.export import read_dataset
-from server.store.tables import TrialRow
+from store.tables import TrialRow
 
 
 def test_each_trial_is_played_recorded_and_exported_in_its_view(live_server, study_file):

@@ -21,7 +21,7 @@ from steakhouse_testing import REPO, Player, eventually
 from websockets.asyncio.client import connect
 
 from server.security import JoinLimiter
-from server.store.tables import EventRow, TrialRow
+from store.tables import EventRow, TrialRow
 
 sys.path.insert(0, str(REPO / "benchmarks" / "load"))
 from simulated_participant import run_load  # noqa: E402

@@ -13,9 +13,9 @@ from steakhouse_testing import Player, ProcessServer, play_to_end, play_until
 
 from planner.kb import KnowledgeBase
 from planner.state import WorldState
-from server.store import trials
-from server.store.engine import Store
-from server.store.tables import TrialRow
+from store import trials
+from store.engine import Store
+from store.tables import TrialRow
 
 pytestmark = pytest.mark.slow
 

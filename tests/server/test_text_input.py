@@ -9,7 +9,7 @@ import json
 import httpx
 from steakhouse_testing import Player, play_to_end
 
-from server.store.tables import AnswerRow, ParticipantRow, QuizAttemptRow
+from store.tables import AnswerRow, ParticipantRow, QuizAttemptRow
 from server.text_input import first_problem, safe, text_problem
 
 UNSTORABLE = ["\ud800", "a\udfffb", "\x00", "x\x00"]

@@ -8,7 +8,7 @@ from dataclasses import replace
 import pytest
 from steakhouse_admin import REPLAY_STUDY, admin_page, admin_server, login  # noqa: F401
 
-from server.store import trials
+from store import trials
 
 pytestmark = pytest.mark.browser
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 import pytest
 from steakhouse_browser import screenshot
 
-from server.store.tables import EventRow, ParticipantRow
+from store.tables import EventRow, ParticipantRow
 
 pytestmark = pytest.mark.browser
 

@@ -11,7 +11,7 @@ from sqlalchemy import select
 from steakhouse_browser import ONE_DISH, play_by_clicking, press_until_focused, wait_drawn
 
 from steakhouse_browser import RECRUIT_SITE, screenshot
-from server.store.tables import AnswerRow, ParticipantRow
+from store.tables import AnswerRow, ParticipantRow
 
 pytestmark = pytest.mark.browser
 

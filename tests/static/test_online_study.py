@@ -12,7 +12,7 @@ import pytest
 from sqlalchemy import select
 from steakhouse_browser import check_mask, kitchen, screenshot, wait_drawn
 
-from server.store.tables import AnswerRow, EventRow, ParticipantRow, QuizAttemptRow
+from store.tables import AnswerRow, EventRow, ParticipantRow, QuizAttemptRow
 
 pytestmark = pytest.mark.browser
 

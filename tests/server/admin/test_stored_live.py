@@ -12,7 +12,7 @@ import pytest
 from steakhouse_testing import Player, eventually, play_until
 
 from server.admin.stored_live import stored_live_view
-from server.store import trials
+from store import trials
 
 ADMIN = {"Authorization": "Bearer admin-secret"}
 APPROXIMATE = {"source", "as_of", "lateness_ms", "decision_ms"}

@@ -17,9 +17,9 @@ from pilot.perception import Perception
 from pilot.run import run_pilot
 from planner.fov import view
 from planner.geometry import Direction
-from server.catalog import load_one
+from study_config.catalog import load_one
 from server.cli import main
-from server.store.tables import AnswerRow, ParticipantRow, TrialRow
+from store.tables import AnswerRow, ParticipantRow, TrialRow
 from steakhouse_test_robots import simulated_partner
 
 QUIZ = {"max_attempts": 2, "questions": [{"id": "q1", "text": "?", "options": ["a", "b"], "answer": 2,

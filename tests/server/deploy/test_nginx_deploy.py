@@ -25,8 +25,8 @@ from sqlalchemy import select
 from steakhouse_testing import ProcessServer, eventually, play_every_trial, play_to_end
 from websockets.exceptions import ConnectionClosed
 
-from server.store.engine import Store
-from server.store.tables import AssignmentRow, EventRow, TickRow, TrialRow
+from store.engine import Store
+from store.tables import AssignmentRow, EventRow, TickRow, TrialRow
 
 pytestmark = [pytest.mark.slow, pytest.mark.postgres]
 FLUSH_S = 0.5  # the product's default flush interval (docs/deploy.md)

@@ -15,7 +15,7 @@ from steakhouse_test_robots import simulated_partner
 from steakhouse_testing import REPO
 from websockets.asyncio.client import connect
 
-from server.study import load_study
+from study_config.study import load_study
 
 STUDY = {
     "title": "FOV-aware robot versus baseline and no_rollout (none_3, mid_2)",

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from server.flow.answers import check_answers
-from server.study.questionnaire import Questionnaire
+from study_config.study.questionnaire import Questionnaire
 
 Q = Questionnaire.model_validate({"id": "q", "items": [
     {"id": "a", "text": "A", "scale": {"min": 1, "max": 7}},

@@ -11,8 +11,8 @@ import pytest
 
 from server.flow.engagement import engagement_problem
 from server.flow.standing import not_taking_part, review_device, round_problem
-from server.store.activity import Activity
-from server.study.validity import Validity
+from store.activity import Activity
+from study_config.study.validity import Validity
 
 PLAYED = Activity(selections=12, interrupts=3, key_actions=2, ticks=120, idle_ticks=10, waited_seconds=0.0,
                   refused_steps=1, delivered_by_participant=1, delivered_by_robot=1, tick_rate_hz=5.0)

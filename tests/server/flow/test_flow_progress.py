@@ -6,7 +6,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from server.catalog import load_one
+from study_config.catalog import load_one
 from server.flow.plan import build_plan
 from server.flow.progress import IllegalTransition, Move, Phase, Progress
 from study_config import STUDY_DIR

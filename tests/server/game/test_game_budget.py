@@ -10,7 +10,7 @@ import time
 from steakhouse_testing import Player, eventually, play_to_end
 
 from server.game.budget import BURST, RATE_PER_S, EventBudget
-from server.store.tables import EventRow
+from store.tables import EventRow
 
 
 class Clock:

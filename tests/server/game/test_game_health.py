@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from server.game.health import RobotHealth
-from server.study.validity import DEFAULT_MAX_MISSED_DECISIONS_PCT, Validity
+from study_config.study.validity import DEFAULT_MAX_MISSED_DECISIONS_PCT, Validity
 
 
 def run(health: RobotHealth, misses: list[bool]) -> list[RobotHealth]:

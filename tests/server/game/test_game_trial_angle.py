@@ -8,15 +8,15 @@ from __future__ import annotations
 from steakhouse_testing import write_study
 
 from server.admin.live import scene_view
-from server.catalog import load_one
+from study_config.catalog import load_one
 from server.flow import service
 from server.flow.progress import Move
 from server.game.restore import trial_engine
 from server.game.resume import prepare_trial
 from server.game.snapshot import state
-from server.store.engine import Store
-from server.store.studies import sync_study
-from server.store.tables import ParticipantRow
+from store.engine import Store
+from store.studies import sync_study
+from store.tables import ParticipantRow
 
 
 def test_each_angle_level_masks_its_own_trials(db_url, tmp_path) -> None:

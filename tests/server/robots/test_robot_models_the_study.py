@@ -22,7 +22,7 @@ from planner.robots import make_robot
 from planner.rules import Rules
 from planner.state import WorldState, initial_state
 from server.robots import ProcessRobots
-from server.store import trials
+from store import trials
 from study_config import load_layout
 
 

@@ -9,7 +9,7 @@ import httpx
 import pytest
 from steakhouse_testing import Player, play_to_end
 
-from server.store.tables import TrialRow
+from store.tables import TrialRow
 
 ADMIN = {"Authorization": "Bearer admin-secret"}
 PATHS = ["/api/admin/studies", "/api/admin/participants", "/api/admin/live", "/api/admin/live/1",

@@ -7,7 +7,7 @@ import dataclasses
 
 import httpx
 
-from server.store.engine import Store
+from store.engine import Store
 
 
 def test_healthz_follows_the_store(live_server, study_file):

@@ -112,7 +112,7 @@ def test_the_whole_flow_with_illegal_moves_refused(client, server):
     assert client.get("/api/session/completion", headers=headers).json() == {
         "kind": "completion", "code": "DONE42", "redirect_url": "https://example.org/done?cc=DONE42", "reason": None}
     services = server.services
-    from server.store.tables import AnswerRow
+    from store.tables import AnswerRow
 
     with services.store.transaction() as session_:
         answers = {(a.item_id, a.value, a.after_trial) for a in session_.query(AnswerRow)}

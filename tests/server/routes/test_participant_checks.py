@@ -12,8 +12,8 @@ from sqlalchemy import select
 from steakhouse_testing import Player, play_to_end
 
 from server.flow.answers import check_answers, stored_answer
-from server.store.tables import AnswerRow, EventRow, ParticipantRow, QuizAttemptRow
-from server.study.questionnaire import Questionnaire
+from store.tables import AnswerRow, EventRow, ParticipantRow, QuizAttemptRow
+from study_config.study.questionnaire import Questionnaire
 
 QUIZ = {"max_attempts": 2, "questions": [
     {"id": "black", "text": "Black?", "options": ["Wall", "Out of view"], "answer": 2, "explanation": "Out of view."},

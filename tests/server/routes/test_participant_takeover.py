@@ -14,8 +14,8 @@ from steakhouse_testing import Player, eventually
 
 from server.admin.resume import link_secret, make_code, read_code
 from server.flow.service import ALREADY_STARTED
-from server.store import participants
-from server.store.tables import EventRow, ParticipantRow
+from store import participants
+from store.tables import EventRow, ParticipantRow
 
 ADMIN = {"Authorization": "Bearer admin-secret"}
 

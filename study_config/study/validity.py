@@ -1,0 +1,41 @@
+"""When a trial counts as data: the study's ``validity`` section (docs/operations.md, "Robot health" and
+"Engagement").
+
+Two rules mark a main trial as not analysable: the robot's health (decisions past their deadline,
+``server.game.health``) and the participant's engagement (``server.flow.engagement``: a round played without
+taking part). A participant with more abandoned or low-engagement main rounds than ``max_invalid_rounds`` gets
+the screen-out outcome instead of the completion code (``server.flow.standing``).
+"""
+
+from __future__ import annotations
+
+from pydantic import Field
+
+from study_config.study.base import StudyModel
+
+DEFAULT_MAX_MISSED_DECISIONS_PCT = 5.0
+"""A trial whose robot missed more than this share of its decision deadlines is invalid (issue 13, part 3)."""
+DEFAULT_MAX_IDLE_PCT = 95.0
+"""A main trial in which the cook had nothing to do for more than this share of its tick periods is
+low-engagement. Chosen from the real-time pilots of docs/pilot.md §4 (28 simulated participants per clock who
+think 0.5–3 s per choice): their highest per-trial idle share was 70.8 % (``fixed_rate``) and 86.8 %
+(``wait_for_participant``); on their median round, 95 % takes about 21 s of idleness per choice (90 % only
+about 10 s, within reach of a slow but real player), while a participant who never acts has 100 %."""
+
+
+class Validity(StudyModel):
+    """Rules that mark a trial invalid as it happens; invalid trials are left out of the analysis by default."""
+
+    max_missed_decisions_pct: float = Field(default=DEFAULT_MAX_MISSED_DECISIONS_PCT, ge=0, le=100)
+    """The robot stood still for a missed decision; past this share of the trial's decisions (in %) the trial
+    did not test the robot the condition names, and is marked invalid with the share as the reason."""
+    min_participant_actions: int = Field(default=1, ge=0)
+    """A main trial with fewer of the participant's actions (task choices plus interrupts) is
+    ``low_engagement``: the robot played it alone."""
+    max_idle_pct: float = Field(default=DEFAULT_MAX_IDLE_PCT, ge=0, le=100)
+    """A main trial whose cook had nothing to do (no task, no key waiting) for more than this share of its tick
+    periods (``idle_pct``; in ``wait_for_participant`` the time the world waited counts at the tick rate) is
+    ``low_engagement``."""
+    max_invalid_rounds: int = Field(default=0, ge=0)
+    """Main rounds that may be abandoned (grace window expired) or low-engagement before the participant gets
+    the screen-out outcome instead of the completion code (0: the first one ends the study)."""

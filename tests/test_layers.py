@@ -1,0 +1,76 @@
+"""The layers of docs/architecture.md hold: each top-level package imports only the layers it may.
+
+Data flows one way (study_config → server → store → analysis; the planner below them all). An import that runs
+back up, or a tie between two top-level packages in both directions, fails here with the file and line.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+PACKAGES = ("planner", "study_config", "store", "server", "analysis", "pilot")
+
+# What each package may import of the others (docs/architecture.md, "The data flow").
+ALLOWED: dict[str, frozenset[str]] = {
+    "planner": frozenset(),
+    "study_config": frozenset({"planner"}),
+    "store": frozenset({"planner", "study_config"}),
+    "server": frozenset({"planner", "study_config", "store"}),
+    "analysis": frozenset({"planner", "study_config", "store"}),
+    "pilot": frozenset({"planner", "study_config"}),
+}
+# The command line and the admin's export download are the server's entry points to the analysis and the pilot.
+ENTRY_POINTS = ("server/cli.py", "server/commands/", "server/routes/admin_exports.py")
+
+
+def imported_packages(path: Path) -> list[tuple[int, str]]:
+    """(line, top-level package) of every import of one of this repository's packages in ``path``."""
+    found: list[tuple[int, str]] = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), filename=str(path))):
+        if isinstance(node, ast.Import):
+            names = [alias.name for alias in node.names]
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            names = [node.module]
+        else:
+            continue
+        found.extend((node.lineno, name.split(".")[0]) for name in names if name.split(".")[0] in PACKAGES)
+    return found
+
+
+def package_imports(package: str) -> list[tuple[str, int, str]]:
+    """(file, line, imported package) of every import of another of this repository's packages in ``package``."""
+    return [(path.relative_to(REPO).as_posix(), line, target)
+            for path in sorted((REPO / package).rglob("*.py"))
+            for line, target in imported_packages(path) if target != package]
+
+
+def violations(package: str) -> list[str]:
+    bad = []
+    for rel, line, target in package_imports(package):
+        allowed = ALLOWED[package]
+        if rel.startswith(ENTRY_POINTS):
+            allowed = allowed | {"analysis", "pilot"}
+        if target not in allowed:
+            bad.append(f"{rel}:{line} imports {target}")
+    return bad
+
+
+@pytest.mark.parametrize("package", PACKAGES)
+def test_each_package_imports_only_the_layers_below_it(package: str) -> None:
+    assert violations(package) == []
+
+
+def test_the_rule_catches_an_import_that_runs_back_up(tmp_path: Path) -> None:
+    source = tmp_path / "module.py"
+    source.write_text("from server.app import create_app\nimport planner.fov\n", encoding="utf-8")
+    assert imported_packages(source) == [(1, "server"), (2, "planner")]
+    assert "server" not in ALLOWED["analysis"] and "server" not in ALLOWED["store"]
+
+
+def test_no_two_top_level_packages_import_each_other() -> None:
+    edges = {(package, target) for package in PACKAGES for _, _, target in package_imports(package)}
+    assert sorted((a, b) for a, b in edges if (b, a) in edges) == []
