@@ -12,7 +12,8 @@ DEFAULT_CONSENT = """\
 
 You are invited to take part in a research study about how people work together with a robot partner.
 You will play {rounds} short rounds of a cooking game in your browser with a simulated robot (each lasts
-at most {round_time}) and answer a few questions after each round. It takes up to about {minutes} minutes.
+at most {round_time}) and answer a few questions after each of the {main_rounds} rounds that count. It takes up
+to about {minutes} minutes.
 
 - Taking part is voluntary. You may stop at any time by closing this page.
 - We record your actions in the game and your answers. We do not record your name; your data are

@@ -43,11 +43,9 @@ def study_robots(name: str, layout: Any, rules: Any, config: Any = None) -> Any:
 
 
 def study_overrides(**extra: object) -> dict[str, object]:
-    """A fast 2 robots × 2 kitchens study: one practice trial, one order, short horizon, 30 Hz. No trial is
-    ever invalid (these tests are about the analysis; at 30 Hz in-process a busy machine misses robot
-    deadlines, and ``tests/server/test_play_health.py`` tests what that does)."""
+    """A fast 2 robots × 2 kitchens study: one practice trial, one order, short horizon, 30 Hz (no trial is ever
+    robot-invalid: ``write_study``'s default)."""
     values: dict[str, object] = {
-        "validity": {"max_missed_decisions_pct": 100},
         "robots": ["stay", "baseline"], "kitchens": ["none_3", "mid_2"], "factors": ["robot", "kitchen"],
         "practice": [{"kitchen": "practice", "robot": "stay", "count": 1}],
         "world": {"orders": 1, "horizon": 120, "kb_delay": 1},

@@ -54,7 +54,7 @@ def stored(module_db_url, tmp_path_factory):
     store.migrate()
     path = write_study(tmp_path_factory.mktemp("studies"), STUDY, robots=["stay", "baseline"],
                        kitchens=["practice"], factors=["robot"], world={"orders": 1, "horizon": 30, "kb_delay": 1},
-                       validity={"max_missed_decisions_pct": 100}, questionnaires=[AFTER_TRIAL, END])
+                       questionnaires=[AFTER_TRIAL, END])
     loaded = load_one(path)
     with store.transaction() as session:
         sync_study(session, loaded.study)

@@ -47,6 +47,10 @@ def write_study(folder: Path, study_id: str = "tiny", **overrides: Any) -> Path:
             {"id": "a", "text": "A", "scale": {"min": 1, "max": 5}},
             {"id": "b", "text": "B", "scale": {"min": 1, "max": 5}, "required": False}]}],
         "reconnect": {"grace_seconds": 60},
+        # Robot health is judged on the wall clock, and these tests' robots decide at 30 Hz on a machine shared by
+        # parallel test workers: a test not about health must not fail because one decision of a few was late.
+        # The health tests set their own threshold (tests/server/test_play_health.py).
+        "validity": {"max_missed_decisions_pct": 100},
     }
     path = folder / f"{study_id}.yaml"
     path.write_text(yaml.safe_dump(_merge(data, overrides)), encoding="utf-8")

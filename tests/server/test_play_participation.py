@@ -99,26 +99,29 @@ def test_an_idle_participant_is_screened_out_listed_with_the_reason_and_not_coun
     assert next_order == condition_order(server.services, public_id)
 
 
+async def open_the_first_round_and_leave(server):
+    """A participant who opens their first main round and leaves it past the grace window: (join answer, the
+    session afterwards, the order the next joiner gets)."""
+    player = Player(server.url)
+    joined = await player.join()
+    await player.post("/api/session/consent", {"accept": True})
+    await player.post("/api/session/instructions_done")
+    sock = await player.socket()
+    await sock.until(lambda m: m["type"] == "state")
+    await sock.close()
+    await until_unloaded(server.services, timeout=5)
+    session = await player.session()
+    await player.close()
+    return joined, session, await next_joiner_order(server)
+
+
 @pytest.mark.parametrize("mode", CLOCKS)
 def test_an_abandoning_participant_is_screened_out_skips_the_questionnaire_and_is_not_counted(
         live_server, study_file, mode):
     server = live_server([two_round_study(study_file, mode, reconnect={"grace_seconds": 0.2,
                                                                         "after_grace": "abandon"})])
 
-    async def scenario():
-        player = Player(server.url)
-        joined = await player.join()
-        await player.post("/api/session/consent", {"accept": True})
-        await player.post("/api/session/instructions_done")
-        sock = await player.socket()
-        await sock.until(lambda m: m["type"] == "state")
-        await sock.close()
-        await until_unloaded(server.services, timeout=5)
-        session = await player.session()
-        await player.close()
-        return joined, session, await next_joiner_order(server)
-
-    joined, session, next_order = asyncio.run(scenario())
+    joined, session, next_order = asyncio.run(open_the_first_round_and_leave(server))
     public_id = joined["participant_id"]
     assert session["state"] == "screened_out"
     assert session["completion"] == {"kind": "screen_out", "code": "OUT-1", "redirect_url": None,
@@ -136,20 +139,7 @@ def test_a_participant_allowed_one_invalid_round_goes_on_without_its_questionnai
     server = live_server([two_round_study(study_file, "fixed_rate", validity={"max_invalid_rounds": 1},
                                           reconnect={"grace_seconds": 0.2, "after_grace": "abandon"})])
 
-    async def scenario():
-        player = Player(server.url)
-        joined = await player.join()
-        await player.post("/api/session/consent", {"accept": True})
-        await player.post("/api/session/instructions_done")
-        sock = await player.socket()
-        await sock.until(lambda m: m["type"] == "state")
-        await sock.close()
-        await until_unloaded(server.services, timeout=5)
-        session = await player.session()
-        await player.close()
-        return joined, session, await next_joiner_order(server)
-
-    joined, session, next_order = asyncio.run(scenario())
+    joined, session, next_order = asyncio.run(open_the_first_round_and_leave(server))
     # The questionnaire about the unplayed round is skipped: the next step is the second round.
     assert session["state"] == "trial" and session["trial"]["index"] == 1
     row = admin_participant(server, joined["participant_id"])
@@ -160,11 +150,8 @@ def test_a_participant_allowed_one_invalid_round_goes_on_without_its_questionnai
 @pytest.mark.parametrize("mode", CLOCKS)
 def test_a_participant_who_plays_is_unaffected(live_server, study_file, mode):
     clock = ManualClock()
-    # Robot health is judged on the wall clock of a busy test machine and has its own tests: here it may not
-    # screen the player out, so that only the participant's own part is judged.
     path = study_file(kitchens=["practice", "none_3"], factors=["kitchen"],
-                      timing={"mode": mode, "tick_rate_hz": 30}, recruiting=CODES,
-                      validity={"max_missed_decisions_pct": 100})
+                      timing={"mode": mode, "tick_rate_hz": 30}, recruiting=CODES)
     server = live_server([path], clock=clock)
 
     async def scenario():
