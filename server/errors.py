@@ -17,7 +17,6 @@ from fastapi.encoders import jsonable_encoder
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
 
-from server.flow.progress import IllegalTransition
 from server.text_input import safe
 
 
@@ -29,6 +28,17 @@ class ApiError(Exception):
     def __init__(self, status: int, code: str, message: str, headers: dict[str, str] | None = None) -> None:
         super().__init__(message)
         self.status, self.code, self.message, self.headers = status, code, message, headers
+
+
+class Conflict(Exception):
+    """A request the current state does not allow (HTTP 409): ``code``, the message, and ``extra`` fields that say
+    which state and which action (the participant's state machine raises one, :mod:`server.flow.progress`)."""
+
+    code = "conflict"
+
+    def __init__(self, message: str, extra: dict[str, str] | None = None) -> None:
+        super().__init__(message)
+        self.extra = extra or {}
 
 
 class AnswerProblems(Exception):
@@ -49,10 +59,9 @@ def install(app: FastAPI) -> None:
         return JSONResponse({"detail": {"code": exc.code, "message": exc.message}}, exc.status,
                             headers=exc.headers)
 
-    async def illegal(_: Request, exc: Exception) -> JSONResponse:
-        assert isinstance(exc, IllegalTransition)
-        return JSONResponse({"detail": {"code": "illegal_transition", "message": str(exc),
-                                        "state": exc.phase.value, "action": exc.move.value}}, 409)
+    async def conflict(_: Request, exc: Exception) -> JSONResponse:
+        assert isinstance(exc, Conflict)
+        return JSONResponse({"detail": {"code": exc.code, "message": str(exc), **exc.extra}}, 409)
 
     async def answers(_: Request, exc: Exception) -> JSONResponse:
         assert isinstance(exc, AnswerProblems)
@@ -63,7 +72,7 @@ def install(app: FastAPI) -> None:
         return JSONResponse({"detail": [_problem(error) for error in exc.errors()]}, 422)
 
     app.add_exception_handler(ApiError, api_error)
-    app.add_exception_handler(IllegalTransition, illegal)
+    app.add_exception_handler(Conflict, conflict)
     app.add_exception_handler(AnswerProblems, answers)
     app.add_exception_handler(RequestValidationError, invalid_request)
 

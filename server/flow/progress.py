@@ -30,6 +30,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import Enum
 
+from server.errors import Conflict
 from server.flow.plan import Step
 
 
@@ -71,13 +72,16 @@ STATUS_COMPLETED = "completed"
 STATUS_SCREENED_OUT = "screened_out"
 
 
-class IllegalTransition(Exception):
+class IllegalTransition(Conflict):
     """An action the participant's current state does not allow."""
+
+    code = "illegal_transition"
 
     def __init__(self, phase: Phase, move: Move, reason: str = "") -> None:
         self.phase, self.move = phase, move
         detail = f": {reason}" if reason else ""
-        super().__init__(f"cannot {move.value} in state {phase.value}{detail}")
+        super().__init__(f"cannot {move.value} in state {phase.value}{detail}",
+                         {"state": phase.value, "action": move.value})
 
 
 @dataclass(frozen=True, slots=True)

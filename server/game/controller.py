@@ -26,7 +26,6 @@
 from __future__ import annotations
 
 from collections import deque
-from enum import Enum
 from typing import Any
 
 import numpy as np
@@ -42,6 +41,7 @@ from planner.state import WorldState
 from planner.subtasks import Believed, Subtask, available, is_done, targets
 from server.game.blocked import (Blocked, Intent, Reason, Stall, hands_reason, interaction_reason, no_target_reason,
                                  nothing_left, progressed)
+from server.protocol.interrupts import Interrupt
 
 class Unchecked:
     """The type of :data:`UNCHECKED`: ``select`` was not told what the avatar holds."""
@@ -52,16 +52,6 @@ UNCHECKED = Unchecked()
 QUEUE_LIMIT = 3
 STILL_TICKS = 2
 OFF_GRID: Pos = (-1, -1)
-
-
-class Interrupt(str, Enum):
-    UP = "up"
-    DOWN = "down"
-    LEFT = "left"
-    RIGHT = "right"
-    STAY = "stay"
-    INTERACT = "interact"
-    STOP = "stop"
 
 
 INTERRUPT_ACTION: dict[Interrupt, Action] = {

@@ -10,7 +10,7 @@ from planner.geometry import ACTIONS
 from planner.subtasks import SUBTASKS
 from planner.summary import gap_components, summarize
 from server.game.blocked import Blocked
-from server.game.controller import Interrupt
+from server.protocol.interrupts import Interrupt
 from server.game.engine import TrialEngine
 from server.game.meta import TrialMeta
 from server.game.needs import NEEDS

@@ -12,7 +12,7 @@ from typing import Annotated, Literal
 from pydantic import BaseModel, ConfigDict, Field, TypeAdapter
 
 from planner.subtasks import Subtask
-from server.game.controller import Interrupt
+from server.protocol.interrupts import Interrupt
 
 
 class ClientMessage(BaseModel):

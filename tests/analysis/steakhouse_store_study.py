@@ -22,7 +22,7 @@ from planner.state import WorldState
 from study_config.catalog import LoadedStudy
 from server.flow import service
 from server.flow.progress import Move
-from server.game.controller import Interrupt
+from server.protocol.interrupts import Interrupt
 from server.game.engine import TrialEngine
 from server.game.records import tick_row
 from server.game.resume import prepare_trial

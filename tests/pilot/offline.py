@@ -17,7 +17,7 @@ from planner.kb import omniscient_kb
 from planner.subtasks import Subtask
 from study_config.catalog import LoadedStudy
 from server.game import snapshot
-from server.game.controller import Interrupt
+from server.protocol.interrupts import Interrupt
 from server.game.engine import TrialEngine
 from server.game.needs import NEEDS
 

@@ -27,7 +27,7 @@ from hypothesis import strategies as st
 from steakhouse_testing import Player
 
 from planner.subtasks import SUBTASKS
-from server.game.controller import Interrupt
+from server.protocol.interrupts import Interrupt
 from server.protocol.server import server_adapter
 from store.tables import EventRow
 

@@ -14,7 +14,7 @@ from planner.geometry import Direction
 from planner.layout import parse_layout
 from planner.objects import OBJECTS
 from planner.subtasks import SUBTASKS
-from server.game.controller import Interrupt
+from server.protocol.interrupts import Interrupt
 from server.protocol.server import TerrainName
 
 STATIC = Path(__file__).resolve().parents[2] / "static"

@@ -181,7 +181,7 @@ def test_a_robot_blocking_the_only_way_is_named_once_seen_and_the_subtask_ends()
 
 
 def test_an_interact_key_that_does_nothing_says_why_and_one_that_works_says_nothing():
-    from server.game.controller import Interrupt
+    from server.protocol.interrupts import Interrupt
 
     engine = engine_at(world_with(pos=SINK_SPOT, facing=Direction.NORTH, held=None, sink=None))
     assert engine.controller.interrupt(Interrupt.INTERACT)

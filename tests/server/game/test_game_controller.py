@@ -13,7 +13,8 @@ from planner.rules import Rules
 from planner.state import AgentState, initial_state
 from planner.step import step
 from planner.subtasks import Subtask
-from server.game.controller import QUEUE_LIMIT, Interrupt, ParticipantController
+from server.game.controller import QUEUE_LIMIT, ParticipantController
+from server.protocol.interrupts import Interrupt
 
 RULES = Rules(orders=1)
 RNG = np.random.default_rng(0)
