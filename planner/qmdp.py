@@ -218,6 +218,12 @@ class QmdpRobot:
         """Whether the person has stopped (:mod:`planner.alone`): the robot plans as if it were alone."""
         return self.partner_still >= self.cfg.alone_ticks
 
+    @property
+    def shows_itself(self) -> bool:
+        """Whether this decision explores first moves for what the person would come to know of the robot: the
+        FOV-aware robot, except beside a person who has stopped (:mod:`planner.alone`), whom nothing is shown."""
+        return self.explore and self.cfg.exploration_depth > 0 and not self.alone
+
     def human_targets(self, world: WorldState) -> tuple[Pos, ...]:
         """The cells of the person's most likely subtask."""
         assert self.belief is not None
@@ -254,7 +260,7 @@ class QmdpRobot:
         if budget <= 0:
             return full
         kept_full = sum(1 for t in self.followed.values() if t.length >= full)
-        explore = (2 * len(likely)) if self.explore and self.cfg.exploration_depth > 0 else 0
+        explore = (2 * len(likely)) if self.shows_itself else 0
         fresh = (len(options) * len(likely) - kept_full) * max(self.cfg.rollout_samples, 1) + explore
         if fresh * full <= budget:
             return full
@@ -337,8 +343,8 @@ class QmdpRobot:
         human's view held for ``kb_delay`` ticks), each scored by a rollout that tracks the modelled KB.
         ``direct_value`` is the direct move's score, already computed for ``Q`` (same rollouts, same seeds)."""
         default = self.rollout.robot_move(world, subtask, self.human_still >= 2)
-        if not self.explore or self.cfg.exploration_depth <= 0 or default is Action.INTERACT or self.alone:
-            return default, 0  # nothing to show a person who has stopped (planner.alone): the robot works alone
+        if not self.shows_itself or default is Action.INTERACT:
+            return default, 0
         assert self.kb is not None
         candidates: dict[Action, tuple[Action, ...]] = {default: ()}
         cells = self.tasker.targets(subtask, world)
@@ -386,7 +392,7 @@ class QmdpRobot:
                                self.human_still)
             self.next_traces[key] = trace
             return trace.value(self.cfg.tick_discount, horizon)
-        if not prefix and self.explore and self.cfg.values_knowing:
+        if not prefix and self.shows_itself and self.cfg.values_knowing:
             # The subtask's value is the progress alone; the same rollouts' knowing is kept for its first move.
             sums = [self.rollout.parts(world, self.kb, HumanMemory(subtask=human_subtask, held=world.human.held),
                                        np.random.default_rng(seed + 7919 * i), robot_subtask, horizon,
