@@ -68,6 +68,31 @@ def eventually(read: Callable[[], Any], holds: Callable[[Any], bool], timeout: f
     return value
 
 
+def wait_stored(where: Any, through: dict[int, int], timeout: float = 60.0) -> None:
+    """Wait until the store (a ``Store`` or a database URL) holds, for each trial id in ``through``, its ticks
+    up to the given one. The writer commits in batches: a test about what was stored waits for that state
+    rather than sleeping for a flush interval, which a loaded machine can stretch. Fails after ``timeout``."""
+    from sqlalchemy import func, select
+
+    from store.engine import Store
+    from store.tables import TickRow
+
+    store = Store(where) if isinstance(where, str) else where
+    try:
+        def highest() -> dict[int, int]:
+            with store.transaction() as session:
+                rows = session.execute(select(TickRow.trial_id, func.max(TickRow.tick))
+                                       .where(TickRow.trial_id.in_(list(through))).group_by(TickRow.trial_id))
+                return {trial_id: tick for trial_id, tick in rows}
+
+        seen = eventually(highest, lambda got: all(got.get(t, 0) >= n for t, n in through.items()), timeout)
+        missing = {t: (seen.get(t, 0), n) for t, n in through.items() if seen.get(t, 0) < n}
+        assert not missing, f"ticks not stored after {timeout} s (trial: (stored, wanted)): {missing}"
+    finally:
+        if store is not where:
+            store.dispose()
+
+
 def free_port() -> int:
     with socket.socket() as sock:
         sock.bind(("127.0.0.1", 0))
@@ -110,6 +135,7 @@ class ProcessServer:
                  log: Path | None = None) -> None:
         self.port = free_port()
         self.url = f"http://127.0.0.1:{self.port}"
+        self.database_url = database_url
         self.args = [sys.executable, "-m", "server.cli", "serve", "--port", str(self.port), "--study", str(study),
                      "--database-url", database_url, "--workers", str(workers), "--log-level", "warning"]
         self.env = {**os.environ, "STEAKHOUSE_ADMIN_TOKEN": "admin-secret", "STEAKHOUSE_FLUSH_INTERVAL_S": "0.2",

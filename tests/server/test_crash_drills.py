@@ -19,7 +19,7 @@ from typing import Any
 
 import pytest
 from sqlalchemy import func, select, text
-from steakhouse_testing import Player, ProcessServer, play_to_end, play_until
+from steakhouse_testing import Player, ProcessServer, play_to_end, play_until, wait_stored
 from websockets.exceptions import ConnectionClosed
 
 from planner.kb import KnowledgeBase
@@ -90,7 +90,8 @@ def crash(server: ProcessServer, url: str, until: int) -> list[tuple[str, int]]:
     """Four participants play at once until each has reached ``until``; the server is then killed."""
     async def scenario() -> list[tuple[str, int]]:
         started = await asyncio.gather(*(start_and_play(url, f"p{i}", until + 3 * i) for i in range(PLAYERS)))
-        await asyncio.sleep(0.6)  # the writer flushes every 0.2 s
+        reached = {trial_id: until + 3 * i for i, (_, _, trial_id) in enumerate(started)}
+        await asyncio.to_thread(wait_stored, server.database_url, reached)
         server.kill()
         for player, sock, _ in started:
             sock.ws.transport.abort()  # the server is gone: no closing handshake to wait for
@@ -205,7 +206,8 @@ def test_random_connection_drops_lose_and_double_no_tick(live_server, study_file
                                            for i in range(PLAYERS))))
 
     results = asyncio.run(scenario())
-    time.sleep(0.3)
+    wait_stored(server.services.store, {r["connections"][0]["hello"]["trial"]["id"]: r["end"]["ticks"]
+                                        for r in results if "ticks" in r["end"]})
     with server.services.store.transaction() as session:
         for result in results:
             end, connections = result["end"], result["connections"]

@@ -17,7 +17,7 @@ import httpx
 import pytest
 from steakhouse_test_robots import simulated_partner
 from steakhouse_masking import check_masked
-from steakhouse_testing import REPO, Player, eventually
+from steakhouse_testing import REPO, Player, eventually, wait_stored
 from websockets.asyncio.client import connect
 
 from server.security import JoinLimiter
@@ -221,7 +221,9 @@ def test_no_participant_message_leaves_the_field_of_view_under_load(live_server,
     server = live_server([study], robot_factory=simulated_partner, join_rate_per_minute=0)
     stats = asyncio.run(run_load(server.url, "tiny", participants=6, seconds=6.0, seed=11, ramp_s=0.5,
                                  capture=True))
-    time.sleep(0.5)  # the writer flushes every 0.1 s: every tick a message showed is stored
+    # Every tick a message showed must be stored before it can be compared (the writer commits in batches).
+    wait_stored(server.services.store, {t.trial_id: max((m["tick"] for m in t.messages if m["type"] == "state"),
+                                                        default=0) for t in stats.transcripts})
     assert not stats.errors, stats.errors[:5]
     # How many ticks 6 s hold depends on the machine's load; what the property needs is that every participant
     # played, and (below) that the robot was both shown and hidden.

@@ -9,7 +9,7 @@ import time
 
 import pytest
 from sqlalchemy import text
-from steakhouse_testing import Player, ProcessServer, play_to_end, play_until
+from steakhouse_testing import Player, ProcessServer, play_to_end, play_until, wait_stored
 
 from planner.kb import KnowledgeBase
 from planner.state import WorldState
@@ -49,7 +49,7 @@ def test_sigkill_mid_trial_then_restart_resumes_from_the_last_flushed_tick(db_ur
             sock = await player.socket()
             hello = await sock.recv()
             seen = await play_until(sock, 30)
-            await asyncio.sleep(0.5)  # the writer flushes every 0.2 s
+            await asyncio.to_thread(wait_stored, db_url, {hello["trial"]["id"]: 30})
             server.kill()
             await sock.close()
             await player.close()

@@ -38,6 +38,18 @@ def stored(store, trial_id: int) -> list[int]:
         return [t.tick for t in trials.ticks(session, trial_id)]
 
 
+async def committed(store, trial_id: int, count: int, give_up_after: float = 60.0) -> list[int]:
+    """The stored ticks once `count` of them are there, polled without flushing (waits on state, not the clock;
+    the cap only stops a broken writer from hanging the suite)."""
+    loop = asyncio.get_running_loop()
+    deadline = loop.time() + give_up_after
+    while True:
+        seen = await asyncio.to_thread(stored, store, trial_id)
+        if len(seen) >= count or loop.time() > deadline:
+            return seen
+        await asyncio.sleep(0.02)
+
+
 def test_rows_are_committed_within_the_interval_without_an_explicit_flush(store, loaded):
     participant_id, trial_id = new_trial(store, loaded)
 
@@ -48,8 +60,7 @@ def test_rows_are_committed_within_the_interval_without_an_explicit_flush(store,
             writer.add_tick(tick_row(trial_id, tick))
         writer.add_event({"participant_id": participant_id, "trial_id": trial_id, "tick": 3, "kind": "blur",
                           "payload": {"seq": 4}, "created_at": utcnow()})
-        await asyncio.sleep(0.4)
-        seen = await asyncio.to_thread(stored, store, trial_id)
+        seen = await committed(store, trial_id, 10)
         writer.add_tick(tick_row(trial_id, 11))
         await writer.close()
         return seen, await asyncio.to_thread(stored, store, trial_id)
