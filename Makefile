@@ -5,7 +5,7 @@ PYTEST_WORKERS ?= auto
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed-$(shell cat pyproject.toml | cksum | cut -d' ' -f1)
 
-.PHONY: setup run test browser postgres
+.PHONY: setup run test lint browser postgres
 
 setup: $(STAMP)
 
@@ -25,6 +25,11 @@ browser:
 postgres:
 	@bash tests/tools/ensure_postgres.sh
 
-test: setup browser postgres
+# The style gates (config in pyproject.toml; also run by pre-commit: .pre-commit-config.yaml).
+lint: setup
+	$(VENV)/bin/ruff check .
+	$(VENV)/bin/mypy
+
+test: setup lint browser postgres
 	@bash tests/tools/ensure_nginx.sh
 	$(PY) -m pytest -n $(PYTEST_WORKERS) $(PYTEST_ARGS)

@@ -37,7 +37,7 @@ def format_proportion(value: float, digits: int = 2) -> str:
 
 def format_df(df: float) -> str:
     """``26`` for whole degrees of freedom, ``25.47`` for corrected ones."""
-    return str(int(round(df))) if float(df).is_integer() else f"{df:.2f}"
+    return str(round(df)) if float(df).is_integer() else f"{df:.2f}"
 
 
 CORRECTIONS = {"GG": "Greenhouse–Geisser", "HF": "Huynh–Feldt"}

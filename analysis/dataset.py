@@ -19,15 +19,31 @@ from sqlalchemy import Connection
 
 from analysis.design import Design
 from analysis.dictionary import (
-    ANSWER_COLUMNS, CELL_COLUMNS, EXCLUDED_COLUMNS, FLAG, INT, PARTICIPANT_COLUMNS, TICK_COLUMNS, TRIAL_COLUMNS,
-    Column, item_column, wide_column, wide_columns,
+    ANSWER_COLUMNS,
+    CELL_COLUMNS,
+    EXCLUDED_COLUMNS,
+    FLAG,
+    INT,
+    PARTICIPANT_COLUMNS,
+    TICK_COLUMNS,
+    TRIAL_COLUMNS,
+    Column,
+    wide_column,
+    wide_columns,
 )
+from analysis.dictionary_items import item_key as item_column
 from analysis.measures import GAP_COMPONENTS, TRIAL_MEASURES, trial_measures
 from analysis.participation import participation_values, trial_status
 from analysis.roster import Used, excluded_row, participant_row, used_trials
 from analysis.scales import response_scores
 from analysis.store_reader import (
-    StoredParticipant, StoredTick, StoredTrial, iso_time, read_events, read_study, read_ticks,
+    StoredParticipant,
+    StoredTick,
+    StoredTrial,
+    iso_time,
+    read_events,
+    read_study,
+    read_ticks,
 )
 from analysis.study_design import ScaleSpec
 from analysis.work import redundant_action_flags, subtask_switch_flags

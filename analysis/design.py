@@ -1,12 +1,12 @@
 """The study design as the export needs it, read from the resolved configuration stored with the study.
 
-Conditions are the robot × kitchen (× view, × fov_angle, when these are factors) cross in study order (the first
-factor varies slowest, as in ``study_config.study.conditions``; condition ids are ``robot@kitchen``, ``robot@kitchen@view``,
+Conditions are the robot × kitchen (× view, × fov_angle, when these are factors) cross in study order (the first factor
+varies slowest, as in ``study_config.study.conditions``; condition ids are ``robot@kitchen``, ``robot@kitchen@view``,
 ``robot@kitchen@angle`` or ``robot@kitchen@view@angle``). A condition's cell is the tuple of its levels in
 :attr:`Design.fields` order: ``(robot, kitchen)``, ``(robot, kitchen, view)``, ``(robot, kitchen, fov_angle)`` or all
-four, an angle spelt as :func:`study_config.study.fov_angles.angle_level` (``90``). Questionnaire items are split into those
-answered after each main trial (one value per condition: measures of the cell) and those answered once at
-the end of the study (one value per participant).
+four, an angle spelt as :func:`study_config.study.fov_angles.angle_level` (``90``). Questionnaire items are split into
+those answered after each main trial (one value per condition: measures of the cell) and those answered once at the end
+of the study (one value per participant).
 
 The columns of ``cells.csv`` and ``wide.csv`` that come from the questionnaires are defined here once
 (:attr:`Design.trial_value_columns`, :attr:`Design.end_value_columns`): the export fills exactly these columns and
@@ -22,10 +22,10 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from analysis.dictionary import NUM, Column, item_column, item_columns
+from analysis.dictionary import NUM, Column, item_columns
+from analysis.dictionary_items import item_key as item_column
 from analysis.study_design import RatingItem, ScaleSpec, factor_levels, rating_specs
 from study_config.study.fov_angles import angle_level
-
 
 CELL_FIELDS = ("robot", "kitchen", "view", "fov_angle")
 """The fields a cell tuple may have, in order (robot and kitchen always; view and fov_angle when factors)."""
@@ -63,7 +63,7 @@ class Design:
         order = [f for f in factors if f in levels] + [f for f in levels if f not in factors]
         fields = tuple(levels)  # robot, kitchen[, view][, fov_angle]: the cell's field order
         conditions = tuple(
-            tuple(dict(zip(order, combination))[f] for f in fields)
+            tuple(dict(zip(order, combination, strict=True))[f] for f in fields)
             for combination in itertools.product(*(levels[f] for f in order)))
         trial_items: list[tuple[str, str, str]] = []
         end_items: list[tuple[str, str, str]] = []

@@ -32,7 +32,7 @@ MEASURES: dict[str, Column] = {c.name: c for c in (
     Column("delivered", INT, "dishes delivered"),
     Column("score", INT, "score at the end (delivery reward per dish)"),
     Column("kb_gap_mean", NUM, "mean KB gap per tick: number of components (grill, board, sink, robot's held "
-                               "object) where the participant's modelled KB differs from the world (docs/domain.md §6)"),
+           "object) where the participant's modelled KB differs from the world (docs/domain.md §6)"),
     Column("kb_gap_ticks_pct", NUM, "% of ticks with a KB gap in any component"),
     *(Column(f"kb_gap_{c}_pct", NUM, f"% of ticks where the {c.replace('_', ' ')} component of the KB differs "
                                      f"from the world (= its mean gap per tick × 100)") for c in GAP_COMPONENTS),
@@ -70,7 +70,7 @@ UNITS: dict[str, str] = {
     "redundant_actions": "pickups", "collisions": "steps", "deadline_misses": "ticks",
     **{name: "%" for name in MEASURES if name.endswith("_pct")},
     **{name: "ms" for name in MEASURES if name.startswith(("decision_ms", "lateness_ms"))},
-    **{name: "events" for name in CONDUCT_COUNTS},
+    **dict.fromkeys(CONDUCT_COUNTS, "events"),
 }
 """Unit of each measure (axis labels of the analysis plots; the ``unit`` column of the dictionary)."""
 
@@ -158,7 +158,8 @@ TRIAL_COLUMNS: tuple[Column, ...] = (
     *(MEASURES[m] for m in CONDUCT_COUNTS),
     Column("decisions", INT, "robot decisions the server asked for (one per world step; empty: not recorded)"),
     Column("missed_decisions", INT, "of these, decisions that missed their deadline (the robot stood still)"),
-    Column("missed_decisions_pct", NUM, "% of the decisions that missed their deadline (missed_decisions / decisions × 100)"),
+    Column("missed_decisions_pct", NUM,
+           "% of the decisions that missed their deadline (missed_decisions / decisions × 100)"),
     Column("invalid_reason", TEXT, "why the server marked the trial invalid (more missed decisions than the "
                                    "study's validity.max_missed_decisions_pct); empty when valid. Invalid trials "
                                    "are not in cells.csv unless exported with --include-invalid"),

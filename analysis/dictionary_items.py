@@ -8,6 +8,7 @@ from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 from typing import Any
 
+
 def item_key(questionnaire: str, item: str) -> str:
     """``<questionnaire id>.<item id>``: an item's (or a scale's) column name in the exports."""
     return f"{questionnaire}.{item}"
@@ -83,8 +84,8 @@ def questionnaire_scales(config: Mapping[str, Any]) -> list[ScaleInfo]:
             flipped = tuple(i for i in items if i in reversed_items)
             description = (f"{scale.get('title') or scale['id']}: mean of {', '.join(items)}"
                            + (f" after reversing {', '.join(flipped)} (min + max − value)" if flipped else ""))
-            out.append(ScaleInfo(scale_key(qid, str(scale["id"]), item_ids), str(scale.get("title", "")), items, flipped,
-                                 description))
+            out.append(ScaleInfo(scale_key(qid, str(scale["id"]), item_ids), str(scale.get("title", "")), items,
+                                 flipped, description))
     return out
 
 
@@ -96,8 +97,9 @@ def questionnaire_markdown(config: Mapping[str, Any]) -> list[str]:
     lines = ["## Questionnaire items and scales", "",
              "Every item as the participant saw it. answers.csv has one row per answer; cells.csv (after each "
              "trial) and wide.csv (per condition, and once for the end of study) a column per rating or choice "
-             "item and per named scale (its score); free-text answers are in answers.csv only. Ratings are exported as given: reverse them (min + max − value) "
-             "before combining them.", "", "| item | type | wording and coding |", "|---|---|---|"]
+             "item and per named scale (its score); free-text answers are in answers.csv only. Ratings are exported "
+             "as given: reverse them (min + max − value) before combining them.", "",
+             "| item | type | wording and coding |", "|---|---|---|"]
     lines += [f"| {i.column} | {i.kind} | {md_cell(i.description)} |" for i in items]
     lines.append("")
     if scales:

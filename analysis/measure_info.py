@@ -19,7 +19,6 @@ import pandas as pd
 from analysis.dictionary import FLAG, INT, MEASURES, UNITS
 from analysis.measures import GAP_COMPONENTS
 
-
 MAX_DIVISOR = 24
 """Resolutions looked for: 1/k for k = 1..MAX_DIVISOR (a rating item: 1; the mean of k items: 1/k)."""
 DISCRETE_VALUES = 15
@@ -69,7 +68,7 @@ def measure_info(name: str, values: pd.Series, horizon: int | None = None,
         lower, upper = 0.0, float(horizon) if horizon else math.inf
     elif column is not None and column.type == FLAG:
         lower, upper = 0.0, 1.0
-    elif column is not None and column.type == INT or unit == "ms":
+    elif (column is not None and column.type == INT) or unit == "ms":
         lower = 0.0
     return MeasureInfo(name, unit, lower, upper, discrete=discrete)
 

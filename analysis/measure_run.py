@@ -40,8 +40,8 @@ def analyze_measure(df: pd.DataFrame, measure: str, within: Sequence[str], subje
     clean, excluded = complete_cases(df, measure, within, subject, why_missing)
     n_used = int(clean[subject].nunique())
     notes = [censoring_note(censoring, measure)] if censoring is not None else []
-    base = dict(measure=measure, within=within, subject=subject, info=info, n_used=n_used,
-                n_total=int(df[subject].nunique()), excluded=excluded)
+    base = {"measure": measure, "within": within, "subject": subject, "info": info, "n_used": n_used,
+                "n_total": int(df[subject].nunique()), "excluded": excluded}
     constant = clean[measure].nunique() == 1
     if n_used < MIN_SUBJECTS or constant or any(len(factor_levels(clean, f)) < 2 for f in within):
         reason = (f"not testable: every value is {clean[measure].iloc[0]:g}, nothing varies" if constant and

@@ -43,8 +43,8 @@ def analyze_mixed_measure(df: pd.DataFrame, measure: str, within: Sequence[str],
     groups = factor_levels(clean, between)
     factors = (between, *within)
     notes = [censoring_note(censoring, measure)] if censoring is not None else []
-    base = dict(measure=measure, within=factors, subject=subject, info=info, n_used=n_used,
-                n_total=int(df[subject].nunique()), excluded=excluded)
+    base = {"measure": measure, "within": factors, "subject": subject, "info": info, "n_used": n_used,
+                "n_total": int(df[subject].nunique()), "excluded": excluded}
     reason = ""
     if n_used <= len(groups) or len(groups) < 2:
         reason = (f"not testable: {n_used} participant(s) in {len(groups)} group(s) of {between} have a value in "
@@ -91,4 +91,5 @@ def _split_plot_residuals(values: np.ndarray, groups: np.ndarray) -> np.ndarray:
     for g in np.unique(groups):
         rows = groups == g
         out[rows] -= values[rows].mean(axis=0) - values[rows].mean()
-    return out
+    centred: np.ndarray = out
+    return centred

@@ -35,7 +35,8 @@ def written_formula(dv: str, factors: Sequence[str], subject: str | None) -> str
     return f"{dv} ~ {' * '.join(factors)}{random}"
 
 
-def _prepared(df: pd.DataFrame, dv: str, factors: Sequence[str], subject: str) -> tuple[pd.DataFrame, str, dict]:
+def _prepared(df: pd.DataFrame, dv: str, factors: Sequence[str],
+              subject: str) -> tuple[pd.DataFrame, str, dict[str, str]]:
     names = {f: f"f{i}" for i, f in enumerate(factors)}
     data = df[[subject, *factors, dv]].dropna().rename(columns={**names, dv: "y", subject: "subject"})
     data["y"] = pd.to_numeric(data["y"], errors="coerce").astype(float)

@@ -27,7 +27,9 @@ class Normality:
 
 def residuals(values: np.ndarray) -> np.ndarray:
     """The n × C residuals of the additive participant + cell model."""
-    return values - values.mean(axis=1, keepdims=True) - values.mean(axis=0, keepdims=True) + values.mean()
+    residuals: np.ndarray = (values - values.mean(axis=1, keepdims=True) - values.mean(axis=0, keepdims=True)
+                             + values.mean())
+    return residuals
 
 
 def residual_normality(values: np.ndarray) -> Normality:

@@ -1,15 +1,14 @@
 """Pairwise paired comparisons of the levels of each factor with more than two levels.
 
-Each participant's marginal mean at a level (the mean of their cells at that level, over the other factors;
-``at`` empty) is compared between every pair of levels with a paired t test on n − 1 df (the unpooled error of each
-comparison, as JASP and ``emmeans``' multivariate option do). With more than one factor the same comparisons
-are made within each combination of the other factors' levels (``at``: ``kitchen=none_3``), on the participants'
-values in that slice: what a significant interaction calls for. Reported per pair: the mean difference
-(level_1 − level_2) with its 95 % CI (not adjusted for multiplicity), t, p and the Holm-adjusted p within its
-family (Holm 1979): the comparisons of one factor at one ``at``, and Cohen's d_z = mean difference / SD of the differences
-(Cohen 1988, p. 48; Lakens 2013) with its exact 95 % CI from the noncentral t (:mod:`analysis.effect_sizes`).
-d_z is the standardised effect the paired test itself estimates; divide by √(2(1 − r)) for a d on the scale of
-the raw SD (Lakens 2013, eq. 9).
+Each participant's marginal mean at a level (the mean of their cells at that level, over the other factors; ``at``
+empty) is compared between every pair of levels with a paired t test on n − 1 df (the unpooled error of each comparison,
+as JASP and ``emmeans``' multivariate option do). With more than one factor the same comparisons are made within each
+combination of the other factors' levels (``at``: ``kitchen=none_3``), on the participants' values in that slice: what a
+significant interaction calls for. Reported per pair: the mean difference (level_1 − level_2) with its 95 % CI (not
+adjusted for multiplicity), t, p and the Holm-adjusted p within its family (Holm 1979): the comparisons of one factor at
+one ``at``, and Cohen's d_z = mean difference / SD of the differences (Cohen 1988, p. 48; Lakens 2013) with its exact 95
+% CI from the noncentral t (:mod:`analysis.effect_sizes`). d_z is the standardised effect the paired test itself
+estimates; divide by √(2(1 − r)) for a d on the scale of the raw SD (Lakens 2013, eq. 9).
 """
 
 from __future__ import annotations

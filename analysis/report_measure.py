@@ -12,7 +12,14 @@ import pandas as pd
 from analysis.apa import apa_f_sentence, format_df, format_proportion, p_clause
 from analysis.document import Block, BulletList, Heading, Image, Paragraph
 from analysis.report_tables import (
-    anova_table, descriptives_table, interval, number, pairwise_table, rank_table, simple_table, sphericity_table,
+    anova_table,
+    descriptives_table,
+    interval,
+    number,
+    pairwise_table,
+    rank_table,
+    simple_table,
+    sphericity_table,
 )
 from analysis.results import MeasureResult
 

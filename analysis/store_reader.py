@@ -1,9 +1,9 @@
 """Reading a study from the store: SQLAlchemy Core queries of the store's tables, never the running server.
 
-The table definitions come from ``store.tables`` (the schema only: no app, route, game or flow
-code is imported; data flows one way: server writes, analysis reads). Everything is returned as frozen records, so the measures
-and the export are pure functions of what is stored. Large columns the analysis does not need (the full KB
-state, the robot's decision record) are never loaded.
+The table definitions come from ``store.tables`` (the schema only: no app, route, game or flow code is imported; data
+flows one way: server writes, analysis reads). Everything is returned as frozen records, so the measures and the export
+are pure functions of what is stored. Large columns the analysis does not need (the full KB state, the robot's decision
+record) are never loaded.
 
 A study can be exported while a server keeps writing to it, so the reads of one export must see one
 snapshot: :func:`open_engine` gives engines whose transactions are snapshots (SQLite: an explicit deferred

@@ -101,7 +101,7 @@ def _context(export: ExportResult, trials: pd.DataFrame, study_id: str, design: 
              within: list[str]) -> ReportContext:
     people = export.dataset.tables["participants.csv"]
     excluded = export.dataset.tables["excluded.csv"]
-    single = [f for f in design.single_level] + [f for f in design.factors if f not in within]
+    single = list(design.single_level) + [f for f in design.factors if f not in within]
     summary = (f"Study {study_id}: {len(people)} participants in the store, {int((people['cells'] > 0).sum())} "
                f"with at least one cell in {DATA_DIR}/cells.csv, {int(people['complete'].sum())} with a cell in "
                f"every condition. Within factors: {', '.join(within)}"

@@ -20,7 +20,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from analysis.dictionary import item_column
+from analysis.dictionary_items import item_key as item_column
 from analysis.dictionary_items import scale_key
 from planner.perception import FOV_ANGLE
 from study_config.study.fov_angles import angle_level

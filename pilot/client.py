@@ -31,7 +31,6 @@ from pilot.mind import Mind, decide
 from pilot.perception import Perception
 from study_config.catalog import LoadedStudy
 
-
 ANSWERS_STREAM = 2**31
 """The generator stream of a participant's questionnaire and quiz answers (trials use 0, 1, 2, …)."""
 

@@ -24,12 +24,12 @@ from typing import Any
 
 import numpy as np
 
+from pilot.config import ParticipantConfig
+from pilot.perception import Perception
 from planner.geometry import DIRECTIONS, Direction, Pos, manhattan
 from planner.layout import Layout, Terrain
 from planner.rules import Rules
 from planner.subtasks import Believed, Subtask, available, targets
-from pilot.config import ParticipantConfig
-from pilot.perception import Perception
 
 MOVE_OF: dict[Direction, str] = {Direction.NORTH: "up", Direction.SOUTH: "down", Direction.WEST: "left",
                                   Direction.EAST: "right"}

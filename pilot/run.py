@@ -1,6 +1,7 @@
 """Run N simulated participants against a server, at most ``jobs`` at a time, each with its own seeded
-generator (``numpy.random.default_rng([seed, index, trial])`` per trial; ``pilot.client.trial_rng``): the same seed gives the same participants' choices
-(the server's trial seeds come from the store, and thread timing can still reorder joins)."""
+generator (``numpy.random.default_rng([seed, index, trial])`` per trial; ``pilot.client.trial_rng``): the same seed
+gives the same participants' choices (the server's trial seeds come from the store, and thread timing can still reorder
+joins)."""
 
 from __future__ import annotations
 
@@ -35,7 +36,7 @@ async def run_pilot(seat: Seat, participants: int, jobs: int, seed: int, progres
                 result.outcomes.append(await who.run())
                 if progress:
                     progress.finished(names[index], True)
-            except Exception as exc:  # noqa: BLE001 - one failed participant must not stop the pilot
+            except Exception as exc:
                 note = f"{type(exc).__name__}: {str(exc)[:300]}"
                 result.failures.append(f"{names[index]}: {note}")
                 if progress:

@@ -17,8 +17,8 @@ from scipy import stats
 
 from planner.layout import Layout
 from planner.perception import FOV_ANGLE, KB_DELAY
-from planner.play import TrialSettings, run_trial
 from planner.planner_config import PlannerConfig
+from planner.play import TrialSettings, run_trial
 from planner.robots import make_robot
 from planner.rules import Rules
 
@@ -72,11 +72,11 @@ def paired_comparison(rows: list[dict[str, Any]], robot: str = "fov_aware",
                       reference: str = "baseline") -> PairedComparison | None:
     """Ticks of ``robot`` against ``reference`` on the same (kitchen, seed) trials."""
     by_key = {(r["layout"], r["seed"], r["robot"]): float(r["ticks"]) for r in rows}
-    keys = sorted({(l, s) for l, s, rb in by_key if rb == robot and (l, s, reference) in by_key})
+    keys = sorted({(k, s) for k, s, rb in by_key if rb == robot and (k, s, reference) in by_key})
     if len(keys) < 2:
         return None
-    a = np.array([by_key[(l, s, robot)] for l, s in keys])
-    b = np.array([by_key[(l, s, reference)] for l, s in keys])
+    a = np.array([by_key[(k, s, robot)] for k, s in keys])
+    b = np.array([by_key[(k, s, reference)] for k, s in keys])
     change = 100.0 * (a.mean() - b.mean()) / b.mean()
     t_p = float(stats.ttest_rel(a, b).pvalue) if np.any(a != b) else 1.0
     w_p = float(stats.wilcoxon(a, b).pvalue) if np.any(a != b) else 1.0
@@ -92,7 +92,8 @@ def summarize_trials(rows: list[dict[str, Any]]) -> str:
     for layout in layouts + ["overall"]:
         cells = []
         for rb in robots:
-            ticks = [float(r["ticks"]) for r in rows if r["robot"] == rb and (layout == "overall" or r["layout"] == layout)]
+            ticks = [float(r["ticks"]) for r in rows
+                     if r["robot"] == rb and (layout == "overall" or r["layout"] == layout)]
             unfinished = sum(1 for r in rows if r["robot"] == rb and not r["finished"]
                              and (layout == "overall" or r["layout"] == layout))
             sd = statistics.stdev(ticks) if len(ticks) > 1 else 0.0

@@ -60,10 +60,7 @@ class HumanModel:
         return "robot" if self.me == "human" else "human"
 
     def believed(self, world: WorldState, kb: KnowledgeBase) -> Believed:
-        if self.me == "human":
-            partner_held = kb.robot.held if kb.robot is not None else None
-        else:
-            partner_held = world.human.held
+        partner_held = (kb.robot.held if kb.robot is not None else None) if self.me == "human" else world.human.held
         return Believed(kb=kb, held=world.agent(self.me).held, partner_held=partner_held,
                         orders_left=world.orders_left)
 

@@ -101,7 +101,7 @@ def omniscient_kb(state: WorldState) -> KnowledgeBase:
 class _Working:
     """Mutable copies of the KB's parts, made only when a part changes."""
 
-    __slots__ = ("kb", "objects", "stations", "robot", "layout")
+    __slots__ = ("kb", "layout", "objects", "robot", "stations")
 
     def __init__(self, kb: KnowledgeBase, layout: Layout) -> None:
         self.kb, self.layout = kb, layout

@@ -220,7 +220,7 @@ def _place(rng: np.random.Generator, w: int, h: int, floor: set[Pos], divider: i
         grid[y][x] = " "
     for (x, y), kind in chosen.items():
         grid[y][x] = kind.value
-    for (x, y), ch in zip(starts, "12"):
+    for (x, y), ch in zip(starts, "12", strict=True):
         grid[y][x] = ch
     return "\n".join("".join(row) for row in grid) + "\n"
 

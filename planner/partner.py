@@ -4,9 +4,9 @@ a person who never moves (:class:`StillHuman`)."""
 
 from __future__ import annotations
 
+import time
 from collections.abc import Sequence
 from typing import Protocol
-import time
 
 import numpy as np
 

@@ -6,7 +6,6 @@ from dataclasses import dataclass, replace
 
 from planner.perception import FOV_ANGLE, KB_DELAY
 
-
 LOOKAHEADS = ("rollout", "abstract")
 
 

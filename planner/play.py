@@ -11,14 +11,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from planner.decision import Robot
+from planner.events import Event
 from planner.fov import view
 from planner.geometry import Action
 from planner.human import HumanMemory, HumanModel
 from planner.kb import KnowledgeBase, initial_kb, update_kb
 from planner.layout import Layout
-from planner.perception import FOV_ANGLE, KB_DELAY
-from planner.decision import Robot
 from planner.partner import HumanPolicy, SimulatedPartner
+from planner.perception import FOV_ANGLE, KB_DELAY
 from planner.rules import Rules
 from planner.state import WorldState, initial_state, is_done
 from planner.step import step
@@ -79,7 +80,7 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
     memory = HumanMemory()
     partner: Robot = robot if robot is not None else SimulatedPartner(layout, rules)
     partner.reset(world)
-    events: tuple = ()
+    events: tuple[Event, ...] = ()
     gap_ticks = gap_sum = in_fov = 0
     component_ticks = dict.fromkeys(GAP_COMPONENTS, 0)
     actions: list[tuple[Action, Action]] = []

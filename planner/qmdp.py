@@ -25,14 +25,14 @@ Each tick the robot
 
 The lookahead horizon is ``search_depth`` subtasks × 6 ticks (default 7: 42 ticks).
 ``PlannerConfig(lookahead="abstract")`` replaces steps 2–4 by docs/domain.md §5 as the reference planned
-(:mod:`planner.reference`: Q per low-level action from motion-sequence exploration and a heuristic search
-over abstract states). Measured on all kitchens × seeds 0–9 it is far worse (FOV-aware 146.8 ticks, 8 of
-100 trials unfinished; baseline 135.4, 3 unfinished; no significant difference) and needs up to ~300 ms
-per decision, so the rollouts are the default: they keep the human's FOV-limited KB for the whole
-lookahead, where the abstraction drops it after ``k + 1`` ticks. Randomness: each decision draws one
-rollout seed from the ``rng`` it is handed (the trial's stream: same trial seed, same decisions; another
-seed, other rollouts) and every candidate of that tick uses it (common random numbers across candidates). A ``deadline`` (``time.perf_counter()`` value)
-stops the search and returns the best action so far (``timed_out``).
+(:mod:`planner.reference`: Q per low-level action from motion-sequence exploration and a heuristic search over abstract
+states). Measured on all kitchens × seeds 0–9 it is far worse (FOV-aware 146.8 ticks, 8 of 100 trials unfinished;
+baseline 135.4, 3 unfinished; no significant difference) and needs up to ~300 ms per decision, so the rollouts are the
+default: they keep the human's FOV-limited KB for the whole lookahead, where the abstraction drops it after ``k + 1``
+ticks. Randomness: each decision draws one rollout seed from the ``rng`` it is handed (the trial's stream: same trial
+seed, same decisions; another seed, other rollouts) and every candidate of that tick uses it (common random numbers
+across candidates). A ``deadline`` (``time.perf_counter()`` value) stops the search and returns the best action so far
+(``timed_out``).
 """
 
 from __future__ import annotations
@@ -44,9 +44,8 @@ from dataclasses import replace
 import numpy as np
 
 from planner.alone import solo_rollout, still_for
-from planner.cycle import CycleWatch, broken, watch, without_avoided
-from planner.reference import ReferenceLookahead
 from planner.belief import Belief, update_belief
+from planner.cycle import CycleWatch, broken, watch, without_avoided
 from planner.decision import Decision
 from planner.events import Event, EventKind
 from planner.fov import view
@@ -54,15 +53,31 @@ from planner.geometry import DIRECTIONS, Action, Pos, manhattan, move_action
 from planner.human import HumanMemory
 from planner.kb import KnowledgeBase, initial_kb, omniscient_kb, update_kb
 from planner.layout import Layout
+from planner.objects import DISH
 from planner.paths import Pose, best_moves, distance, next_pose
 from planner.planner_config import PlannerConfig
+from planner.reference import ReferenceLookahead
 from planner.reuse import Trace, follow, traced
-from planner.rollout import Rollout, RobotTasker, potential
+from planner.rollout import RobotTasker, Rollout, potential
 from planner.rules import Rules
+from planner.standoff import (
+    Standoff,
+    advance,
+    alternatives,
+    arrive,
+    beside,
+    committed,
+    give_up,
+    hold_aside,
+    in_the_way,
+    out_of_the_way,
+    step_aside,
+    take_over,
+    unaided,
+    visit_done,
+    within_reach,
+)
 from planner.state import AgentState, WorldState
-from planner.standoff import (Standoff, advance, alternatives, arrive, beside, committed, give_up, hold_aside,
-                              in_the_way, out_of_the_way, step_aside, take_over, unaided, visit_done, within_reach)
-from planner.objects import DISH
 from planner.subtasks import NOTHING_NEEDED, Subtask, targets
 from planner.view_route import view_route
 
@@ -336,8 +351,8 @@ class QmdpRobot:
         self.averages[subtask] = value if before is None else alpha * value + (1.0 - alpha) * before
         return self.averages[subtask]
 
-    def first_move(self, world: WorldState, subtask: Subtask, likely, horizon: int, seed: int,
-                   deadline: float | None, direct_value: float) -> tuple[Action, int]:
+    def first_move(self, world: WorldState, subtask: Subtask, likely: tuple[tuple[Subtask, float], ...],
+                   horizon: int, seed: int, deadline: float | None, direct_value: float) -> tuple[Action, int]:
         """Exploration: the direct first move toward ``subtask`` against the first moves of plans that
         show the robot to the human first (every first move on a shortest path, and the way into the
         human's view held for ``kb_delay`` ticks), each scored by a rollout that tracks the modelled KB.
@@ -433,7 +448,7 @@ class QmdpRobot:
         cells = self.tasker.targets(subtask, world)
         start = (world.robot.pos, world.robot.facing)
 
-        def to_target(pose) -> int:
+        def to_target(pose: Pose) -> int:
             return min((distance(self.layout, pose, c) for c in cells), default=0)
 
         base = to_target(start)

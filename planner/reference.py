@@ -31,6 +31,7 @@ import time
 import numpy as np
 
 from planner.abstract import AbstractSearch
+from planner.events import Event
 from planner.geometry import ACTIONS, MOTIONS, Action
 from planner.human import HumanMemory, HumanModel
 from planner.kb import KnowledgeBase, update_kb
@@ -106,6 +107,6 @@ class ReferenceLookahead:
         subtask = self.human.commit(world, kb, memory, rng)
         return total + discount * self.search.leaf(world, None, subtask)
 
-    def update(self, kb: KnowledgeBase, world: WorldState, events) -> KnowledgeBase:
+    def update(self, kb: KnowledgeBase, world: WorldState, events: tuple[Event, ...]) -> KnowledgeBase:
         return update_kb(kb, self.layout, world, angle=self.cfg.human_angle, kb_delay=self.cfg.human_delay,
                          own_events=[e for e in events if e.agent == "human"])

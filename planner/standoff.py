@@ -58,7 +58,7 @@ from dataclasses import dataclass, replace
 
 from planner.geometry import DIRECTIONS, Action, Pos, manhattan, move_action
 from planner.layout import Layout
-from planner.paths import detour_moves, distance, UNREACHABLE
+from planner.paths import UNREACHABLE, detour_moves, distance
 from planner.state import AgentState, WorldState
 from planner.subtasks import Subtask
 

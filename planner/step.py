@@ -23,7 +23,7 @@ _DISPENSED = {Terrain.ONION: ONION, Terrain.MEAT: MEAT, Terrain.PLATE: DIRTY_PLA
 class _Scratch:
     """The mutable working copy of one step, made only when someone interacts; never escapes :func:`step`."""
 
-    __slots__ = ("objects", "grills", "boards", "sinks", "orders_left", "score", "events")
+    __slots__ = ("boards", "events", "grills", "objects", "orders_left", "score", "sinks")
 
     def __init__(self, state: WorldState) -> None:
         self.objects: dict[Pos, str] = dict(state.objects)
@@ -111,11 +111,10 @@ def _interact(layout: Layout, rules: Rules, w: _Scratch, name: str, agent: Agent
             w.boards[i], event, obj = status + 1, EventKind.CHOP, ONION
         elif status is not None and status >= rules.chop_time and held == STEAK_PLATE:
             w.boards[i], new_held, event, obj = None, DISH, EventKind.GARNISH, DISH
-    elif kind is Terrain.SERVE:
-        if held == DISH and w.orders_left > 0:
-            w.orders_left -= 1
-            w.score += rules.delivery_reward
-            new_held, event = None, EventKind.DELIVER
+    elif kind is Terrain.SERVE and held == DISH and w.orders_left > 0:
+        w.orders_left -= 1
+        w.score += rules.delivery_reward
+        new_held, event = None, EventKind.DELIVER
     if event is None:
         return agent
     w.events.append(Event(name, event, target, obj))

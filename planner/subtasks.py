@@ -12,15 +12,16 @@ none applies: pickup plate.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from enum import Enum
 from functools import lru_cache
 from typing import Protocol
 
+from planner.geometry import Pos
 from planner.kb import KnowledgeBase
 from planner.layout import Layout
 from planner.objects import CLEAN_PLATE, DIRTY_PLATE, DISH, MEAT, ONION, STEAK_PLATE
-from planner.geometry import Pos
 from planner.rules import Rules
 
 
@@ -122,8 +123,9 @@ def _targets(layout: Layout, subtask: Subtask, objects: tuple[tuple[Pos, str], .
     def counters_with(obj: str) -> tuple[Pos, ...]:
         return tuple(p for p, o in objects if o == obj)
 
-    def where(cells: tuple[Pos, ...], statuses: tuple[int | None, ...], test) -> tuple[Pos, ...]:
-        return tuple(c for c, s in zip(cells, statuses) if test(s))
+    def where(cells: tuple[Pos, ...], statuses: tuple[int | None, ...],
+              test: Callable[[int | None], bool]) -> tuple[Pos, ...]:
+        return tuple(c for c, s in zip(cells, statuses, strict=True) if test(s))
 
     if subtask is Subtask.PICKUP_MEAT:
         return layout.meats + counters_with(MEAT)

@@ -69,7 +69,7 @@ def kb_gap_components(kb: KnowledgeBase, world: WorldState, rules: Rules) -> dic
 def _same(believed: tuple[int | None, ...], actual: tuple[int | None, ...], done_at: int) -> bool:
     if believed == actual:
         return True
-    for a, b in zip(believed, actual):
+    for a, b in zip(believed, actual, strict=True):
         if (a is None) != (b is None) or (a is not None and b is not None and (a >= done_at) != (b >= done_at)):
             return False
     return True

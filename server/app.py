@@ -19,7 +19,6 @@ from fastapi import FastAPI
 
 from planner.decision import RobotFactory
 from server import errors, security
-from study_config.catalog import Catalog, load_catalog
 from server.game.admission import Admission
 from server.game.clock import Clock, MonotonicClock
 from server.game.live import GameDeps
@@ -34,6 +33,7 @@ from store.engine import Store
 from store.migrate import startup_lock
 from store.studies import sync_study
 from store.writer import BatchWriter
+from study_config.catalog import Catalog, load_catalog
 
 log = logging.getLogger("server")
 

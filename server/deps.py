@@ -15,12 +15,12 @@ from typing import Annotated
 from fastapi import Depends, Path
 from starlette.requests import HTTPConnection
 
-from study_config.catalog import LoadedStudy
 from server.errors import ApiError, unauthorized
 from server.services import Services
 from store import participants
 from store.engine import Store
 from store.tables import ParticipantRow
+from study_config.catalog import LoadedStudy
 
 
 def get_services(conn: HTTPConnection) -> Services:

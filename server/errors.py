@@ -19,7 +19,6 @@ from fastapi.responses import JSONResponse
 
 from server.text_input import safe
 
-
 EXCERPT_CHARS = 60
 """The most of a request's own input an error body quotes."""
 
@@ -86,7 +85,8 @@ def _problem(error: Any) -> dict[str, Any]:
         out["input"] = _quoted(error["input"])
     if error.get("ctx"):
         out["ctx"] = {str(key): _quoted(value) for key, value in error["ctx"].items()}
-    return jsonable_encoder(out)
+    encoded: dict[str, Any] = jsonable_encoder(out)
+    return encoded
 
 
 def excerpt(value: Any, limit: int = EXCERPT_CHARS) -> str:
@@ -98,8 +98,8 @@ def excerpt(value: Any, limit: int = EXCERPT_CHARS) -> str:
             value = json.dumps(value, allow_nan=True, default=str)[: limit * 4]
         except ValueError:
             value = "…"
-    value = safe(value)
-    return value if len(value) <= limit else value[: limit - 1] + "…"
+    text = safe(value)
+    return text if len(text) <= limit else text[: limit - 1] + "…"
 
 
 def _scalar(value: Any) -> str | int:

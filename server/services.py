@@ -4,12 +4,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from study_config.catalog import Catalog
 from server.game.registry import GameRegistry
 from server.robots import RobotPool
 from server.settings import Settings
 from store.engine import Store
 from store.writer import BatchWriter
+from study_config.catalog import Catalog
 
 
 @dataclass(frozen=True)

@@ -88,7 +88,7 @@ class Settings(BaseSettings):
         for prefix in ("postgres://", "postgresql://"):
             if url.startswith(prefix):
                 return "postgresql+psycopg://" + url[len(prefix):]
-        if not (url.startswith("sqlite") or url.startswith("postgresql")):
+        if not (url.startswith(("sqlite", "postgresql"))):
             raise ValueError("only sqlite:/// and postgresql:// URLs are supported")
         return url
 

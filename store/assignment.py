@@ -1,10 +1,11 @@
 """Condition-order assignment: the least-filled order, decided inside the joining transaction.
 
 An order's fill is the number of its participants that count: not test runs, not excluded, still counting
-(``participants.uncounted_reason`` empty: every main round can still become an analysable cell and the device
-was not refused; the rule lives in :mod:`server.flow.standing`), and either completed, or still in progress and
-joined within the study's ``in_progress_window_minutes``. Screened-out participants never count. Ties go to the lowest order index. Pilot (simulated) participants are balanced among
-themselves: they never count for real participants, and real ones never count for pilots.
+(``participants.uncounted_reason`` empty: every main round can still become an analysable cell and the device was not
+refused; the rule lives in :mod:`server.flow.standing`), and either completed, or still in progress and joined within
+the study's ``in_progress_window_minutes``. Screened-out participants never count. Ties go to the lowest order index.
+Pilot (simulated) participants are balanced among themselves: they never count for real participants, and real ones
+never count for pilots.
 
 Atomicity: the count and the insert happen in one transaction that first serialises with every other
 join of the same study — on PostgreSQL by locking the study's row (``SELECT ... FOR UPDATE``), on SQLite by

@@ -48,7 +48,7 @@ class Store:
                 conn.execute(text("SELECT 1"))
                 conn.rollback()
             return True
-        except Exception:  # noqa: BLE001 - any failure means "not healthy"
+        except Exception:
             return False
 
     def migrate(self) -> None:

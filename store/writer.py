@@ -59,7 +59,7 @@ class BatchWriter:
             next_at = max(next_at + self.interval, loop.time())
             try:
                 await self.flush()
-            except Exception:  # noqa: BLE001 - keep writing; the rows stay buffered
+            except Exception:
                 log.exception("store write failed; retrying in %.1f s", self.interval)
 
     async def flush(self) -> None:

@@ -13,8 +13,8 @@ from pathlib import Path
 from planner.layout import Layout
 from planner.planner_config import PlannerConfig
 from planner.rules import Rules
-from study_config.study import Study, load_study
 from study_config import load_layout
+from study_config.study import Study, load_study
 
 
 @dataclass(frozen=True)

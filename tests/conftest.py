@@ -24,7 +24,7 @@ from planner.layout import Layout, parse_layout
 
 sys.path.insert(0, str(Path(__file__).resolve().parent / "server"))
 
-from steakhouse_testing import write_study  # noqa: E402
+from steakhouse_testing import write_study
 
 # Stations along the top wall (x = 1..7: onion, meat, plate, grill, board, sink, serve), a counter island
 # at (4, 3) reachable from both sides, the robot starting at (1, 3), the human at (7, 3).
@@ -58,7 +58,7 @@ def postgres_database() -> Iterator[str]:
         admin = _admin_engine(base)
         with admin.connect() as conn:
             conn.execute(text("SELECT 1"))
-    except Exception as exc:  # noqa: BLE001 - any failure means unreachable
+    except Exception as exc:
         reason = f"PostgreSQL at {make_url(base).render_as_string(hide_password=True)} unreachable: {exc}"
         if os.environ.get("CI", "").lower() == "true":
             pytest.fail(f"CI requires PostgreSQL for the store tests: {reason}")

@@ -91,7 +91,8 @@ def measure(fov: float, seconds: float, chromium: str, folder: Path) -> dict[str
               const gl = el.getContext('webgl2');
               const debug = gl.getExtension('WEBGL_debug_renderer_info');
               return { width: el.width, height: el.height, lens: el.dataset.lens,
-                       renderer: debug ? gl.getParameter(debug.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER) };
+                       renderer: debug ? gl.getParameter(debug.UNMASKED_RENDERER_WEBGL)
+                                       : gl.getParameter(gl.RENDERER) };
             }""")
             busy_before, wall_before = machine_busy_s(), time.monotonic()
             frames, elapsed = walk_and_count(page, seconds, 0.2)
@@ -120,7 +121,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.json:
         print(json.dumps(results, indent=2))
         return 0
-    print(f"first-person view on {KITCHEN}, canvas {CANVAS[0]}x{CANVAS[1]}, software WebGL; {args.seconds:g} s walk each")
+    print(f"first-person view on {KITCHEN}, canvas {CANVAS[0]}x{CANVAS[1]}, software WebGL; "
+          f"{args.seconds:g} s walk each")
     print(f"renderer: {results[0]['renderer']}")
     print(f"{'fov':>5} {'lens':<12} {'canvas':<10} {'frames':>7} {'seconds':>8} {'fps':>6} {'busy cores':>11} "
           f"{'load avg':>9}")

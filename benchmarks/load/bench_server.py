@@ -72,7 +72,7 @@ class BenchServer:
         self.process: subprocess.Popen[bytes] | None = None
 
     def __enter__(self) -> BenchServer:
-        self._out = open(self.log, "ab")  # noqa: SIM115 - closed in stop()
+        self._out = open(self.log, "ab")
         self.process = subprocess.Popen(self.args, cwd=REPO, env=self.env, stdout=self._out, stderr=self._out)
         deadline = time.monotonic() + 90
         while time.monotonic() < deadline:

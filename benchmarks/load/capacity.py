@@ -66,7 +66,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--warmup", type=float, default=10.0)
     p.add_argument("--robot", default="fov_aware")
     p.add_argument("--tick-rate", type=float, default=5.0)
-    p.add_argument("--workers", type=int, default=None, help="robot worker processes (default: the server's, two per CPU)")
+    p.add_argument("--workers", type=int, default=None,
+                   help="robot worker processes (default: the server's, two per CPU)")
     p.add_argument("--database", choices=("sqlite", "postgresql"), default="sqlite")
     p.add_argument("--max-p99-ms", type=float, default=50.0)
     p.add_argument("--all", action="store_true", help="run every N, not only up to the first failure")

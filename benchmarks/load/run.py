@@ -35,9 +35,9 @@ import yaml
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parents[1])]
 
+from admission_metrics import admission_metrics  # noqa: E402
 from bench_server import DEFAULT_POSTGRES, BenchServer, ResourceSampler, temporary_database  # noqa: E402
 from simulated_participant import run_load  # noqa: E402
-from admission_metrics import admission_metrics  # noqa: E402
 from store_metrics import percentile, store_metrics  # noqa: E402
 
 from server.settings import default_workers  # noqa: E402
@@ -151,7 +151,8 @@ def parser() -> argparse.ArgumentParser:
 
 def print_report(result: dict[str, Any]) -> None:
     keys = ["participants", "seconds", "warmup_s", "database", "ticks", "p50_tick_lateness_ms", "p99_tick_lateness_ms",
-            "max_tick_lateness_ms", "missed_ticks", "deadline_misses", "warmup_deadline_misses", "p99_decision_ms", "p99_rtt_ms",
+            "max_tick_lateness_ms", "missed_ticks", "deadline_misses", "warmup_deadline_misses", "p99_decision_ms",
+            "p99_rtt_ms",
             "server_cpu_percent", "workers_cpu_percent", "clients_cpu_percent", "other_cpu_percent",
             "server_rss_mb_peak", "workers_rss_mb_peak",
             "rows_written", "joined", "trials_ended", "errors", "loadavg_before", "loadavg_after",

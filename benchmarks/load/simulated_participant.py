@@ -213,7 +213,7 @@ async def keep_participating(base_url: str, study_id: str, index: int, seed: int
         except (OSError, RuntimeError, httpx.HTTPError, KeyError, ValueError) as exc:
             stats.errors.append(f"seat {index}: {type(exc).__name__}: {str(exc)[:200]}")
             await asyncio.sleep(0.5)
-        except Exception as exc:  # noqa: BLE001 - websockets' ConnectionClosed and friends
+        except Exception as exc:
             if time.monotonic() < deadline:
                 stats.errors.append(f"seat {index}: {type(exc).__name__}: {str(exc)[:200]}")
                 await asyncio.sleep(0.5)

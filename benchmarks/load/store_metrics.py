@@ -48,7 +48,7 @@ def store_metrics(database_url: str, period_ms: float, since: datetime | None = 
             every = session.execute(select(TickRow.lateness_ms, TickRow.decision_ms, TickRow.robot_missed,
                                            TickRow.recorded_at)).all()
             misses = list(session.scalars(select(EventRow.created_at).where(EventRow.kind == "deadline_miss")))
-            kinds = dict(session.execute(select(EventRow.kind, func.count()).group_by(EventRow.kind)).all())
+            dict(session.execute(select(EventRow.kind, func.count()).group_by(EventRow.kind)).all())
             rows = {name: int(session.scalar(select(func.count()).select_from(table)) or 0)
                     for name, table in TABLES.items()}
             statuses = dict(session.execute(select(TrialRow.status, func.count()).group_by(TrialRow.status)).all())

@@ -17,8 +17,8 @@ import numpy as np
 
 def main(argv: list[str] | None = None) -> int:
     from planner.experiment import TrialSpec, run_spec, summarize_trials
-    from planner.play import run_trial
     from planner.planner_config import PlannerConfig
+    from planner.play import run_trial
     from planner.robots import make_robot
     from planner.rules import Rules
     from study_config import layout_names, load_layout
@@ -33,7 +33,7 @@ def main(argv: list[str] | None = None) -> int:
     robots = args.robots.split(",")
     print(f"decision time in ms over {args.latency_seeds} trials per kitchen (one core)")
     print(f"{'kitchen':<10}{'planner':<12}{'p50':>8}{'p95':>8}{'p99':>8}{'max':>8}{'decisions':>11}")
-    worst = {r: 0.0 for r in robots}
+    worst = dict.fromkeys(robots, 0.0)
     for name in layout_names():
         layout = load_layout(name)
         for robot_name in robots:

@@ -45,8 +45,8 @@ from planner.geometry import Action
 from planner.human import HumanMemory
 from planner.kb import KnowledgeBase
 from planner.layout import Layout, LayoutError
-from planner.play import TrialSettings, run_trial
 from planner.planner_config import PlannerConfig
+from planner.play import TrialSettings, run_trial
 from planner.qmdp import QmdpRobot
 from planner.rules import Rules
 from planner.state import WorldState
@@ -146,18 +146,20 @@ def main(argv: Sequence[str] | None = None) -> int:
             rows = list(pool.map(run_one, jobs, chunksize=1))
     if args.json:
         print(json.dumps({"seeds": [seeds.start, seeds.stop - 1], "layouts": names, "comparisons": comparisons(rows),
-                          "trials": [{k: r[k] for k in ("layout", "robot", "seed", "ticks", "finished")} for r in rows]},
+                          "trials": [{k: r[k] for k in ("layout", "robot", "seed", "ticks", "finished")}
+                                     for r in rows]},
                          indent=2))
         return 0
     print(f"{len(names)} kitchen(s) x seeds {seeds.start}-{seeds.stop - 1}, robots: {', '.join(ROBOTS)}")
     # planner.experiment's table; its own last line (fov_aware vs baseline only) is replaced by ours below
     print("\n".join(line for line in summarize_trials(rows).splitlines() if not line.startswith("fov_aware vs ")))
-    print("unfinished trials: " + ", ".join(f"{robot} {sum(1 for r in rows if r['robot'] == robot and not r['finished'])}"
-                                            for robot in ROBOTS))
+    print("unfinished trials: " + ", ".join(
+        f"{robot} {sum(1 for r in rows if r['robot'] == robot and not r['finished'])}" for robot in ROBOTS))
     print("paired % change of ticks against the reference = 100 * (mean robot - mean reference) / mean reference "
           "over the same (kitchen, seed) trials (ratio of means, not mean of per-pair %):")
     for c in comparisons(rows):
-        print(f"  {c['robot']:>11} vs {c['reference']:<9} {c['pairs']:4d} pairs: {c['mean_ticks_change_pct']:+6.1f}% ticks, "
+        print(f"  {c['robot']:>11} vs {c['reference']:<9} {c['pairs']:4d} pairs: "
+              f"{c['mean_ticks_change_pct']:+6.1f}% ticks, "
               f"paired t-test p = {c['t_p']:.4g}, Wilcoxon p = {c['wilcoxon_p']:.4g}")
     return 0
 

@@ -96,7 +96,7 @@ def table(rows: list[dict[str, Any]], robots: list[str]) -> str:
         keys = {(r["layout"], r["seed"]) for r in part if r["robot"] == "fov_aware"} & \
             {(r["layout"], r["seed"]) for r in part if r["robot"] == "baseline"}
 
-        def mean(robot: str) -> float:
+        def mean(robot: str, part: list[dict[str, Any]] = part, keys: set[tuple[str, str]] = keys) -> float:
             ticks = [float(r["ticks"]) for r in part if r["robot"] == robot and (r["layout"], r["seed"]) in keys]
             return sum(ticks) / len(ticks)
 

@@ -39,11 +39,11 @@ from planner.alone import solo_possible
 from planner.events import EventKind
 from planner.geometry import Action
 from planner.layout import Layout
-from planner.objects import DISH, STEAK_PLATE
 from planner.layout_gen import generate_named
+from planner.objects import DISH, STEAK_PLATE
 from planner.partner import PARTNERS, partner_model
-from planner.play import run_trial
 from planner.planner_config import PlannerConfig
+from planner.play import run_trial
 from planner.robots import make_robot
 from planner.rules import Rules
 from planner.state import WorldState, initial_state

@@ -179,7 +179,8 @@ def table(results: dict[tuple[str, str, float], Behaviours], files: dict[tuple[s
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("reference", type=Path, help="the fetched SophieHsu/FOV-aware-planner (bare git dir or checkout)")
+    parser.add_argument("reference", type=Path,
+                        help="the fetched SophieHsu/FOV-aware-planner (bare git dir or checkout)")
     parser.add_argument("--angles", default="120,150")
     parser.add_argument("--include-ignored", action="store_true", help="also participants 5, 11, 12")
     parser.add_argument("--per-log", action="store_true", help="also print every log's counts")

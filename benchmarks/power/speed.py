@@ -93,8 +93,8 @@ def main() -> None:
             tests = planned_tests(data.within, data.levels)
             for n in ns:
                 sample = data.values[np.random.default_rng([i, n]).integers(len(data.values), size=(k, n))]
-                ref, _, c_ref = timed(lambda s=sample: reference_pvalues(s, counts, data.within, tests))
-                new, _, c_new = timed(lambda s=sample: sample_pvalues(s, counts, data.within, tests))
+                ref, _, c_ref = timed(lambda s=sample, c=counts, w=data.within, t=tests: reference_pvalues(s, c, w, t))
+                new, _, c_new = timed(lambda s=sample, c=counts, w=data.within, t=tests: sample_pvalues(s, c, w, t))
                 ref_cpu, new_cpu = ref_cpu + c_ref, new_cpu + c_new
                 same &= bool(np.allclose(ref, new, rtol=1e-9, atol=1e-12, equal_nan=True))
         scale = args.simulations / k

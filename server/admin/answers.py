@@ -11,8 +11,8 @@ from typing import Any
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
-from study_config.catalog import LoadedStudy
 from store.tables import AnswerRow, ParticipantRow
+from study_config.catalog import LoadedStudy
 
 
 def participant_answers(session: Session, row: ParticipantRow, loaded: LoadedStudy | None) -> dict[str, Any]:

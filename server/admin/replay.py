@@ -19,9 +19,9 @@ from planner.rules import Rules
 from planner.state import WorldState
 from planner.summary import gap_components, summarize
 from server.admin.scenes import frame, grid, kb_frame
-from study_config.catalog import LoadedStudy
 from server.errors import ApiError
 from store.tables import TickRow, TrialRow
+from study_config.catalog import LoadedStudy
 
 RECORDED = ("human_action", "robot_action", "action_source", "subtask", "kb_gap", "kb_gap_total", "kb_summary",
             "world_summary", "robot_in_fov", "lateness_ms", "decision_ms", "robot_missed")
@@ -60,7 +60,7 @@ def _initial(layout: Layout, world: WorldState, rules: Rules, angle: float) -> d
     first = frame(layout, world, rules, angle)
     kb_summary, world_summary = summarize(kb, rules), summarize(world, rules)
     gap = gap_components(kb_summary, world_summary)
-    return {**first, "kb": kb_frame(layout, kb, rules), **{name: None for name in RECORDED},
+    return {**first, "kb": kb_frame(layout, kb, rules), **dict.fromkeys(RECORDED),
             "kb_summary": kb_summary.to_dict(), "world_summary": world_summary.to_dict(), "kb_gap": gap,
             "kb_gap_total": sum(gap.values()), "robot_in_fov": list(world.robot.pos) in first["fov"],
             "decision": None}

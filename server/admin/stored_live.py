@@ -30,12 +30,12 @@ from sqlalchemy import func, select
 from sqlalchemy.orm import Session
 
 from server.admin.live import scene_view
-from study_config.catalog import Catalog
 from server.game import snapshot
 from server.game.health import RobotHealth
 from server.game.restore import trial_engine, trial_meta
 from store import trials
 from store.tables import EventRow, ParticipantRow, TickRow, TrialRow
+from study_config.catalog import Catalog
 
 LATENESS_TICKS = 5000
 """Ticks over which the lateness percentiles are taken (as ``LiveGame.lateness`` keeps)."""
@@ -82,8 +82,8 @@ def stored_summary(session: Session, row: TrialRow, catalog: Catalog) -> dict[st
         return None
     extras = _extras(session, row, catalog)
     return {**trial_meta(loaded, participant, row).to_dict(), "recruit_id": participant.recruit_id,
-            "tick": row.ticks, **{k: extras[k] for k in ("connected", "deadline_misses", "stall_hints", "health", "lateness_ms",
-                                                         "process", "source")}}
+            "tick": row.ticks, **{k: extras[k] for k in ("connected", "deadline_misses", "stall_hints", "health",
+                                                         "lateness_ms", "process", "source")}}
 
 
 def stored_live_view(session: Session, catalog: Catalog, trial_id: int) -> dict[str, Any] | None:

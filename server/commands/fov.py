@@ -11,7 +11,7 @@ from server.cli import UsageError
 MASK = "#"
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser("fov", help="show which cells an agent sees")
     parser.add_argument("--layout", required=True, metavar="NAME_OR_FILE")
     parser.add_argument("--x", type=int, required=True)

@@ -15,7 +15,7 @@ from pathlib import Path
 from server.cli import UsageError
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser("layout", help="work with kitchen layouts")
     inner = parser.add_subparsers(dest="layout_command", metavar="ACTION", required=True)
     check = inner.add_parser("check", help="validate layouts (shipped names or files)")

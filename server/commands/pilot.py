@@ -56,8 +56,8 @@ def register(subparsers: Any) -> None:
 
 def handle(args: argparse.Namespace) -> int:
     from pilot.config import PilotConfigError, load_config, parse_setting
-    from study_config.catalog import load_one
     from server.commands.export import database_url
+    from study_config.catalog import load_one
     from study_config.study import StudyConfigError
 
     if args.participants < 1:

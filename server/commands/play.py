@@ -9,7 +9,7 @@ from planner.perception import FOV_ANGLE, KB_DELAY
 from server.cli import UsageError
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "play", help="play one headless trial: the simulated human with a simulated partner")
     parser.add_argument("--layout", required=True, metavar="NAME_OR_FILE")

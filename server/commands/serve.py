@@ -23,7 +23,6 @@ from typing import Any
 
 from server.cli import UsageError
 
-
 UVICORN_LOGGERS = ("uvicorn.error", "uvicorn.access")
 _TOKEN = re.compile(r"([?&]token=)[^&\s\"']*")
 
@@ -93,8 +92,8 @@ def serve(args: argparse.Namespace) -> int:
     from planner.layout import LayoutError
     from server.admin.links import start_banner
     from server.app import create_app
-    from study_config.catalog import DuplicateStudyError
     from server.settings import Settings
+    from study_config.catalog import DuplicateStudyError
     from study_config.study import StudyConfigError
 
     overrides: dict[str, Any] = {name: getattr(args, name) for name in

@@ -5,13 +5,14 @@ from __future__ import annotations
 import argparse
 import csv
 import sys
+from collections.abc import Iterable
 from pathlib import Path
 
 from planner.perception import FOV_ANGLE, KB_DELAY
 from server.cli import UsageError
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser("simulate", help="robots × kitchens × seeds with the simulated human")
     parser.add_argument("--layouts", default="all", help="all, or comma-separated names/files")
     parser.add_argument("--robots", default="fov_aware,baseline")
@@ -19,8 +20,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--human-angle", type=float, default=FOV_ANGLE, metavar="DEG")
     parser.add_argument("--kb-delay", type=int, default=KB_DELAY)
     parser.add_argument("--lookahead", default="rollout", choices=("rollout", "abstract"),
-                        help="how the QMDP robots plan: tick rollouts (default) or docs/domain.md §5 as the reference did "
-                             "it (motion-sequence exploration and abstract-state search)")
+                        help="how the QMDP robots plan: tick rollouts (default) or docs/domain.md §5 as the "
+                             "reference did it (motion-sequence exploration and abstract-state search)")
     parser.add_argument("--jobs", type=int, default=0, help="worker processes (0 = one per core)")
     parser.add_argument("--out", required=True, metavar="DIR")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -74,7 +75,7 @@ def _simulate(args: argparse.Namespace) -> int:
     return 0
 
 
-def _collect(results, total: int, show: bool) -> list[dict[str, object]]:
+def _collect(results: Iterable[dict[str, object]], total: int, show: bool) -> list[dict[str, object]]:
     rows = []
     for i, row in enumerate(results, 1):
         rows.append(row)

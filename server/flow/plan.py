@@ -1,7 +1,7 @@
 """A participant's plan: the fixed list of steps they go through, made once at join and stored with them.
 
-consent → instructions → the comprehension quiz (when the study has one) → practice trial(s) → for each condition of the assigned order: the trial, then
-every ``after_each_trial`` questionnaire → the ``end_of_study`` questionnaires → done.
+consent → instructions → the comprehension quiz (when the study has one) → practice trial(s) → for each condition of the
+assigned order: the trial, then every ``after_each_trial`` questionnaire → the ``end_of_study`` questionnaires → done.
 
 Storing the plan (rather than recomputing it from the study file) keeps a participant's progress stable
 if the study file is edited while they take part.

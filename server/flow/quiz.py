@@ -1,4 +1,5 @@
-"""Checking a comprehension-quiz submission and what one attempt answers (see :func:`server.flow.service.submit_quiz`)."""
+"""Checking a comprehension-quiz submission and what one attempt answers
+(see :func:`server.flow.service.submit_quiz`)."""
 
 from __future__ import annotations
 

@@ -34,23 +34,22 @@ from sqlalchemy import func, select
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
-from study_config.catalog import LoadedStudy
 from server.errors import AnswerProblems, ApiError
 from server.flow import standing
 from server.flow.answers import check_answers, stored_answer
 from server.flow.engagement import engagement_problem
-from server.flow.quiz import QuizResult, quiz_problems
 from server.flow.plan import build_plan, plan_from_json, plan_to_json
 from server.flow.progress import IllegalTransition, Move, Phase, Progress
+from server.flow.quiz import QuizResult, quiz_problems
 from store import activity, assignment, participants, trials
 from store.engine import Store
 from store.group_assignment import least_filled_grouped
 from store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, QuizAttemptRow
+from store.types import utcnow
+from study_config.catalog import LoadedStudy
 from study_config.study import Study
 from study_config.study.device import DeviceInfo, device_problems
 from study_config.study.device import refused as device_refused
-from store.types import utcnow
-
 
 log = logging.getLogger(__name__)
 

@@ -14,14 +14,14 @@ from typing import Any
 
 from sqlalchemy.orm import Session
 
-from study_config.catalog import LoadedStudy
+from server.flow import payment
 from server.flow.plan import Step
 from server.flow.progress import Phase
 from server.flow.rounds import RoundFacts, round_facts
-from server.flow import payment
 from server.flow.service import completion, progress_of, quiz_attempts
 from store.tables import ParticipantRow
 from store.types import utcnow
+from study_config.catalog import LoadedStudy
 from study_config.study import Study
 from study_config.study.device import DeviceRequirements
 from study_config.study.duration import fill_placeholders, study_length

@@ -135,7 +135,7 @@ class Connection:
                 await self.websocket.send_text(text)
         except asyncio.CancelledError:
             pass
-        except Exception:  # noqa: BLE001 - a broken socket ends the connection
+        except Exception:
             self.broken()
             return
         await self._close_socket()

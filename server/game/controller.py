@@ -39,9 +39,19 @@ from planner.layout import Layout
 from planner.rules import Rules
 from planner.state import WorldState
 from planner.subtasks import Believed, Subtask, available, is_done, targets
-from server.game.blocked import (Blocked, Intent, Reason, Stall, hands_reason, interaction_reason, no_target_reason,
-                                 nothing_left, progressed)
+from server.game.blocked import (
+    Blocked,
+    Intent,
+    Reason,
+    Stall,
+    hands_reason,
+    interaction_reason,
+    no_target_reason,
+    nothing_left,
+    progressed,
+)
 from server.protocol.interrupts import Interrupt
+
 
 class Unchecked:
     """The type of :data:`UNCHECKED`: ``select`` was not told what the avatar holds."""
@@ -81,7 +91,7 @@ class ParticipantController:
         self.key_interact = False
         """Whether the last step's action was an ``interact`` key (an interrupt), for :meth:`review`."""
 
-    def select(self, subtask: Subtask, held: str | None | Unchecked = UNCHECKED) -> Blocked | None:
+    def select(self, subtask: Subtask, held: str | Unchecked | None = UNCHECKED) -> Blocked | None:
         """Make ``subtask`` the current one (dropping queued interrupts), unless it cannot work with ``held``
         in hand: then nothing changes and the refusal says why. Without ``held`` (scripted players choosing
         from :meth:`available`, which always fits the hands) nothing is checked."""

@@ -19,7 +19,6 @@ import math
 import time
 from typing import Literal
 
-from study_config.catalog import Catalog
 from server.flow import service
 from server.flow.plan import Step
 from server.flow.progress import IllegalTransition, Move
@@ -31,6 +30,7 @@ from store.engine import Store
 from store.tables import ParticipantRow
 from store.types import utcnow
 from store.writer import BatchWriter
+from study_config.catalog import Catalog
 
 log = logging.getLogger(__name__)
 
@@ -62,7 +62,7 @@ class Lobby:
         if exempt(step) or self.admission.try_enter(participant_id):
             return None
         ticket = self._tickets.get(participant_id)
-        if ticket is None or ticket.granted.is_set() and not self.admission.holds(participant_id):
+        if ticket is None or (ticket.granted.is_set() and not self.admission.holds(participant_id)):
             resuming = await asyncio.to_thread(self._running_attempt, participant_id, step)
             ticket = self.admission.enqueue(participant_id, first=resuming)
             self._tickets[participant_id] = ticket

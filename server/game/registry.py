@@ -22,7 +22,6 @@ import os
 import socket
 from typing import Any
 
-from study_config.catalog import Catalog, LoadedStudy
 from server.flow.progress import Phase
 from server.flow.service import progress_of
 from server.game.admission import Admission, Ticket
@@ -36,6 +35,7 @@ from server.protocol.server import Error
 from store import trials
 from store.tables import ParticipantRow
 from store.types import utcnow
+from study_config.catalog import Catalog, LoadedStudy
 
 log = logging.getLogger(__name__)
 
@@ -232,7 +232,7 @@ class GameRegistry:
             await asyncio.sleep(self.sweep_interval)
             try:
                 await self.sweep()
-            except Exception:  # noqa: BLE001 - try again next interval
+            except Exception:
                 log.exception("trial sweep failed")
 
     async def sweep(self) -> None:

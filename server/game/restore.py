@@ -9,12 +9,12 @@ from __future__ import annotations
 
 from planner.kb import KnowledgeBase, initial_kb
 from planner.state import WorldState
-from study_config.catalog import LoadedStudy
 from server.flow.service import progress_of
 from server.game.controller import ParticipantController
 from server.game.engine import TrialEngine
 from server.game.meta import TrialMeta
 from store.tables import ParticipantRow, TickRow, TrialRow
+from study_config.catalog import LoadedStudy
 
 
 def trial_meta(loaded: LoadedStudy, participant: ParticipantRow, row: TrialRow) -> TrialMeta:

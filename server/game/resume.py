@@ -20,15 +20,15 @@ from typing import Literal
 from sqlalchemy.orm import Session
 
 from planner.state import WorldState, initial_state
-from study_config.catalog import LoadedStudy
 from server.flow import service
 from server.flow.plan import Step
-from server.flow.rounds import on_return
 from server.flow.progress import Progress
+from server.flow.rounds import on_return
 from store import trials
 from store.engine import Store
 from store.tables import TickRow, TrialRow
 from store.types import utcnow
+from study_config.catalog import LoadedStudy
 from study_config.study.views import DEFAULT_VIEW
 
 Outcome = Literal["new", "resume", "abandoned"]

@@ -10,11 +10,11 @@ from planner.geometry import ACTIONS
 from planner.subtasks import SUBTASKS
 from planner.summary import gap_components, summarize
 from server.game.blocked import Blocked
-from server.protocol.interrupts import Interrupt
 from server.game.engine import TrialEngine
 from server.game.meta import TrialMeta
 from server.game.needs import NEEDS
 from server.game.view import agent_view, drawn_bounds, visible_world
+from server.protocol.interrupts import Interrupt
 from server.protocol.server import Blocked as BlockedMessage
 from server.protocol.server import Bounds, Hello, Hud, State, TrialInfo
 from study_config.study.views import ViewName
@@ -38,8 +38,8 @@ def hello(meta: TrialMeta, engine: TrialEngine, *, mode: str, rate: float, resum
 
 
 def blocked_message(blocked: Blocked) -> BlockedMessage:
-    return BlockedMessage(subtask=blocked.subtask.value if blocked.subtask else None, reason=blocked.reason.code, item=blocked.reason.item,
-                          ended=blocked.ended)
+    return BlockedMessage(subtask=blocked.subtask.value if blocked.subtask else None, reason=blocked.reason.code,
+                          item=blocked.reason.item, ended=blocked.ended)
 
 
 def state(engine: TrialEngine, *, mode: str, rate: float, ack: int) -> State:

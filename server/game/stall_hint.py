@@ -85,11 +85,11 @@ def hint_for(layout: Layout, rules: Rules, world: WorldState, kb: KnowledgeBase,
     for kind, name in STATION_NAMES.items():
         if any(_only_access(layout, cell) == you.pos for cell in _around(layout, you.pos, kind)):
             return Hint("standing_at_station", f"You are standing where the {name} is used.")
-    for cell, count in zip(layout.boards, kb.boards):
+    for cell, count in zip(layout.boards, kb.boards, strict=True):
         if count is not None and count < rules.chop_time:
             whose = "you put " if cell in loaded_by_you else ""
             return Hint("onion_needs_chopping", f"The onion {whose}on the board still needs chopping.")
-    for cell, count in zip(layout.sinks, kb.sinks):
+    for cell, count in zip(layout.sinks, kb.sinks, strict=True):
         if count is not None and count < rules.wash_time:
             whose = "you put " if cell in loaded_by_you else ""
             return Hint("plate_needs_washing", f"The plate {whose}in the sink still needs washing.")

@@ -94,8 +94,8 @@ def visible_world(layout: Layout, world: WorldState, rules: Rules,
 
 
 @lru_cache(maxsize=256)
-def _ordered_table(layout: Layout, angle: float) -> dict[tuple[Pos, Direction], tuple[tuple[Pos, tuple[Terrain, int] | None,
-                                                                                          CellView], ...]]:
+def _ordered_table(layout: Layout, angle: float) -> dict[tuple[Pos, Direction],
+                                                         tuple[tuple[Pos, tuple[Terrain, int] | None, CellView], ...]]:
     return {}
 
 

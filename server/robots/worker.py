@@ -24,7 +24,6 @@ from typing import Any
 from planner.decision import Robot, RobotFactory
 from server.robots.choice import load_factory, run_decision
 
-
 FREEZE_EVERY = 100
 """Requests between two ``gc.freeze()`` calls (see :func:`worker_main`)."""
 
@@ -44,7 +43,7 @@ def worker_main(conn: Connection, factory_path: str) -> None:
         op, req = message[0], message[1]
         try:
             payload = _serve(op, message, policies, factory)
-        except Exception as exc:  # noqa: BLE001 - report every planner failure to the server
+        except Exception as exc:
             reply: tuple[Any, ...] = (req, "error", f"{type(exc).__name__}: {exc}")
         else:
             reply = (req, "ok", payload)

@@ -19,22 +19,27 @@ from pydantic import BaseModel, ConfigDict, Field
 from server.admin.answers import participant_answers
 from server.admin.links import study_links
 from server.admin.live import live_view
-from server.admin.stored_live import running_elsewhere, stored_live_view, stored_summary
 from server.admin.replay import replay
 from server.admin.resume import link_secret, make_code, resume_path
-from study_config.catalog import LoadedStudy
+from server.admin.stored_live import running_elsewhere, stored_live_view, stored_summary
 from server.deps import ServicesDep, path_study, require_admin
-from server.services import Services
 from server.errors import ApiError
+from server.game.registry import process_name
+from server.services import Services
+from server.text_input import storable_body
 from store import participants, trials
 from store.overview import (
-    invalid_trial_counts, low_engagement_counts, order_breakdown, participant_names, participant_public, trial_public,
+    invalid_trial_counts,
+    low_engagement_counts,
+    order_breakdown,
+    participant_names,
+    participant_public,
+    trial_public,
 )
-from study_config.study.warnings import study_warnings
 from store.tables import EventRow, TrialRow
 from store.types import utcnow
-from server.game.registry import process_name
-from server.text_input import storable_body
+from study_config.catalog import LoadedStudy
+from study_config.study.warnings import study_warnings
 
 router = APIRouter(prefix="/api/admin", tags=["admin"],
                    dependencies=[Depends(require_admin), Depends(storable_body)])

@@ -17,19 +17,26 @@ from anyio import from_thread
 from fastapi import APIRouter, Depends, Request
 
 from server.admin.resume import link_secret, read_code, verify
-from study_config.catalog import LoadedStudy
 from server.deps import ParticipantDep, ServicesDep, bearer, is_admin, participant_study, path_study
 from server.errors import ApiError
 from server.flow import payment, service
 from server.flow.progress import Move
-from server.flow.schemas import (ConsentRequest, JoinRequest, JoinResponse, QuestionnaireRequest, QuizRequest,
-                                 ResumeRequest, StudyPublic)
+from server.flow.schemas import (
+    ConsentRequest,
+    JoinRequest,
+    JoinResponse,
+    QuestionnaireRequest,
+    QuizRequest,
+    ResumeRequest,
+    StudyPublic,
+)
 from server.flow.views import load_session_view
 from server.security import limit_joins
 from server.services import Services
-from store import participants
-from study_config.study.device import DeviceInfo
 from server.text_input import storable_body
+from store import participants
+from study_config.catalog import LoadedStudy
+from study_config.study.device import DeviceInfo
 
 router = APIRouter(prefix="/api", tags=["participant"], dependencies=[Depends(storable_body)])
 StudyDep = Annotated[LoadedStudy, Depends(participant_study)]

@@ -7,10 +7,10 @@ When this server process already runs as many live trials as it can hold on time
 waits for a slot (``server.game.lobby``): ``waiting`` messages with their place in line and the
 expected wait; past the limit ``error`` ``server_full`` (close 4503) and the participant is screened out.
 
-Refusals before the game starts are typed too: ``error`` with code ``unauthorized`` (close 4401),
-``device_refused`` (close 4403: the device check on landing refused the participant's device, and a round
-never opens on it) or ``no_trial`` (close 4409, the participant is not at a trial step); a trial abandoned after the grace
-window answers ``trial_end`` with status ``abandoned``.
+Refusals before the game starts are typed too: ``error`` with code ``unauthorized`` (close 4401), ``device_refused``
+(close 4403: the device check on landing refused the participant's device, and a round never opens on it) or
+``no_trial`` (close 4409, the participant is not at a trial step); a trial abandoned after the grace window answers
+``trial_end`` with status ``abandoned``.
 """
 
 from __future__ import annotations
@@ -123,7 +123,7 @@ async def play(websocket: WebSocket, services: ServicesDep) -> None:
             if frame["type"] == "websocket.disconnect":
                 break
             game.handle(conn, frame.get("text"), frame.get("bytes"))
-    except Exception as exc:  # noqa: BLE001 - a broken socket is a disconnect
+    except Exception as exc:
         log.debug("websocket of trial %d ended: %s", game.meta.trial_id, exc)
     finally:
         conn.broken()

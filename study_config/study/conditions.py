@@ -57,6 +57,6 @@ def cross_conditions(levels: Mapping[Factor, Sequence[object]], factors: Sequenc
     order = [*factors, *(f for f in FACTORS if f not in factors)]
     flags = {"view_is_factor": "view" in factors, "fov_angle_is_factor": "fov_angle" in factors}
     return tuple(
-        Condition.model_validate({**dict(zip(order, combination)), **flags})
+        Condition.model_validate({**dict(zip(order, combination, strict=True)), **flags})
         for combination in itertools.product(*(levels[f] for f in order))
     )

@@ -2,9 +2,9 @@
 participants read (consent and instructions).
 
 A round lasts at most ``horizon / tick_rate_hz`` seconds in ``fixed_rate``, and at most the wall-clock limit
-``timing.max_round_seconds`` in ``wait_for_participant`` (``Timing.round_seconds``); the pages around the rounds are estimated with the
-per-page times below (a reader who does not rush). The total is an upper estimate: rounds end early when every
-order is delivered.
+``timing.max_round_seconds`` in ``wait_for_participant`` (``Timing.round_seconds``); the pages around the rounds are
+estimated with the per-page times below (a reader who does not rush). The total is an upper estimate: rounds end early
+when every order is delivered.
 
 Placeholders (written in the consent or instructions Markdown, replaced when the page is shown):
 

@@ -9,6 +9,7 @@ live view and replay draw it. A level is written in condition ids, cells and exp
 
 from __future__ import annotations
 
+
 def angle_level(angle: float) -> str:
     """The level name of ``angle`` degrees: the shortest spelling of the number (``90``, not ``90.0``)."""
     return f"{float(angle):g}"

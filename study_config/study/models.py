@@ -17,13 +17,21 @@ from pydantic import Field, ValidationInfo, field_validator
 
 from planner.perception import FOV_ANGLE
 from planner.registry import PLANNER_NAMES
-from study_config.study.base import (Loc, NotEmpty, RobotName, Slug, StudyModel, duplicate_problems, raise_problems,
-                               robot_problem)
+from study_config.study.base import (
+    Loc,
+    NotEmpty,
+    RobotName,
+    Slug,
+    StudyModel,
+    duplicate_problems,
+    raise_problems,
+    robot_problem,
+)
 from study_config.study.conditions import Condition, Factor, cross_conditions
 from study_config.study.counterbalance import MAX_FULL_CONDITIONS, condition_orders
-from study_config.study.groups import between_problems, groups_of, scheme_problems
 from study_config.study.device import DeviceRequirements
 from study_config.study.fov_angles import angle_level
+from study_config.study.groups import between_problems, groups_of, scheme_problems
 from study_config.study.kitchens import Kitchen, KitchenEntry, base_dir_of, entry_name, resolve_kitchens
 from study_config.study.questionnaire import Questionnaire
 from study_config.study.quiz import Quiz
@@ -60,8 +68,9 @@ class Study(StudyModel):
     (``study_config.study.fov_angles``). Without it every trial has ``world.fov_angle``; write one of the two."""
     between: tuple[Factor, ...] = ()
     """Factors between participants (``robot``, ``kitchen``, ``view``, ``fov_angle``), e.g. ``[view]`` with
-    ``views: [top_down, first_person]``: each participant plays one level (one group per combination of levels), groups are filled in
-    balance, and the within ``factors`` are counterbalanced inside each group (``study_config/study/groups.py``)."""
+    ``views: [top_down, first_person]``: each participant plays one level (one group per combination of levels), groups
+    are filled in balance, and the within ``factors`` are counterbalanced inside each group
+    (``study_config/study/groups.py``)."""
     factors: Annotated[tuple[Factor, ...], NotEmpty] = Field(default=("robot", "kitchen"), validate_default=True)
     """Within-subject factors (``robot``, ``kitchen``, ``view``, ``fov_angle``), crossed into the conditions; the
     first varies slowest in the condition list. A dimension left out must have a single level (e.g. one kitchen with

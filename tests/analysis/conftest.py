@@ -87,8 +87,8 @@ def study_2x2(study_file: Callable[..., Path]) -> Path:
 @pytest.fixture
 def loaded_2x2(study_2x2: Path, store: object) -> object:
     """The 2 × 2 study loaded and recorded in ``store``."""
-    from study_config.catalog import load_one
     from store.studies import sync_study
+    from study_config.catalog import load_one
 
     loaded = load_one(study_2x2)
     with store.transaction() as session:  # type: ignore[attr-defined]

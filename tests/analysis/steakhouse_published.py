@@ -42,7 +42,8 @@ DEPRESSION_Y = np.array([0.878, 0.647, 0.598, 2.05, 1.06, 1.29, 1.06, 3.14, 1.29
 
 # JASP's one-sample t test of 18 proportions against 0.5 (jasp-stats/jaspTTests,
 # tests/testthat/test-ttestonesample.R, "Rank biserial is consistent with rcompanion", jasp-issues #1158).
-JASP_PROPORTIONS = np.array([0, 1 / 3, 1 / 2, 3 / 7, 1 / 4, 1 / 4, 1 / 2, 0, 0, 1 / 5, 3 / 7, 3 / 4, 1, 1, 3 / 4, 0, 1, 1])
+JASP_PROPORTIONS = np.array([0, 1 / 3, 1 / 2, 3 / 7, 1 / 4, 1 / 4, 1 / 2, 0, 0, 1 / 5, 3 / 7, 3 / 4, 1, 1, 3 / 4, 0,
+                             1, 1])
 
 
 def reacttime_long() -> pd.DataFrame:
@@ -57,7 +58,7 @@ def agrees(actual: float, printed: str) -> bool:
     """Whether ``actual`` rounds to the published ``printed`` value at the precision printed
     (``"0.9616"``, ``"2.0868e-07"``, ``"40.719"``)."""
     if "e" in printed.lower():
-        mantissa, exponent = printed.lower().split("e")
+        mantissa, _exponent = printed.lower().split("e")
         digits = len(mantissa.replace("-", "").replace(".", "").lstrip("0"))
         return f"{actual:.{digits - 1}e}" == f"{float(printed):.{digits - 1}e}"
     decimals = len(printed.split(".")[1]) if "." in printed else 0

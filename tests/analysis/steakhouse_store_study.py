@@ -19,19 +19,19 @@ from planner.geometry import Action
 from planner.partner import SimulatedPartner
 from planner.robots import StayRobot
 from planner.state import WorldState
-from study_config.catalog import LoadedStudy
 from server.flow import service
 from server.flow.progress import Move
-from server.protocol.interrupts import Interrupt
 from server.game.engine import TrialEngine
 from server.game.records import tick_row
 from server.game.resume import prepare_trial
+from server.protocol.interrupts import Interrupt
 from server.robots.choice import RobotChoice, run_decision
 from store import trials
 from store.engine import Store
 from store.tables import ParticipantRow
 from store.types import utcnow
 from store.writer import write_batch
+from study_config.catalog import LoadedStudy
 
 INTERRUPTS = tuple(Interrupt)
 

@@ -12,10 +12,10 @@ from steakhouse_store_study import Participant, join, play_participant, study_ov
 from steakhouse_testing import write_study
 
 from analysis.study import attach_trial_columns
-from study_config.catalog import load_one
 from server.cli import main
 from store.engine import Store
 from store.studies import sync_study
+from study_config.catalog import load_one
 
 THREE_ROBOTS = ("stay", "baseline", "fov_aware")
 
@@ -157,7 +157,7 @@ def test_a_field_of_view_between_participants_gets_the_mixed_anova(stored, tmp_p
     cells = pd.read_csv(data / "cells.csv")
     assert (cells.groupby("participant")["fov_angle"].nunique() == 1).all(), "one angle per participant"
     assert sorted(cells.drop_duplicates("participant")["fov_angle"].value_counts().tolist()) == [3, 3]
-    assert set(zip(cells["condition"].str.rsplit("@", n=1).str[1].astype(int), cells["fov_angle"])) == {
+    assert set(zip(cells["condition"].str.rsplit("@", n=1).str[1].astype(int), cells["fov_angle"], strict=True)) == {
         (90, 90), (150, 150)}
     trials = pd.read_csv(data / "trials.csv")
     practice = trials[trials["kind"] == "practice"].set_index("participant")["fov_angle"]

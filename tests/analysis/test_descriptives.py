@@ -48,8 +48,8 @@ def test_cousineau_morey_by_hand() -> None:
     assert desc["se_ws"].to_numpy() == pytest.approx(se)
     half = [T_975_DF2 * x for x in se]
     means = [5 / 3, 10 / 3, 13 / 3, 20 / 3]
-    assert desc["ci95_low"].to_numpy() == pytest.approx([m - h for m, h in zip(means, half)])
-    assert desc["ci95_high"].to_numpy() == pytest.approx([m + h for m, h in zip(means, half)])
+    assert desc["ci95_low"].to_numpy() == pytest.approx([m - h for m, h in zip(means, half, strict=True)])
+    assert desc["ci95_high"].to_numpy() == pytest.approx([m + h for m, h in zip(means, half, strict=True)])
 
 
 def test_subject_offsets_do_not_widen_the_interval() -> None:

@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-from analysis.document import BulletList, Heading, Image, Paragraph, render_html
-from analysis.document import render_markdown, table
+from analysis.document import BulletList, Heading, Image, Paragraph, render_html, render_markdown, table
 
 BLOCKS = [
     Heading(2, "ticks"),

@@ -13,7 +13,8 @@ from analysis.effect_sizes import dz_ci, partial_eta2_ci, percentile_interval
 
 
 def test_dz_interval_matches_jasp() -> None:
-    # JASP's one-sample t test of JASP_PROPORTIONS against 0.5 (jaspTTests test-ttestonesample.R): t = -0.385804772181173,
+    # JASP's one-sample t test of JASP_PROPORTIONS against 0.5 (jaspTTests test-ttestonesample.R):
+    # t = -0.385804772181173,
     # Cohen's d = -0.0909350568744795 with 95% CI [-0.552576696667502, 0.373348871605267]. A one-sample d of
     # differences is the paired d_z.
     diff = JASP_PROPORTIONS - 0.5

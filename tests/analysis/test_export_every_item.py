@@ -9,20 +9,20 @@ import csv
 import io
 import zipfile
 
+import httpx
 import pandas as pd
 import pytest
-import httpx
 from steakhouse_store_study import Participant, current_step, join, play_stored_trial
 from steakhouse_testing import ThreadServer, write_study
 
 from analysis.dataset import FILES
 from analysis.export import DICTIONARY_FILES, export_study
 from analysis.spss import SAV_FILE
-from study_config.catalog import load_one
 from server.cli import main
 from server.flow import service
 from store.engine import Store
 from store.studies import sync_study
+from study_config.catalog import load_one
 
 STUDY = "every_item"
 AFTER_TRIAL = {"id": "post", "items": [

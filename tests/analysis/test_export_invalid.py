@@ -40,7 +40,7 @@ def test_an_invalid_trial_is_listed_with_its_reason_and_kept_out_of_the_cells(st
 
 
 def test_include_invalid_keeps_the_trial_in_the_cells(store, loaded_2x2, tmp_path, capsys):
-    ok, hit, invalid_id = two_participants_one_invalid_trial(store, loaded_2x2)
+    _ok, _hit, invalid_id = two_participants_one_invalid_trial(store, loaded_2x2)
     url = store.url.render_as_string(hide_password=False)
     assert main(["export", "--study", "two_by_two", "--out", str(tmp_path), "--database-url", url,
                  "--include-invalid"]) == 0

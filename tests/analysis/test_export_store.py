@@ -16,7 +16,6 @@ from steakhouse_testing import write_study
 from analysis.dataset import FILES
 from analysis.dictionary import wide_column
 from analysis.measures import TRIAL_MEASURES
-from study_config.catalog import load_one
 from server.cli import main
 from server.flow import service
 from server.flow.progress import Move
@@ -24,6 +23,7 @@ from store import participants
 from store.engine import Store
 from store.studies import sync_study
 from store.tables import ParticipantRow
+from study_config.catalog import load_one
 
 CONDITIONS = {("stay", "none_3"), ("stay", "mid_2"), ("baseline", "none_3"), ("baseline", "mid_2")}
 
@@ -72,7 +72,8 @@ def test_the_command_says_what_it_wrote(stored, tmp_path, capsys) -> None:
     assert main(["export", "--study", "two_by_two", "--out", str(tmp_path), "--database-url", url]) == 0
     out = capsys.readouterr().out
     assert "study two_by_two: 8 participants, 30 trial attempts, 19 cells" in out
-    assert "4 participants listed in excluded.csv" in out and f"wrote 10 files to {tmp_path}" in out  # 7 CSVs, wide.sav, the dictionary twice
+    # 7 CSVs, wide.sav, the dictionary twice
+    assert "4 participants listed in excluded.csv" in out and f"wrote 10 files to {tmp_path}" in out
 
 
 def test_every_file_and_every_column_is_in_the_data_dictionary(exported) -> None:

@@ -12,10 +12,10 @@ from steakhouse_testing import write_study
 
 from analysis.dictionary_items import spreadsheet_safe
 from analysis.export import export_study
-from study_config.catalog import load_one
 from server.flow import service
 from store.engine import Store
 from store.studies import sync_study
+from study_config.catalog import load_one
 
 ITEMS = [
     {"id": "fluency", "text": "Fluent.", "scale": {"min": 1, "max": 7, "labels": {1: "No", 7: "Yes"}}},
@@ -65,7 +65,7 @@ def test_text_answers_round_trip_through_the_csv_and_formulas_are_defused(export
         raw = list(csv.DictReader(handle))
     assert all(not row["text"].startswith(("=", "+", "-", "@")) for row in raw), "nothing a spreadsheet would run"
     choices = by_item.get_group("hand")
-    assert set(zip(choices["value"], choices["text"])) == {("0", "Left"), ("1", "Right")}
+    assert set(zip(choices["value"], choices["text"], strict=True)) == {("0", "Left"), ("1", "Right")}
     ratings = by_item.get_group("effort")
     assert set(ratings["value"]) == {"2"} and set(ratings["text"]) == {""}, "ratings are exported as given"
     stored = exported.dataset.tables["answers.csv"]
@@ -81,8 +81,8 @@ def test_text_items_are_not_cell_columns(exported):
 def test_the_data_dictionary_describes_items_and_scales(exported):
     markdown = (exported.out_dir / "data_dictionary.md").read_text(encoding="utf-8")
     assert "## Questionnaire items and scales" in markdown
-    assert "| post.effort | rating 1..7, reversed | “Effort.” (after each main trial); reverse-coded: scored as 8 − value" \
-           " in scales |" in markdown
+    assert ("| post.effort | rating 1..7, reversed | “Effort.” (after each main trial); reverse-coded: scored as "
+            "8 − value in scales |") in markdown
     assert "| post.hand | choice | “Hand?” (after each main trial); options: 0 = Left; 1 = Right |" in markdown
     assert "| post.team | fluency, effort | Teamwork: mean of fluency, effort after reversing effort (min + max − " \
            "value) |" in markdown

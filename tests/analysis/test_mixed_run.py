@@ -9,7 +9,6 @@ import pingouin as pg
 import pytest
 from scipy import stats
 
-from analysis.mixed_anova import mixed_anova_table
 from analysis.options import AnalysisOptions
 from analysis.run import analyze_long
 from server.cli import main
@@ -31,7 +30,8 @@ def test_the_mixed_analysis_and_its_follow_ups(tmp_path) -> None:
     rm = pg.rm_anova(data=meditation, dv="Scores", within="Time", subject="Subject", correction=True)
     assert simple.loc[("Time", "Group=Meditation"), "F"] == pytest.approx(rm.at[0, "F"], rel=1e-10)
     assert simple.loc[("Group", "Time=June"), "mean_diff"] == pytest.approx(
-        june.loc[june["Group"] == "Control", "Scores"].mean() - june.loc[june["Group"] == "Meditation", "Scores"].mean())
+        june.loc[june["Group"] == "Control", "Scores"].mean()
+        - june.loc[june["Group"] == "Meditation", "Scores"].mean())
     pairs = pd.read_csv(tmp_path / "pairwise.csv")
     assert set(pairs["at"]) == {"Group=Control", "Group=Meditation"}
     descriptives = pd.read_csv(tmp_path / "descriptives.csv")

@@ -128,7 +128,7 @@ def test_the_published_crash_now_reports_not_testable(tmp_path) -> None:
 
 
 def test_wrong_column_or_design_is_refused_before_anything_is_written(cells, tmp_path) -> None:
-    with pytest.raises(AnalysisInputError, match="'tiks' not found.*available columns"):
+    with pytest.raises(AnalysisInputError, match=r"'tiks' not found.*available columns"):
         analyze_long(cells(), ["ticks", "tiks"], WITHIN, "participant", tmp_path / "o")
     with pytest.raises(AnalysisInputError, match="one to 3 distinct within factors"):
         analyze_long(cells(), ["ticks"], [*WITHIN, "participant", "x"], "participant", tmp_path / "o")

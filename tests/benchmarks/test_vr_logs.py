@@ -22,8 +22,8 @@ spec.loader.exec_module(vr_logs)
 def step(robot_xy, robot_held, person_xy, yaw, orders=2):
     """One decision step: the state sent (reference grid) and two headset samples (``[y − 1, x − 1, letter]``)."""
     held = None if robot_held is None else {"id": 1, "name": robot_held, "position": robot_xy, "state": None}
-    sample = {"robot_ml": [robot_xy[1] - 1, robot_xy[0] - 1, "N"], "human_ml": [person_xy[1] - 1, person_xy[0] - 1, "S"],
-              "human_ll_ori": [0.0, 0.0, yaw]}
+    sample = {"robot_ml": [robot_xy[1] - 1, robot_xy[0] - 1, "N"],
+              "human_ml": [person_xy[1] - 1, person_xy[0] - 1, "S"], "human_ll_ori": [0.0, 0.0, yaw]}
     return {"overcooked_state_sent": {"players": [{"position": robot_xy, "orientation": [0, 1], "held_object": held},
                                                   {"position": person_xy, "orientation": [0, 1], "held_object": None}],
                                       "objects": [], "order_list": ["steak"] * orders},

@@ -9,8 +9,8 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from study_config.catalog import LoadedStudy, load_one  # noqa: E402
-from study_config import STUDY_DIR  # noqa: E402
+from study_config import STUDY_DIR
+from study_config.catalog import LoadedStudy, load_one
 
 
 @pytest.fixture(scope="session")

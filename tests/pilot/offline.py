@@ -8,18 +8,18 @@ from typing import Any
 
 import numpy as np
 
-from pilot.config import ParticipantConfig
 from pilot.client import respond
+from pilot.config import ParticipantConfig
 from pilot.mind import Mind
 from pilot.perception import Perception
 from planner.human import HumanMemory, HumanModel
 from planner.kb import omniscient_kb
 from planner.subtasks import Subtask
-from study_config.catalog import LoadedStudy
 from server.game import snapshot
-from server.protocol.interrupts import Interrupt
 from server.game.engine import TrialEngine
 from server.game.needs import NEEDS
+from server.protocol.interrupts import Interrupt
+from study_config.catalog import LoadedStudy
 
 
 @dataclass

@@ -8,8 +8,8 @@ from dataclasses import replace
 from typing import Any
 
 import numpy as np
-
 from offline import play_offline
+
 from pilot.client import respond
 from pilot.config import ParticipantConfig
 from pilot.mind import Mind
@@ -19,10 +19,10 @@ from planner.layout import Layout
 from planner.objects import MEAT
 from planner.state import AgentState
 from planner.subtasks import Subtask
-from study_config.catalog import LoadedStudy
 from server.game import snapshot
 from server.game.engine import TrialEngine
 from server.game.needs import NEEDS
+from study_config.catalog import LoadedStudy
 
 NEEDS_BY_NAME = {s.value: n for s, n in NEEDS.items()}
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 from dataclasses import replace
 
 import pytest
-
 from offline import play_offline
+
 from pilot.client import respond
 from pilot.config import ParticipantConfig
 from pilot.mind import Mind

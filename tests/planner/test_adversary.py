@@ -6,11 +6,17 @@ from __future__ import annotations
 import pytest
 
 from planner.adversary import (
-    DISRUPTIVE, AdversarialHuman, AdversaryConfig, Mode, access_cells, last_progress_tick, narrowest_stations,
+    DISRUPTIVE,
+    AdversarialHuman,
+    AdversaryConfig,
+    Mode,
+    access_cells,
+    last_progress_tick,
+    narrowest_stations,
 )
 from planner.layout_gen import generate_named
-from planner.play import run_trial
 from planner.planner_config import PlannerConfig
+from planner.play import run_trial
 from planner.robots import StayRobot, make_robot
 from planner.rules import Rules
 from planner.state import initial_state
@@ -79,7 +85,7 @@ def test_same_seed_same_adversarial_trial():
     assert runs[0].actions == runs[1].actions and runs[0].final == runs[1].final
 
 
-@pytest.mark.parametrize("bad", [dict(budget=-1), dict(phase=(0, 3)), dict(idle=(9, 2)), dict(weights=(0, 0, 0, 0, 0))])
+@pytest.mark.parametrize("bad", [{"budget": -1}, {"phase": (0, 3)}, {"idle": (9, 2)}, {"weights": (0, 0, 0, 0, 0)}])
 def test_bad_configs_name_the_field(bad):
     with pytest.raises(ValueError, match=next(iter(bad))):
         AdversaryConfig(**bad)

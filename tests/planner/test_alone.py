@@ -13,8 +13,8 @@ from planner.geometry import Direction
 from planner.layout import Layout
 from planner.layout_gen import generate_named
 from planner.partner import StillHuman
-from planner.play import run_trial
 from planner.planner_config import PlannerConfig
+from planner.play import run_trial
 from planner.robots import make_robot
 from planner.rules import Rules
 from planner.state import AgentState, initial_state

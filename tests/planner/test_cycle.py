@@ -13,8 +13,8 @@ from planner.geometry import Action, Direction
 from planner.human import HumanMemory, HumanModel
 from planner.kb import KnowledgeBase
 from planner.layout import Layout, parse_layout
-from planner.play import run_trial
 from planner.planner_config import PlannerConfig
+from planner.play import run_trial
 from planner.robots import make_robot
 from planner.rules import Rules
 from planner.state import AgentState, WorldState, initial_state

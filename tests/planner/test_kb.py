@@ -12,11 +12,11 @@ from planner.geometry import Action, Direction
 from planner.human import HumanMemory, HumanModel
 from planner.kb import KnowledgeBase, initial_kb, update_kb
 from planner.objects import MEAT, ONION
+from planner.partner import SimulatedPartner
 from planner.play import TrialSettings, run_trial
 from planner.rules import Rules
 from planner.state import AgentState, initial_state
 from planner.step import step
-from planner.partner import SimulatedPartner
 from planner.summary import gap_components, kb_gap, kb_gap_components, summarize
 from study_config import layout_names, load_layout
 

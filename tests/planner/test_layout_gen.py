@@ -10,7 +10,13 @@ import pytest
 from planner.geometry import DIRECTIONS, Pos
 from planner.layout import Layout, parse_layout
 from planner.layout_gen import (
-    STYLES, GenerationError, KitchenRequest, generate_kitchen, generate_named, kitchen_problems, parse_size,
+    STYLES,
+    GenerationError,
+    KitchenRequest,
+    generate_kitchen,
+    generate_named,
+    kitchen_problems,
+    parse_size,
     style_of,
 )
 from planner.play import run_trial

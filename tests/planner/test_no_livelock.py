@@ -15,8 +15,8 @@ from hypothesis import strategies as st
 from planner.alone import solo_possible
 from planner.layout_gen import generate_named
 from planner.partner import PARTNERS, partner_model
-from planner.play import run_trial
 from planner.planner_config import PlannerConfig
+from planner.play import run_trial
 from planner.robots import make_robot
 from planner.rules import Rules
 from planner.state import initial_state

@@ -16,6 +16,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 import pytest
+from steakhouse_onion_run import carry_onion_to_board
 
 from planner.fov import visible_cells
 from planner.geometry import Action, Direction
@@ -23,7 +24,6 @@ from planner.kb import initial_kb
 from planner.objects import ONION
 from planner.rules import Rules
 from planner.state import AgentState, initial_state
-from steakhouse_onion_run import carry_onion_to_board
 from study_config import load_layout
 
 RULES = Rules()

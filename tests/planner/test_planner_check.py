@@ -9,8 +9,8 @@ import pytest
 
 from planner.decision import Decision
 from planner.geometry import ACTIONS
-from planner.play import run_trial
 from planner.planner_config import PlannerConfig
+from planner.play import run_trial
 from planner.registry import PLANNER_NAMES
 from planner.robots import make_robot
 from planner.rules import Rules

@@ -13,8 +13,8 @@ import pytest
 from planner.decision import Decision
 from planner.events import Event
 from planner.kb import KnowledgeBase
-from planner.play import run_trial
 from planner.planner_config import PlannerConfig
+from planner.play import run_trial
 from planner.robots import make_robot
 from planner.rules import Rules
 from planner.state import WorldState

@@ -10,8 +10,8 @@ import pytest
 
 from planner.geometry import ACTIONS, MOTIONS, Action, Direction
 from planner.kb import initial_kb
-from planner.play import run_trial
 from planner.planner_config import PlannerConfig
+from planner.play import run_trial
 from planner.reference import ReferenceLookahead
 from planner.robots import make_robot
 from planner.rules import Rules

@@ -16,8 +16,8 @@ from planner.kb import KnowledgeBase, initial_kb, update_kb
 from planner.layout import Layout, parse_layout
 from planner.paths import best_moves, distance
 from planner.perception import FOV_ANGLE, KB_DELAY
-from planner.play import run_trial
 from planner.planner_config import PlannerConfig
+from planner.play import run_trial
 from planner.robots import make_robot
 from planner.rules import Rules
 from planner.standoff import take_over, within_reach

@@ -11,7 +11,7 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from steakhouse_testing import ThreadServer  # noqa: E402
+from steakhouse_testing import ThreadServer
 
 
 @pytest.fixture

@@ -83,7 +83,7 @@ def wait_stored(where: Any, through: dict[int, int], timeout: float = 60.0) -> N
             with store.transaction() as session:
                 rows = session.execute(select(TickRow.trial_id, func.max(TickRow.tick))
                                        .where(TickRow.trial_id.in_(list(through))).group_by(TickRow.trial_id))
-                return {trial_id: tick for trial_id, tick in rows}
+                return dict(rows.all())
 
         seen = eventually(highest, lambda got: all(got.get(t, 0) >= n for t, n in through.items()), timeout)
         missing = {t: (seen.get(t, 0), n) for t, n in through.items() if seen.get(t, 0) < n}

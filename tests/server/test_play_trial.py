@@ -41,7 +41,7 @@ def test_scripted_client_plays_a_whole_trial_to_the_end(live_server, study_file)
                    "score": 20, "next": "questionnaire"}
     assert [m["seq"] for m in received] == list(range(1, len(received) + 1))
     states = [m for m in received if m["type"] == "state"]
-    assert [s["tick"] for s in states] == list(range(0, end["ticks"] + 1))
+    assert [s["tick"] for s in states] == list(range(end["ticks"] + 1))
     assert all(m["type"] != "error" for m in received)
     assert session["state"] == "questionnaire"
     trial_id = hello["trial"]["id"]

@@ -9,14 +9,12 @@ import asyncio
 import json
 import re
 import sys
-import time
-from pathlib import Path
 from typing import Any
 
 import httpx
 import pytest
-from steakhouse_test_robots import simulated_partner
 from steakhouse_masking import check_masked
+from steakhouse_test_robots import simulated_partner
 from steakhouse_testing import REPO, Player, eventually, wait_stored
 from websockets.asyncio.client import connect
 
@@ -24,7 +22,7 @@ from server.security import JoinLimiter
 from store.tables import EventRow, TrialRow
 
 sys.path.insert(0, str(REPO / "benchmarks" / "load"))
-from simulated_participant import run_load  # noqa: E402
+from simulated_participant import run_load
 
 UNAUTHORIZED = {"detail": {"code": "unauthorized", "message": "a valid token is required"}}
 BAD_ADMIN = [{}, {"Authorization": "Bearer wrong"}, {"Authorization": "admin-secret"},

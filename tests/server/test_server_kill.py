@@ -55,7 +55,7 @@ def test_sigkill_mid_trial_then_restart_resumes_from_the_last_flushed_tick(db_ur
             await player.close()
             return player.token, hello, seen
 
-        token, hello, seen = asyncio.run(before_crash())
+        token, hello, _seen = asyncio.run(before_crash())
         trial_id = hello["trial"]["id"]
         row, flushed = check_store(db_url, trial_id)
         assert row.status == "running"

@@ -9,8 +9,8 @@ import json
 import httpx
 from steakhouse_testing import Player, play_to_end
 
-from store.tables import AnswerRow, ParticipantRow, QuizAttemptRow
 from server.text_input import first_problem, safe, text_problem
+from store.tables import AnswerRow, ParticipantRow, QuizAttemptRow
 
 UNSTORABLE = ["\ud800", "a\udfffb", "\x00", "x\x00"]
 QUESTIONNAIRE = {"id": "q", "items": [{"id": "a", "text": "A", "scale": {"min": 1, "max": 5}},

@@ -7,9 +7,9 @@ from collections.abc import Callable, Iterator
 
 import pytest
 
-from study_config.catalog import LoadedStudy, load_one
 from store.engine import Store
 from store.studies import sync_study
+from study_config.catalog import LoadedStudy, load_one
 
 
 @pytest.fixture
@@ -44,7 +44,7 @@ def join_at_once(store: Store) -> Callable[[LoadedStudy, int], list[int]]:
         def join() -> None:
             try:
                 results.append(service.join(store, loaded, {}, False).assignment.order_index)
-            except BaseException as exc:  # noqa: BLE001 - collected for the assertion
+            except BaseException as exc:
                 failures.append(exc)
 
         threads = [threading.Thread(target=join) for _ in range(n)]

@@ -7,10 +7,10 @@ from collections import Counter
 
 import pytest
 
-from study_config.catalog import load_one
 from server.flow import service
 from store.group_assignment import least_filled_grouped
 from store.studies import sync_study
+from study_config.catalog import load_one
 
 
 def test_the_least_filled_group_then_its_least_filled_order():

@@ -36,7 +36,7 @@ def test_migrating_again_and_concurrently_is_harmless(db_url):
     def run(store: Store) -> None:
         try:
             store.migrate()
-        except BaseException as exc:  # noqa: BLE001 - collected for the assertion
+        except BaseException as exc:
             errors.append(exc)
 
     try:
@@ -73,12 +73,12 @@ def test_revision_0008_gives_older_trials_their_studys_angle_where_the_config_is
     configuration is the one they were played with (same hash); a trial of an older configuration stays unknown."""
     from alembic import command
 
-    from study_config.catalog import load_one
     from server.flow import service
     from store import trials
     from store.migrate import alembic_config
     from store.studies import sync_study
     from store.tables import TrialRow
+    from study_config.catalog import load_one
 
     loaded = load_one(study_file(world={"fov_angle": 100}))
     store = Store(db_url)

@@ -136,7 +136,7 @@ def test_touch_only_moves_activity_forward(store, loaded):
 
 
 def test_a_trial_ends_once(store, loaded):
-    participant_id, trial_id = new_trial(store, loaded)
+    _participant_id, trial_id = new_trial(store, loaded)
     with store.transaction() as session:
         assert trials.end(session, trial_id, status="finished", reason="delivered", ticks=9, delivered=1, score=20)
         assert not trials.end(session, trial_id, status="abandoned", reason="grace_expired")

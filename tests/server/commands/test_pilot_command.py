@@ -8,6 +8,7 @@ import asyncio
 import pandas as pd
 import pytest
 from sqlalchemy import create_engine, select
+from steakhouse_test_robots import simulated_partner
 
 from analysis.export import read_dataset
 from pilot.client import Seat, respond, trial_rng
@@ -17,10 +18,9 @@ from pilot.perception import Perception
 from pilot.run import run_pilot
 from planner.fov import view
 from planner.geometry import Direction
-from study_config.catalog import load_one
 from server.cli import main
 from store.tables import AnswerRow, ParticipantRow, TrialRow
-from steakhouse_test_robots import simulated_partner
+from study_config.catalog import load_one
 
 QUIZ = {"max_attempts": 2, "questions": [{"id": "q1", "text": "?", "options": ["a", "b"], "answer": 2,
                                     "explanation": "b"}]}
@@ -57,7 +57,7 @@ def test_what_it_sent_follows_from_the_masked_frames_alone(piloted) -> None:
     _, loaded, result, _ = piloted
     world = loaded.study.world
     replayed = 0
-    for index, outcome in enumerate(sorted(result.outcomes, key=lambda o: o.name)):
+    for _index, outcome in enumerate(sorted(result.outcomes, key=lambda o: o.name)):
         for trial, (frames, sent) in enumerate(zip(outcome.frames, outcome.sent, strict=True)):
             hello = frames[0]
             seen = Perception(hello["width"], hello["height"], tuple(loaded.layouts.values()))

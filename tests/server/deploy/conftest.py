@@ -13,7 +13,7 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from nginx_proxy import NginxProxy, nginx_binary  # noqa: E402
+from nginx_proxy import NginxProxy, nginx_binary
 
 
 @pytest.fixture

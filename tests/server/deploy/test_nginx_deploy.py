@@ -123,7 +123,7 @@ async def play_resilient(player: ProxiedPlayer, record: Record) -> Record:
     while True:
         try:
             sock = await player.socket()
-        except Exception as exc:  # noqa: BLE001 - refused / 502 while the proxy notices the dead process
+        except Exception as exc:
             record.failed.append((time.monotonic(), repr(exc)[:120]))
             await asyncio.sleep(backoff_s(attempt))
             attempt += 1

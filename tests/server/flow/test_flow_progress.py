@@ -6,10 +6,10 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from study_config.catalog import load_one
 from server.flow.plan import build_plan
 from server.flow.progress import IllegalTransition, Move, Phase, Progress
 from study_config import STUDY_DIR
+from study_config.catalog import load_one
 
 
 @pytest.fixture(scope="module")

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import asyncio
 
-from server.game.connection import MAX_QUEUE, ConnState, Connection
+from server.game.connection import MAX_QUEUE, Connection, ConnState
 from server.protocol.server import Pong
 
 

@@ -8,7 +8,7 @@ import json
 
 import pytest
 
-from server.game.connection import ConnState, Connection, IllegalConnectionTransition
+from server.game.connection import Connection, ConnState, IllegalConnectionTransition
 from server.protocol.server import Pong, Waiting
 
 

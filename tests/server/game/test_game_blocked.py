@@ -11,7 +11,7 @@ import pytest
 from planner.geometry import Action, Direction
 from planner.kb import KnowledgeBase, initial_kb, update_kb
 from planner.layout import parse_layout
-from planner.objects import CLEAN_PLATE, DIRTY_PLATE, DISH, MEAT, ONION, OBJECTS, STEAK_PLATE
+from planner.objects import CLEAN_PLATE, DIRTY_PLATE, DISH, MEAT, OBJECTS, ONION, STEAK_PLATE
 from planner.rules import Rules
 from planner.state import AgentState, WorldState, initial_state
 from planner.subtasks import SUBTASKS, Subtask
@@ -56,7 +56,8 @@ def test_a_subtask_fits_exactly_what_its_table_says_and_otherwise_names_why(subt
 def test_the_hands_table_is_the_forced_continuation_of_each_object():
     assert {NEEDS[s] for s in (Subtask.PICKUP_STEAK, Subtask.PICKUP_GARNISH, Subtask.DELIVER_DISH)} == {
         CLEAN_PLATE, STEAK_PLATE, DISH}
-    assert (NEEDS[Subtask.DROP_MEAT], NEEDS[Subtask.DROP_ONION], NEEDS[Subtask.DROP_PLATE]) == (MEAT, ONION, DIRTY_PLATE)
+    assert (NEEDS[Subtask.DROP_MEAT], NEEDS[Subtask.DROP_ONION], NEEDS[Subtask.DROP_PLATE]) == (
+        MEAT, ONION, DIRTY_PLATE)
 
 
 @pytest.mark.parametrize(("spot", "facing", "held", "station", "expected"), [

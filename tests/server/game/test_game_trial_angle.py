@@ -8,7 +8,6 @@ from __future__ import annotations
 from steakhouse_testing import write_study
 
 from server.admin.live import scene_view
-from study_config.catalog import load_one
 from server.flow import service
 from server.flow.progress import Move
 from server.game.restore import trial_engine
@@ -17,6 +16,7 @@ from server.game.snapshot import state
 from store.engine import Store
 from store.studies import sync_study
 from store.tables import ParticipantRow
+from study_config.catalog import load_one
 
 
 def test_each_angle_level_masks_its_own_trials(db_url, tmp_path) -> None:

@@ -34,7 +34,7 @@ def ws_messages(server, token: str, until: str | None = None) -> list[dict]:
             while True:
                 try:
                     out.append(json.loads(await asyncio.wait_for(ws.recv(), 10)))
-                except Exception:  # noqa: BLE001 - the server closed the socket
+                except Exception:
                     return out
                 if out[-1]["type"] == until:
                     return out
@@ -149,7 +149,7 @@ def test_a_placeholder_code_never_reaches_a_real_participant_but_test_runs_see_i
         return view, code
 
     with httpx.Client(base_url=server.url, timeout=30) as client:
-        body, headers = join(client, PROLIFIC_PID="declines")
+        _body, headers = join(client, PROLIFIC_PID="declines")
         declined = client.post("/api/session/consent", json={"accept": False}, headers=headers).json()
     assert declined["completion"] == {"kind": "screen_out", "code": None, "redirect_url": None,
                                       "reason": "declined_consent", "not_set_up": True}

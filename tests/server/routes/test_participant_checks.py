@@ -139,7 +139,8 @@ def test_rating_choice_and_text_answers_are_checked_and_stored_with_their_text(c
         ("effort", "out_of_range"), ("hand", "out_of_range"), ("comment", "too_long")]
     bad = client.post("/api/session/questionnaire", headers=headers, json={"questionnaire_id": "q", "answers": {
         "fluency": 3, "effort": 2, "hand": "Left", "comment": 5}})
-    assert [(p["loc"][-1], p["type"]) for p in bad.json()["detail"]] == [("hand", "not_integer"), ("comment", "not_text")]
+    assert [(p["loc"][-1], p["type"]) for p in bad.json()["detail"]] == [
+        ("hand", "not_integer"), ("comment", "not_text")]
     comment = ' =SUM(A1:A9), "quoted"\nsecond line '
     done = client.post("/api/session/questionnaire", headers=headers, json={"questionnaire_id": "q", "answers": {
         "fluency": 6, "effort": 2, "hand": 1, "comment": comment}}).json()

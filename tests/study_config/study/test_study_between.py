@@ -22,8 +22,9 @@ def test_a_between_robot_gives_each_group_the_kitchens_counterbalanced(tmp_path)
     study = load_study(write(tmp_path, "between: [robot]\nfactors: [kitchen]\n"))
     assert [c.id for c in study.conditions] == ["fov_aware@none_3", "fov_aware@mid_2", "baseline@none_3",
                                                 "baseline@mid_2"]
-    assert study.condition_orders() == [("fov_aware@none_3", "fov_aware@mid_2"), ("fov_aware@mid_2", "fov_aware@none_3"),
-                                        ("baseline@none_3", "baseline@mid_2"), ("baseline@mid_2", "baseline@none_3")]
+    assert study.condition_orders() == [
+        ("fov_aware@none_3", "fov_aware@mid_2"), ("fov_aware@mid_2", "fov_aware@none_3"),
+        ("baseline@none_3", "baseline@mid_2"), ("baseline@mid_2", "baseline@none_3")]
     assert study.order_groups() == [0, 0, 1, 1]
     assert '"between":["robot"]' in study.canonical_json()
 

@@ -52,7 +52,7 @@ def test_a_within_angle_is_crossed_and_counterbalanced_like_a_view(tmp_path) -> 
 def test_a_study_without_angles_keeps_its_world_angle_ids_and_hash(tmp_path) -> None:
     study = load_study(write(tmp_path, "world: {fov_angle: 100}\n"))
     assert study.fov_angle_levels == (100.0,) and "fov_angles" not in study.canonical_json()
-    assert [c.id for c in study.conditions][0] == "fov_aware@none_3"
+    assert next(c.id for c in study.conditions) == "fov_aware@none_3"
     assert {c.fov_angle for c in study.conditions} == {100.0}
     assert study.trial_angle(None) == 100.0 and study.trial_angle(150.0) == 150.0
 

@@ -77,7 +77,8 @@ def test_incomplete_items_name_what_is_missing(tmp_path):
         - {id: e, type: essay, text: "E?"}
         """)
     assert found[:4] == [
-        ("questionnaires[0].items[0].scale", "required field is missing (a rating item needs a scale {min, max, labels})"),
+        ("questionnaires[0].items[0].scale",
+         "required field is missing (a rating item needs a scale {min, max, labels})"),
         ("questionnaires[0].items[1].options", "a choice item needs at least two options"),
         ("questionnaires[0].items[2].options[2]", "duplicate option 'x' (already at [0])"),
         ("questionnaires[0].items[3].min_length", "min_length (50) is above max_length (10)"),

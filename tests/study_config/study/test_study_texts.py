@@ -7,9 +7,17 @@ from pathlib import Path
 
 from server.cli import main
 from study_config.study import load_study
-from study_config.study.duration import (CONSENT_SECONDS, END_SECONDS, INSTRUCTIONS_SECONDS, ITEM_SECONDS,
-                                   QUIZ_QUESTION_SECONDS, ROUND_PAGES_SECONDS, duration_words, fill_placeholders,
-                                   study_length)
+from study_config.study.duration import (
+    CONSENT_SECONDS,
+    END_SECONDS,
+    INSTRUCTIONS_SECONDS,
+    ITEM_SECONDS,
+    QUIZ_QUESTION_SECONDS,
+    ROUND_PAGES_SECONDS,
+    duration_words,
+    fill_placeholders,
+    study_length,
+)
 from study_config.study.warnings import study_warnings
 
 STUDY_CONFIG = Path(__file__).resolve().parents[3] / "study_config"

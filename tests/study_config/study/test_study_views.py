@@ -92,7 +92,8 @@ def test_a_fixed_order_names_the_view_in_the_condition_ids(tmp_path: Path) -> No
     (ROBOTS_KITCHENS + "views: [first_person, first_person]\nfactors: [robot, kitchen, view]\n", "views[1]",
      "duplicate view 'first_person'"),
     (ROBOTS_KITCHENS + "view: top_down\nviews: [top_down]\n", "views", "write either view"),
-    (ROBOTS_KITCHENS + "factors: [robot, kitchen, camera]\n", "factors[2]", "'robot', 'kitchen', 'view' or 'fov_angle'"),
+    (ROBOTS_KITCHENS + "factors: [robot, kitchen, camera]\n", "factors[2]",
+     "'robot', 'kitchen', 'view' or 'fov_angle'"),
     (ROBOTS_KITCHENS + "practice: [{kitchen: practice, robot: stay, view: 3d}]\n", "practice[0].view",
      "'top_down' or 'first_person'"),
 ])
