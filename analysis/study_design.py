@@ -3,10 +3,10 @@ order, the horizon, and the after-trial rating items and scales.
 
 Read from the resolved configuration stored with the study (``studies.config``):
 
-* factors: ``factors`` (default ``[robot, kitchen]``); the levels of ``robot`` are ``robots``, of ``kitchen`` the
-  names in ``kitchens``, of ``view`` the ``views`` (or the single ``view``), of ``fov_angle`` the ``fov_angles`` (or
-  the single ``world.fov_angle``), spelt as :func:`study_config.study.fov_angles.angle_level`. A factor named in
-  ``factors`` with a single level is not a factor of the analysis (it is reported as such).
+* factors and their levels: as the one design reader gives them (:meth:`study_config.study.Design.from_config`,
+  which also reads the configuration an older version stored), an angle spelt as
+  :func:`study_config.study.fov_angles.angle_level`. A factor named in ``factors`` with a single level is not a
+  factor of the analysis (it is reported as such).
 * questionnaire items: ``type`` ``rating`` (the default) are analysed, with their ``scale`` range and
   ``reverse: true`` for reverse-coded items; ``choice`` (a nominal index) and ``text`` items are not.
   ``scales: [{id, title, items}]`` of a questionnaire shown after each trial become measures of the cell
@@ -20,14 +20,9 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from analysis.dictionary import item_column
+from analysis.dictionary_items import item_key as item_column
 from analysis.dictionary_items import scale_key
-from planner.perception import FOV_ANGLE
-from study_config.study.fov_angles import angle_level
-
-LEVEL_KEYS = {"robot": ("robots", "robot"), "kitchen": ("kitchens", "kitchen"), "view": ("views", "view")}
-"""Config keys listing a factor's levels, then the key of its single level."""
-DEFAULT_FACTORS = ("robot", "kitchen")
+from study_config.study import Design
 
 
 @dataclass(frozen=True, slots=True)
@@ -62,9 +57,9 @@ class StudyDesign:
 
     @classmethod
     def from_config(cls, config: Mapping[str, Any]) -> StudyDesign:
-        declared = tuple(str(f) for f in config.get("factors") or DEFAULT_FACTORS)
-        between = tuple(str(f) for f in config.get("between") or ())
-        levels = {f: factor_levels(config, f) for f in (*declared, *between)}
+        design = Design.from_config(config)
+        declared, between = design.factors, design.between
+        levels = {f: design.level_names(f) for f in (*declared, *between)}
         factors = tuple(f for f in declared if len(levels[f]) > 1)
         world = config.get("world") or {}
         horizon = world.get("horizon") if isinstance(world, Mapping) else None
@@ -76,19 +71,6 @@ class StudyDesign:
     @property
     def rating_columns(self) -> tuple[str, ...]:
         return tuple(i.column for i in self.items) + tuple(s.column for s in self.scales)
-
-
-def factor_levels(config: Mapping[str, Any], factor: str) -> tuple[str, ...]:
-    """The levels of ``factor`` in the study's order (``kitchens`` entries may be ``{name: ...}`` mappings)."""
-    if factor == "fov_angle":
-        world = config.get("world") or {}
-        single = world.get("fov_angle", FOV_ANGLE) if isinstance(world, Mapping) else FOV_ANGLE
-        return tuple(angle_level(float(a)) for a in config.get("fov_angles") or [single])
-    many, one = LEVEL_KEYS.get(factor, (f"{factor}s", factor))
-    values = config.get(many)
-    if not values:
-        values = [config[one]] if config.get(one) is not None else []
-    return tuple(str(v["name"]) if isinstance(v, Mapping) else str(v) for v in values)
 
 
 def rating_specs(questionnaires: Any, when: str) -> tuple[tuple[RatingItem, ...], tuple[ScaleSpec, ...]]:
