@@ -59,19 +59,11 @@ class ExportDesign:
         design = Design.from_config(config)
         fields = tuple(f for f in CELL_FIELDS if f in ("robot", "kitchen") or f in design.crossed)
         conditions = tuple(_cell(c, fields) for c in design.conditions)
-        trial_items: list[tuple[str, str, str]] = []
-        end_items: list[tuple[str, str, str]] = []
-        for questionnaire in config.get("questionnaires", ()):
-            target = end_items if questionnaire.get("when") == "end_of_study" else trial_items
-            for item in questionnaire.get("items", ()):
-                if item.get("type") == "text":
-                    continue  # free text is exported in answers.csv only
-                target.append((str(questionnaire["id"]), str(item["id"]), str(item.get("text", ""))))
-        questionnaires = config.get("questionnaires") or ()
-        trial_ratings, trial_scales = rating_specs(questionnaires, "after_each_trial")
-        end_ratings, end_scales = rating_specs(questionnaires, "end_of_study")
-        return cls(design.robots, design.kitchens, conditions, tuple(trial_items), tuple(end_items),
-                   trial_ratings + end_ratings, trial_scales, end_scales, design.between, fields)
+        trial_ratings, trial_scales = rating_specs(design, "after_each_trial")
+        end_ratings, end_scales = rating_specs(design, "end_of_study")
+        return cls(design.robots, design.kitchens, conditions, _valued_items(design, "after_each_trial"),
+                   _valued_items(design, "end_of_study"), trial_ratings + end_ratings, trial_scales, end_scales,
+                   design.between, fields)
 
     def condition_of(self, condition_id: str) -> tuple[str, str] | None:
         """``(robot, kitchen)`` of a condition id (``robot@kitchen``, or ``robot@kitchen@view`` in a study with
@@ -114,6 +106,12 @@ class ExportDesign:
 
     def item_names(self, items: tuple[tuple[str, str, str], ...]) -> list[str]:
         return [item_column(q, i) for q, i, _ in items]
+
+
+def _valued_items(design: Design, when: str) -> tuple[tuple[str, str, str], ...]:
+    """(questionnaire, item, text) of the items with a value (not free text: it is exported in answers.csv only)
+    of the questionnaires shown ``when``."""
+    return tuple((q.id, i.id, i.text) for q in design.questionnaires_shown(when) for i in q.items if i.type != "text")
 
 
 def _cell(condition: Condition, fields: tuple[str, ...]) -> tuple[str, ...]:

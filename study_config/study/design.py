@@ -1,5 +1,6 @@
 """A study's design: its factors, their levels, and the conditions and groups they cross into — the one definition,
-used by the typed study (hence the server), the analysis and the pilot.
+used by the typed study (hence the server), the analysis and the pilot — and what is measured in them (the
+questionnaires' items and named scales, the horizon of a round).
 
 :meth:`Design.from_config` reads it from a study's configuration as any of them holds it, and tolerates what an
 older version of the platform left out:
@@ -21,6 +22,9 @@ The within factors are ``factors`` (``robot`` and ``kitchen`` when not written),
 (none when not written). Conditions cross the between factors, then the within factors, the first varying slowest;
 a dimension that is not a factor has one level and comes last. So the conditions of one group (one combination of
 between levels) form one consecutive block (``study_config/study/groups.py``).
+
+Questionnaires are read with their defaults (``when`` ``after_each_trial``, an item's ``type`` ``rating``,
+``reverse`` false, a scale's ``title`` its id); a rating item's scale range is ``scale.min`` to ``scale.max``.
 """
 
 from __future__ import annotations
@@ -54,15 +58,25 @@ class Design:
     """Within-subject factors, as the study declares them (a declared factor may have one level)."""
     between: tuple[Factor, ...] = ()
     """Between-participants factors."""
+    questionnaires: tuple[QuestionnaireDesign, ...] = ()
+    horizon: int | None = None
+    """Ticks of a round (``world.horizon``), when the configuration gives it."""
 
     @classmethod
     def from_config(cls, config: Mapping[str, Any]) -> Design:
         """The design of ``config``: a stored study's JSON (of any version), or the typed study's fields."""
+        horizon = _get(config.get("world"), "horizon")
         return cls(robots=tuple(str(r) for r in config.get("robots") or ()),
-                   kitchens=tuple(_kitchen_name(k) for k in config.get("kitchens") or ()),
+                   kitchens=tuple(str(_get(k, "name", k)) for k in config.get("kitchens") or ()),
                    views=view_levels(config), fov_angles=fov_angle_levels(config),
                    factors=_factors(config.get("factors")) or DEFAULT_FACTORS,
-                   between=_factors(config.get("between")))
+                   between=_factors(config.get("between")),
+                   questionnaires=tuple(_questionnaire(q) for q in config.get("questionnaires") or ()),
+                   horizon=int(horizon) if horizon is not None else None)
+
+    def questionnaires_shown(self, when: str) -> tuple[QuestionnaireDesign, ...]:
+        """The questionnaires shown ``when`` (``after_each_trial`` or ``end_of_study``), in study order."""
+        return tuple(q for q in self.questionnaires if q.when == when)
 
     @property
     def crossed(self) -> tuple[Factor, ...]:
@@ -107,6 +121,36 @@ class Design:
         return [ids[g * size:(g + 1) * size] for g in range(n_groups)]
 
 
+@dataclass(frozen=True, slots=True)
+class ItemDesign:
+    id: str
+    text: str = ""
+    type: str = "rating"
+    """``rating``, ``choice`` or ``text``."""
+    scale: tuple[int, int] | None = None
+    """``(min, max)`` of a rating item's scale."""
+    reverse: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class ScaleDesign:
+    """A named scale: the mean of some of its questionnaire's rating items."""
+
+    id: str
+    title: str
+    items: tuple[str, ...]
+    """Item ids."""
+
+
+@dataclass(frozen=True, slots=True)
+class QuestionnaireDesign:
+    id: str
+    when: str = "after_each_trial"
+    """``after_each_trial`` or ``end_of_study``."""
+    items: tuple[ItemDesign, ...] = ()
+    scales: tuple[ScaleDesign, ...] = ()
+
+
 def view_levels(config: Mapping[str, Any]) -> tuple[ViewName, ...]:
     """The view levels of ``config``: ``views``, else ``(view,)``, else the default (top-down)."""
     views: Sequence[ViewName] | None = config.get("views")
@@ -122,15 +166,33 @@ def fov_angle_levels(config: Mapping[str, Any]) -> tuple[float, ...]:
     angles = config.get("fov_angles")
     if angles:
         return tuple(float(a) for a in angles)
-    world = config.get("world")
-    single = world.get("fov_angle") if isinstance(world, Mapping) else getattr(world, "fov_angle", None)
+    single = _get(config.get("world"), "fov_angle")
     return (float(single) if single is not None else FOV_ANGLE,)
 
 
-def _kitchen_name(kitchen: Any) -> str:
-    if isinstance(kitchen, Mapping):
-        return str(kitchen["name"])
-    return str(getattr(kitchen, "name", kitchen))
+def _get(entry: Any, name: str, default: Any = None) -> Any:
+    """Field ``name`` of a stored (JSON) entry or of a typed one; ``default`` when it has none."""
+    if isinstance(entry, Mapping):
+        return entry.get(name, default)
+    return getattr(entry, name, default)
+
+
+def _questionnaire(entry: Any) -> QuestionnaireDesign:
+    return QuestionnaireDesign(
+        id=str(_get(entry, "id")), when=str(_get(entry, "when") or "after_each_trial"),
+        items=tuple(_item(i) for i in _get(entry, "items") or ()),
+        scales=tuple(ScaleDesign(id=str(_get(s, "id")), title=str(_get(s, "title") or _get(s, "id")),
+                                 items=tuple(str(i) for i in _get(s, "items") or ()))
+                     for s in _get(entry, "scales") or ()))
+
+
+def _item(entry: Any) -> ItemDesign:
+    scale = _get(entry, "scale")
+    low, high = _get(scale, "min"), _get(scale, "max")
+    return ItemDesign(id=str(_get(entry, "id")), text=str(_get(entry, "text") or ""),
+                      type=str(_get(entry, "type") or "rating"),
+                      scale=(int(low), int(high)) if low is not None and high is not None else None,
+                      reverse=bool(_get(entry, "reverse", False)))
 
 
 def _factors(names: Any) -> tuple[Factor, ...]:

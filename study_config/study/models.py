@@ -217,11 +217,12 @@ class Study(StudyModel):
 
     @property
     def design(self) -> Design:
-        """The study's factors and their levels (``study_config/study/design.py``, the one definition of how they
-        cross into conditions)."""
+        """The study's factors and their levels, and its questionnaires (``study_config/study/design.py``, the one
+        definition of how they cross into conditions)."""
         return Design.from_config({"robots": self.robots, "kitchens": self.kitchens, "view": self.view,
                                    "views": self.views, "fov_angles": self.fov_angles, "world": self.world,
-                                   "factors": self.factors, "between": self.between})
+                                   "factors": self.factors, "between": self.between,
+                                   "questionnaires": self.questionnaires})
 
     @property
     def view_levels(self) -> tuple[ViewName, ...]:

@@ -1,6 +1,7 @@
 """The one design reader (study_config/study/design.py): every shipped study keeps its conditions in their order, the
-server's typed study and the store's copy of it (what the analysis reads) give the same conditions, and a study
-stored by an older version (without views, fields of view, between factors or even factors) is still read."""
+server's typed study and the store's copy of it (what the analysis reads) give the same design, and a study stored
+by an older version (without views, fields of view, between factors, factors, or questionnaire defaults) is still
+read."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ from pathlib import Path
 import pytest
 
 from study_config.study import Design, load_study
+from study_config.study.design import ItemDesign, QuestionnaireDesign, ScaleDesign
 
 REPO = Path(__file__).resolve().parents[3]
 SHIPPED = sorted((REPO / "study_config").glob("*.yaml"))
@@ -50,6 +52,15 @@ def test_a_shipped_study_keeps_its_conditions_in_their_order(path: Path) -> None
     study = load_study(path)
     assert [c.id for c in study.conditions] == SHIPPED_CONDITIONS[path.name]
     assert [c.id for c in Design.from_config(stored_config(path)).conditions] == SHIPPED_CONDITIONS[path.name]
+
+
+@pytest.mark.parametrize("path", SHIPPED, ids=lambda p: p.name)
+def test_a_shipped_studys_stored_copy_has_the_typed_studys_whole_design(path: Path) -> None:
+    study = load_study(path)
+    stored = Design.from_config(stored_config(path))
+    assert stored == study.design
+    assert stored.horizon == study.world.horizon
+    assert [q.id for q in stored.questionnaires] == [q.id for q in study.questionnaires]
 
 
 def test_conditions_cross_between_then_within_factors_the_first_slowest(tmp_path: Path) -> None:
@@ -96,3 +107,18 @@ def test_a_stored_study_without_factors_or_world_crosses_robot_and_kitchen() -> 
     assert [c.id for c in design.conditions] == ["stay@none_3", "stay@mid_2"]
     assert design.level_names("fov_angle") == ("120",)  # the paper's angle
     assert design.level_names("view") == ("top_down",)
+
+
+def test_stored_questionnaires_are_read_with_their_defaults() -> None:
+    design = Design.from_config({"robots": ["stay"], "kitchens": ["none_3"], "questionnaires": [
+        {"id": "post", "items": [{"id": "fluent", "text": "Fluent", "scale": {"min": 1, "max": 7}},
+                                 {"id": "why", "type": "text", "text": "Why?"}],
+         "scales": [{"id": "flow", "items": ["fluent"]}]},
+        {"id": "end", "when": "end_of_study", "items": [{"id": "age", "text": "Age", "scale": {"min": 1, "max": 6},
+                                                         "reverse": True}]}]})
+    assert design.questionnaires_shown("after_each_trial") == (QuestionnaireDesign(
+        "post", "after_each_trial",
+        (ItemDesign("fluent", "Fluent", "rating", (1, 7)), ItemDesign("why", "Why?", "text")),
+        (ScaleDesign("flow", "flow", ("fluent",)),)),)
+    assert [i.reverse for q in design.questionnaires_shown("end_of_study") for i in q.items] == [True]
+    assert design.horizon is None
