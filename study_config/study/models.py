@@ -219,25 +219,31 @@ class Study(StudyModel):
     def design(self) -> Design:
         """The study's factors and their levels, and its questionnaires (``study_config/study/design.py``, the one
         definition of how they cross into conditions)."""
-        return Design.from_config({"robots": self.robots, "kitchens": self.kitchens, "view": self.view,
-                                   "views": self.views, "fov_angles": self.fov_angles, "world": self.world,
-                                   "factors": self.factors, "between": self.between,
-                                   "questionnaires": self.questionnaires})
+        return Design.from_config({**self._factor_fields(), "questionnaires": self.questionnaires})
+
+    @property
+    def _crossing(self) -> Design:
+        """:attr:`design` without the questionnaires: all the conditions, orders and groups need."""
+        return Design.from_config(self._factor_fields())
+
+    def _factor_fields(self) -> dict[str, Any]:
+        return {"robots": self.robots, "kitchens": self.kitchens, "view": self.view, "views": self.views,
+                "fov_angles": self.fov_angles, "world": self.world, "factors": self.factors, "between": self.between}
 
     @property
     def view_levels(self) -> tuple[ViewName, ...]:
         """The views trials are played in: ``views``, else ``(view,)``, else the default (top-down)."""
-        return self.design.views
+        return self._crossing.views
 
     @property
     def fov_angle_levels(self) -> tuple[float, ...]:
         """The fields of view trials are played with: ``fov_angles``, else ``(world.fov_angle,)``."""
-        return self.design.fov_angles
+        return self._crossing.fov_angles
 
     @property
     def conditions(self) -> tuple[Condition, ...]:
         """Every robot × kitchen (× view × fov_angle) condition, in study order (first factor slowest)."""
-        return self.design.conditions
+        return self._crossing.conditions
 
     def condition_orders(self) -> list[tuple[str, ...]]:
         """The condition orders participants are assigned to (lists of condition ids); with between factors,
@@ -252,7 +258,7 @@ class Study(StudyModel):
                 for _ in condition_orders(group, scheme.scheme, scheme.order)]
 
     def _groups(self) -> list[list[str]]:
-        return self.design.groups()
+        return self._crossing.groups()
 
     def practice_view(self, practice: Practice) -> ViewName:
         """The view of a practice round: its own ``view``, else the study's first view level."""
