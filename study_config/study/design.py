@@ -46,7 +46,7 @@ DEFAULT_FACTORS: tuple[Factor, ...] = ("robot", "kitchen")
 
 @dataclass(frozen=True, slots=True)
 class Design:
-    """The factors of a study and their levels; :attr:`conditions` is their cross."""
+    """The factors of a study and their levels (:attr:`conditions` is their cross), and what is measured."""
 
     robots: tuple[str, ...]
     kitchens: tuple[str, ...]
@@ -101,7 +101,7 @@ class Design:
     @property
     def conditions(self) -> tuple[Condition, ...]:
         """Every condition, in study order: the factors in :attr:`crossed` order, the first varying slowest; a
-        dimension that is not a factor has one level (its first) and comes last."""
+        dimension that is not a factor has one level (the study's checks see to it) and comes last."""
         crossed = self.crossed
         order = [*crossed, *(f for f in FACTORS if f not in crossed)]
         flags = {"view_is_factor": "view" in crossed, "fov_angle_is_factor": "fov_angle" in crossed}
