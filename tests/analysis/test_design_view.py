@@ -3,6 +3,8 @@ and field-of-view factors the analysis reads the cells the server crosses."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from analysis.design import ExportDesign
 
 
@@ -30,7 +32,7 @@ def test_without_a_view_factor_the_cells_are_robot_by_kitchen_in_study_order() -
     assert design.cell_of("baseline", "mid_2", "first_person") == ("baseline", "mid_2")
 
 
-def test_the_analysis_reads_the_same_cells_as_the_server_crosses_with_view_and_angle_factors(tmp_path) -> None:
+def test_the_analysis_reads_the_same_cells_as_the_server_crosses_with_view_and_angle_factors(tmp_path: Path) -> None:
     """A stored study's configuration gives the analysis the server's conditions, the angle spelt as in the
     ids (``90``), whether the angle is within (with a view factor) or between participants."""
     import json
