@@ -17,7 +17,7 @@ from typing import Any
 import pandas as pd
 from sqlalchemy import Connection
 
-from analysis.design import Design
+from analysis.design import ExportDesign
 from analysis.dictionary import (
     ANSWER_COLUMNS,
     CELL_COLUMNS,
@@ -57,7 +57,7 @@ class Dataset:
     """One study's export: ``tables[file]`` with the documented ``columns[file]``."""
 
     study_id: str
-    design: Design
+    design: ExportDesign
     tables: dict[str, pd.DataFrame]
     columns: dict[str, tuple[Column, ...]]
     config: Mapping[str, Any] = field(default_factory=dict)
@@ -78,7 +78,7 @@ def build_dataset(conn: Connection, study_id: str, include_invalid: bool = False
     """Read the study from the store and build every table of the export (invalid main trials in
     ``cells.csv`` only with ``include_invalid``; simulated pilot participants only with ``include_pilot``)."""
     data = read_study(conn, study_id, include_pilot)
-    design = Design.from_config(data.config)
+    design = ExportDesign.from_config(data.config)
     events = read_events(conn, study_id)
     people = {p.id: p for p in data.participants}
     tick_rows: list[dict[str, Any]] = []
@@ -109,9 +109,9 @@ def build_dataset(conn: Connection, study_id: str, include_invalid: bool = False
     return Dataset(study_id, design, tables, columns, data.config)
 
 
-def export_columns(design: Design) -> dict[str, tuple[Column, ...]]:
+def export_columns(design: ExportDesign) -> dict[str, tuple[Column, ...]]:
     """The columns of every exported file, in order: the one definition both the tables and the data dictionary
-    are built from (the questionnaire columns are :attr:`Design.trial_value_columns` / ``end_value_columns``)."""
+    are built from (the questionnaire columns are :attr:`ExportDesign.trial_value_columns` / ``end_value_columns``)."""
     per_cell = [*(c for c in CELL_COLUMNS if c.name in TRIAL_MEASURES), *design.trial_value_columns]
     return {
         "ticks.csv": TICK_COLUMNS,
@@ -190,7 +190,7 @@ def _answers_by_participant(answers: Iterable[Any]) -> dict[int, dict[int | None
 
 
 def _cell_rows(p: StoredParticipant, used: dict[int, StoredTrial], measures: dict[int, dict[str, Any]],
-               answers: dict[int | None, dict[str, int | None]], design: Design) -> list[dict[str, Any]]:
+               answers: dict[int | None, dict[str, int | None]], design: ExportDesign) -> list[dict[str, Any]]:
     rows = []
     for index, trial in sorted(used.items()):
         row: dict[str, Any] = {"participant": p.public_id, "robot": trial.robot, "kitchen": trial.kitchen,
@@ -203,7 +203,7 @@ def _cell_rows(p: StoredParticipant, used: dict[int, StoredTrial], measures: dic
 
 
 def _questionnaire_values(given: Mapping[str, int | None], items: tuple[tuple[str, str, str], ...],
-                          scales: tuple[ScaleSpec, ...], design: Design) -> dict[str, Any]:
+                          scales: tuple[ScaleSpec, ...], design: ExportDesign) -> dict[str, Any]:
     """The questionnaire columns of one response: each rating or choice item of ``items`` as answered, then each
     scale's score (free-text answers are not among them: they are in ``answers.csv``)."""
     values: dict[str, Any] = {name: given.get(name) for name in design.item_names(items)}
@@ -230,7 +230,8 @@ def _trial_row(p: StoredParticipant, trial: StoredTrial, measures: dict[str, Any
 
 
 def _wide_rows(participants: Sequence[StoredParticipant], cell_rows: list[dict[str, Any]],
-               answers: dict[int, dict[int | None, dict[str, int | None]]], design: Design) -> list[dict[str, Any]]:
+               answers: dict[int, dict[int | None, dict[str, int | None]]],
+               design: ExportDesign) -> list[dict[str, Any]]:
     values = [*TRIAL_MEASURES, *(c.name for c in design.trial_value_columns)]
     by_participant: dict[str, list[dict[str, Any]]] = {}
     for cell_row in cell_rows:
@@ -253,7 +254,7 @@ def _wide_rows(participants: Sequence[StoredParticipant], cell_rows: list[dict[s
     return out
 
 
-def _answer_rows(data: Any, people: dict[int, StoredParticipant], design: Design) -> list[dict[str, Any]]:
+def _answer_rows(data: Any, people: dict[int, StoredParticipant], design: ExportDesign) -> list[dict[str, Any]]:
     trials = {t.id: t for t in data.trials}
     rows = []
     for a in data.answers:

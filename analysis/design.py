@@ -1,30 +1,32 @@
 """The study design as the export needs it, read from the resolved configuration stored with the study.
 
-Conditions are the robot × kitchen (× view, × fov_angle, when these are factors) cross in study order (the first factor
-varies slowest, as in ``study_config.study.conditions``; condition ids are ``robot@kitchen``, ``robot@kitchen@view``,
-``robot@kitchen@angle`` or ``robot@kitchen@view@angle``). A condition's cell is the tuple of its levels in
-:attr:`Design.fields` order: ``(robot, kitchen)``, ``(robot, kitchen, view)``, ``(robot, kitchen, fov_angle)`` or all
-four, an angle spelt as :func:`study_config.study.fov_angles.angle_level` (``90``). Questionnaire items are split into
-those answered after each main trial (one value per condition: measures of the cell) and those answered once at the end
-of the study (one value per participant).
+Conditions are the server's, read by the one design reader (:meth:`study_config.study.Design.from_config`, which
+also reads the configuration an older version stored): the robot × kitchen (× view, × fov_angle, when these are
+factors) cross in study order (the first factor varies slowest; condition ids are ``robot@kitchen``,
+``robot@kitchen@view``, ``robot@kitchen@angle`` or ``robot@kitchen@view@angle``). A condition's cell is the tuple of
+its levels in :attr:`ExportDesign.fields` order: ``(robot, kitchen)``, ``(robot, kitchen, view)``,
+``(robot, kitchen, fov_angle)`` or all four, an angle spelt as :func:`study_config.study.fov_angles.angle_level`
+(``90``). Questionnaire items are split into those
+answered after each main trial (one value per condition: measures of the cell) and those answered once at
+the end of the study (one value per participant).
 
 The columns of ``cells.csv`` and ``wide.csv`` that come from the questionnaires are defined here once
-(:attr:`Design.trial_value_columns`, :attr:`Design.end_value_columns`): the export fills exactly these columns and
-the data dictionary documents exactly these, so a study that validates always exports. Free-text items are not
-among them (their answers are in ``answers.csv``); rating and choice items are, and so is every named scale's
-score (:mod:`analysis.scales`), for questionnaires after each trial and at the end of the study alike.
+(:attr:`ExportDesign.trial_value_columns`, :attr:`ExportDesign.end_value_columns`): the export fills exactly these
+columns and the data dictionary documents exactly these, so a study that validates always exports. Free-text items
+are not among them (their answers are in ``answers.csv``); rating and choice items are, and so is every named
+scale's score (:mod:`analysis.scales`), for questionnaires after each trial and at the end of the study alike.
 """
 
 from __future__ import annotations
 
-import itertools
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 from analysis.dictionary import NUM, Column, item_columns
 from analysis.dictionary_items import item_key as item_column
-from analysis.study_design import RatingItem, ScaleSpec, factor_levels, rating_specs
+from analysis.study_design import RatingItem, ScaleSpec, rating_specs
+from study_config.study import Condition, Design
 from study_config.study.fov_angles import angle_level
 
 CELL_FIELDS = ("robot", "kitchen", "view", "fov_angle")
@@ -32,7 +34,7 @@ CELL_FIELDS = ("robot", "kitchen", "view", "fov_angle")
 
 
 @dataclass(frozen=True, slots=True)
-class Design:
+class ExportDesign:
     robots: tuple[str, ...]
     kitchens: tuple[str, ...]
     conditions: tuple[tuple[str, ...], ...]
@@ -53,31 +55,15 @@ class Design:
     """The fields of a cell: robot, kitchen, then view and fov_angle when they are factors (within or between)."""
 
     @classmethod
-    def from_config(cls, config: dict[str, Any]) -> Design:
-        robots = tuple(str(r) for r in config.get("robots", ()))
-        kitchens = tuple(str(k["name"] if isinstance(k, dict) else k) for k in config.get("kitchens", ()))
-        between = tuple(str(f) for f in config.get("between") or ())
-        factors = (*between, *(str(f) for f in config.get("factors", ("robot", "kitchen"))))
-        levels = {"robot": robots, "kitchen": kitchens}
-        levels.update({f: factor_levels(config, f) for f in CELL_FIELDS[2:] if f in factors})
-        order = [f for f in factors if f in levels] + [f for f in levels if f not in factors]
-        fields = tuple(levels)  # robot, kitchen[, view][, fov_angle]: the cell's field order
-        conditions = tuple(
-            tuple(dict(zip(order, combination, strict=True))[f] for f in fields)
-            for combination in itertools.product(*(levels[f] for f in order)))
-        trial_items: list[tuple[str, str, str]] = []
-        end_items: list[tuple[str, str, str]] = []
-        for questionnaire in config.get("questionnaires", ()):
-            target = end_items if questionnaire.get("when") == "end_of_study" else trial_items
-            for item in questionnaire.get("items", ()):
-                if item.get("type") == "text":
-                    continue  # free text is exported in answers.csv only
-                target.append((str(questionnaire["id"]), str(item["id"]), str(item.get("text", ""))))
-        questionnaires = config.get("questionnaires") or ()
-        trial_ratings, trial_scales = rating_specs(questionnaires, "after_each_trial")
-        end_ratings, end_scales = rating_specs(questionnaires, "end_of_study")
-        return cls(robots, kitchens, conditions, tuple(trial_items), tuple(end_items),
-                   trial_ratings + end_ratings, trial_scales, end_scales, between, fields)
+    def from_config(cls, config: Mapping[str, Any]) -> ExportDesign:
+        design = Design.from_config(config)
+        fields = tuple(f for f in CELL_FIELDS if f in ("robot", "kitchen") or f in design.crossed)
+        conditions = tuple(_cell(c, fields) for c in design.conditions)
+        trial_ratings, trial_scales = rating_specs(design, "after_each_trial")
+        end_ratings, end_scales = rating_specs(design, "end_of_study")
+        return cls(design.robots, design.kitchens, conditions, _valued_items(design, "after_each_trial"),
+                   _valued_items(design, "end_of_study"), trial_ratings + end_ratings, trial_scales, end_scales,
+                   design.between, fields)
 
     def condition_of(self, condition_id: str) -> tuple[str, str] | None:
         """``(robot, kitchen)`` of a condition id (``robot@kitchen``, or ``robot@kitchen@view`` in a study with
@@ -120,6 +106,18 @@ class Design:
 
     def item_names(self, items: tuple[tuple[str, str, str], ...]) -> list[str]:
         return [item_column(q, i) for q, i, _ in items]
+
+
+def _valued_items(design: Design, when: str) -> tuple[tuple[str, str, str], ...]:
+    """(questionnaire, item, text) of the items with a value (not free text: it is exported in answers.csv only)
+    of the questionnaires shown ``when``."""
+    return tuple((q.id, i.id, i.text) for q in design.questionnaires_shown(when) for i in q.items if i.type != "text")
+
+
+def _cell(condition: Condition, fields: tuple[str, ...]) -> tuple[str, ...]:
+    levels = {"robot": condition.robot, "kitchen": condition.kitchen, "view": condition.view,
+              "fov_angle": angle_level(condition.fov_angle)}
+    return tuple(levels[f] for f in fields)
 
 
 def scale_columns(scales: tuple[ScaleSpec, ...]) -> list[Column]:

@@ -17,7 +17,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from analysis.cells import cell_label
-from analysis.design import Design
+from analysis.design import ExportDesign
 from analysis.store_reader import StoredParticipant, StoredTrial, iso_time
 
 INVALID_MARK = "invalid"
@@ -48,7 +48,7 @@ def used_trials(trials: Sequence[StoredTrial], people: dict[int, StoredParticipa
 
 
 def participant_row(p: StoredParticipant, trials: Sequence[StoredTrial], used: Used,
-                    design: Design) -> dict[str, Any]:
+                    design: ExportDesign) -> dict[str, Any]:
     """The participant's participants.csv row."""
     mine = [t for t in trials if t.participant_id == p.id and t.status == "finished"]
     return {
@@ -66,7 +66,7 @@ def participant_row(p: StoredParticipant, trials: Sequence[StoredTrial], used: U
 
 
 def excluded_row(p: StoredParticipant, trials: Sequence[StoredTrial], used: Used,
-                 design: Design) -> dict[str, Any] | None:
+                 design: ExportDesign) -> dict[str, Any] | None:
     """The participant's excluded.csv row, or ``None`` when they are in the complete-case analysis."""
     if flagged(p):
         reasons = (["test run"] if p.test_run else []) + (
@@ -88,7 +88,7 @@ def _category(missing: Sequence[str]) -> str:
     return "low_engagement" if all(f" {INVALID_MARK}: {LOW_ENGAGEMENT}" in m for m in marked) else "invalid"
 
 
-def _missing_cells(p: StoredParticipant, trials: Sequence[StoredTrial], used: Used, design: Design) -> list[str]:
+def _missing_cells(p: StoredParticipant, trials: Sequence[StoredTrial], used: Used, design: ExportDesign) -> list[str]:
     """``missing cell robot=…, kitchen=… (why)`` for each condition without a cell."""
     present = {design.cell_of(t.robot, t.kitchen, t.view, t.fov_angle) for t in used.get(p.id, {}).values()}
     out = []

@@ -1,13 +1,13 @@
 """Reading a study from the store: SQLAlchemy Core queries of the store's tables, never the running server.
 
-The table definitions come from ``store.tables`` (the schema only: no app, route, game or flow code is imported; data
-flows one way: server writes, analysis reads). Everything is returned as frozen records, so the measures and the export
-are pure functions of what is stored. Large columns the analysis does not need (the full KB state, the robot's decision
-record) are never loaded.
+The table definitions come from ``store.tables`` (the schema only: no app, route, game or flow
+code is imported; data flows one way: server writes, analysis reads). Everything is returned as frozen records, so
+the measures and the export are pure functions of what is stored. Large columns the analysis does not need (the full KB
+state, the robot's decision record) are never loaded.
 
 A study can be exported while a server keeps writing to it, so the reads of one export must see one
-snapshot: :func:`open_engine` gives engines whose transactions are snapshots (SQLite: an explicit deferred
-``BEGIN``, which in WAL mode reads one version of the file and takes no write lock; PostgreSQL:
+snapshot: :func:`open_engine` gives the store's snapshot engine (:func:`store.engine.snapshot_engine`: SQLite an
+explicit deferred ``BEGIN``, which in WAL mode reads one version of the file and takes no write lock; PostgreSQL
 ``REPEATABLE READ``), and the caller reads everything on one connection.
 """
 
@@ -15,16 +15,15 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from datetime import datetime
-from pathlib import Path
 from typing import Any
 
 from alembic.runtime.migration import MigrationContext
 from alembic.script import ScriptDirectory
-from sqlalchemy import Connection, Engine, create_engine, event, inspect, select
-from sqlalchemy.engine import make_url
+from sqlalchemy import Connection, Engine, inspect, select
 from sqlalchemy.exc import SQLAlchemyError
 
 from analysis.errors import AnalysisInputError
+from store.engine import NoStoreError, snapshot_engine
 from store.migrate import alembic_config
 from store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, StudyRow, TickRow, TrialRow
 
@@ -166,26 +165,12 @@ class StudyData:
 
 
 def open_engine(url: str) -> Engine:
-    """An engine for reading the store at ``url``; a SQLite file that does not exist is an error (reading
-    must never create an empty database)."""
-    parsed = make_url(url)
-    if parsed.get_backend_name() != "sqlite":
-        return create_engine(url, isolation_level="REPEATABLE READ")
-    database = parsed.database or ""
-    if not database or database == ":memory:" or not Path(database).expanduser().is_file():
-        raise StoreReadError(f"no store at {url}: the SQLite file does not exist")
-    engine = create_engine(url)
-    event.listen(engine, "connect", _sqlite_connect)
-    event.listen(engine, "begin", _sqlite_begin)
-    return engine
-
-
-def _sqlite_connect(dbapi_connection: Any, _record: Any) -> None:
-    dbapi_connection.isolation_level = None
-
-
-def _sqlite_begin(conn: Any) -> None:
-    conn.exec_driver_sql("BEGIN")
+    """An engine for reading the store at ``url`` (the store's snapshot engine); a SQLite file that does not exist
+    is an error (reading must never create an empty database)."""
+    try:
+        return snapshot_engine(url)
+    except NoStoreError as exc:
+        raise StoreReadError(str(exc)) from exc
 
 
 def study_ids(conn: Connection) -> list[str]:

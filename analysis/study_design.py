@@ -1,11 +1,10 @@
 """The design a stored study declares, as the statistics need it: within factors with their levels in the study's
 order, the horizon, and the after-trial rating items and scales.
 
-Read from the resolved configuration stored with the study (``studies.config``):
+Read from the resolved configuration stored with the study (``studies.config``) by the one design reader
+(:meth:`study_config.study.Design.from_config`, which also reads the configuration an older version stored):
 
-* factors: ``factors`` (default ``[robot, kitchen]``); the levels of ``robot`` are ``robots``, of ``kitchen`` the
-  names in ``kitchens``, of ``view`` the ``views`` (or the single ``view``), of ``fov_angle`` the ``fov_angles`` (or
-  the single ``world.fov_angle``), spelt as :func:`study_config.study.fov_angles.angle_level`. A factor named in
+* factors and their levels, an angle spelt as :func:`study_config.study.fov_angles.angle_level`. A factor named in
   ``factors`` with a single level is not a factor of the analysis (it is reported as such).
 * questionnaire items: ``type`` ``rating`` (the default) are analysed, with their ``scale`` range and
   ``reverse: true`` for reverse-coded items; ``choice`` (a nominal index) and ``text`` items are not.
@@ -22,12 +21,7 @@ from typing import Any
 
 from analysis.dictionary_items import item_key as item_column
 from analysis.dictionary_items import scale_key
-from planner.perception import FOV_ANGLE
-from study_config.study.fov_angles import angle_level
-
-LEVEL_KEYS = {"robot": ("robots", "robot"), "kitchen": ("kitchens", "kitchen"), "view": ("views", "view")}
-"""Config keys listing a factor's levels, then the key of its single level."""
-DEFAULT_FACTORS = ("robot", "kitchen")
+from study_config.study import Design
 
 
 @dataclass(frozen=True, slots=True)
@@ -62,56 +56,29 @@ class StudyDesign:
 
     @classmethod
     def from_config(cls, config: Mapping[str, Any]) -> StudyDesign:
-        declared = tuple(str(f) for f in config.get("factors") or DEFAULT_FACTORS)
-        between = tuple(str(f) for f in config.get("between") or ())
-        levels = {f: factor_levels(config, f) for f in (*declared, *between)}
+        design = Design.from_config(config)
+        declared, between = design.factors, design.between
+        levels = {f: design.level_names(f) for f in (*declared, *between)}
         factors = tuple(f for f in declared if len(levels[f]) > 1)
-        world = config.get("world") or {}
-        horizon = world.get("horizon") if isinstance(world, Mapping) else None
-        items, scales = rating_specs(config.get("questionnaires") or (), "after_each_trial")
+        items, scales = rating_specs(design, "after_each_trial")
         return cls(factors, {f: levels[f] for f in (*factors, *between)},
-                   tuple(f for f in declared if f not in factors), int(horizon) if horizon is not None else None,
-                   items, scales, between)
+                   tuple(f for f in declared if f not in factors), design.horizon, items, scales, between)
 
     @property
     def rating_columns(self) -> tuple[str, ...]:
         return tuple(i.column for i in self.items) + tuple(s.column for s in self.scales)
 
 
-def factor_levels(config: Mapping[str, Any], factor: str) -> tuple[str, ...]:
-    """The levels of ``factor`` in the study's order (``kitchens`` entries may be ``{name: ...}`` mappings)."""
-    if factor == "fov_angle":
-        world = config.get("world") or {}
-        single = world.get("fov_angle", FOV_ANGLE) if isinstance(world, Mapping) else FOV_ANGLE
-        return tuple(angle_level(float(a)) for a in config.get("fov_angles") or [single])
-    many, one = LEVEL_KEYS.get(factor, (f"{factor}s", factor))
-    values = config.get(many)
-    if not values:
-        values = [config[one]] if config.get(one) is not None else []
-    return tuple(str(v["name"]) if isinstance(v, Mapping) else str(v) for v in values)
-
-
-def rating_specs(questionnaires: Any, when: str) -> tuple[tuple[RatingItem, ...], tuple[ScaleSpec, ...]]:
+def rating_specs(design: Design, when: str) -> tuple[tuple[RatingItem, ...], tuple[ScaleSpec, ...]]:
     """The rating items and named scales of the questionnaires shown ``when`` (``after_each_trial`` or
-    ``end_of_study``), in study order."""
+    ``end_of_study``), in study order, as analysis columns."""
     items: list[RatingItem] = []
     scales: list[ScaleSpec] = []
-    for q in questionnaires:
-        if q.get("when", "after_each_trial") != when:
-            continue
-        qid = str(q["id"])
-        mine = {}
-        for item in q.get("items", ()):
-            scale = item.get("scale") or {}
-            if item.get("type", "rating") != "rating" or "min" not in scale or "max" not in scale:
-                continue
-            rating = RatingItem(item_column(qid, str(item["id"])), int(scale["min"]), int(scale["max"]),
-                                bool(item.get("reverse", False)))
-            mine[str(item["id"])] = rating
-            items.append(rating)
-        item_ids = {str(i["id"]) for i in q.get("items", ())}
-        for spec in q.get("scales", ()) or ():
-            members = tuple(mine[i].column for i in spec.get("items", ()) if i in mine)
-            scales.append(ScaleSpec(scale_key(qid, str(spec["id"]), item_ids), str(spec.get("title") or spec["id"]),
-                                    members))
+    for q in design.questionnaires_shown(when):
+        mine = {i.id: RatingItem(item_column(q.id, i.id), *i.scale, reverse=i.reverse)
+                for i in q.items if i.type == "rating" and i.scale is not None}
+        items.extend(mine.values())
+        item_ids = {i.id for i in q.items}
+        scales.extend(ScaleSpec(scale_key(q.id, spec.id, item_ids), spec.title,
+                                tuple(mine[i].column for i in spec.items if i in mine)) for spec in q.scales)
     return tuple(items), tuple(scales)

@@ -1,10 +1,16 @@
-"""The store's engine and transactions, tuned per database.
+"""The store's engines and transactions, tuned per database: one set-up for the server's writing engine and the
+analysis's reading one.
 
 SQLite (the default) is opened in WAL mode with ``synchronous=NORMAL`` (a committed transaction survives a
 killed process), foreign keys on and a 30 s busy timeout; every transaction starts with
 ``BEGIN IMMEDIATE``, so two writers never interleave a read-then-write (the condition assignment relies on
 it) and concurrent writers queue instead of failing. PostgreSQL runs at READ COMMITTED; transactions that
 must not interleave take a row lock (``SELECT ... FOR UPDATE``, see :mod:`store.assignment`).
+
+A store is read (the analysis's export, ``analysis/store_reader.py``) while a server may keep writing to it, so
+:func:`snapshot_engine` gives engines whose transactions are snapshots: SQLite starts them with a deferred
+``BEGIN`` (in WAL mode it reads one version of the file and takes no write lock), PostgreSQL runs them at
+REPEATABLE READ. Reading never creates a database: a SQLite file that does not exist is an error.
 """
 
 from __future__ import annotations
@@ -48,7 +54,7 @@ class Store:
                 conn.execute(text("SELECT 1"))
                 conn.rollback()
             return True
-        except Exception:
+        except Exception:  # any failure means "not healthy"
             return False
 
     def migrate(self) -> None:
@@ -61,6 +67,28 @@ class Store:
         self.engine.dispose()
 
 
+class NoStoreError(FileNotFoundError):
+    """A store to be read does not exist (reading never creates one)."""
+
+
+def snapshot_engine(url: str) -> Engine:
+    """An engine for reading the store at ``url`` while others may write to it: each transaction reads one
+    snapshot (see the module's docstring). Raises :class:`NoStoreError` for a SQLite file that does not exist."""
+    parsed = make_url(url)
+    if parsed.get_backend_name() != "sqlite":
+        return create_engine(url, isolation_level="REPEATABLE READ")
+    database = parsed.database or ""
+    if not database or database == ":memory:" or not Path(database).expanduser().is_file():
+        raise NoStoreError(f"no store at {url}: the SQLite file does not exist")
+    engine = create_engine(url, connect_args=_SQLITE_ARGS)
+    event.listen(engine, "connect", _sqlite_session)
+    event.listen(engine, "begin", _sqlite_begin_snapshot)
+    return engine
+
+
+_SQLITE_ARGS = {"timeout": SQLITE_BUSY_MS / 1000, "check_same_thread": False}
+
+
 def _create_engine(url: str) -> Engine:
     parsed = make_url(url)
     if parsed.get_backend_name() == "sqlite":
@@ -68,18 +96,26 @@ def _create_engine(url: str) -> Engine:
         if not database or database == ":memory:":
             raise ValueError("the SQLite store needs a file (sqlite:///path/to/file.sqlite3)")
         Path(database).expanduser().resolve().parent.mkdir(parents=True, exist_ok=True)
-        engine = create_engine(url, pool_size=10, max_overflow=30, pool_timeout=60,
-                               connect_args={"timeout": SQLITE_BUSY_MS / 1000, "check_same_thread": False})
+        engine = create_engine(url, pool_size=10, max_overflow=30, pool_timeout=60, connect_args=_SQLITE_ARGS)
         event.listen(engine, "connect", _sqlite_connect)
         event.listen(engine, "begin", _sqlite_begin)
         return engine
     return create_engine(url, pool_size=10, max_overflow=30, pool_timeout=60, pool_pre_ping=True)
 
 
-def _sqlite_connect(dbapi_connection: Any, _record: Any) -> None:
+def _sqlite_session(dbapi_connection: Any, _record: Any) -> None:
+    """Every SQLite connection: transactions begun by the engine's ``begin`` hook (not by the driver), and the
+    busy timeout."""
     dbapi_connection.isolation_level = None
     cursor = dbapi_connection.cursor()
     cursor.execute(f"PRAGMA busy_timeout={SQLITE_BUSY_MS}")
+    cursor.close()
+
+
+def _sqlite_connect(dbapi_connection: Any, record: Any) -> None:
+    """A writing connection: also WAL, ``synchronous=NORMAL`` and foreign keys."""
+    _sqlite_session(dbapi_connection, record)
+    cursor = dbapi_connection.cursor()
     _enable_wal(cursor)
     for pragma in ("synchronous=NORMAL", "foreign_keys=ON"):
         cursor.execute(f"PRAGMA {pragma}")
@@ -104,3 +140,7 @@ def _enable_wal(cursor: Any) -> None:
 
 def _sqlite_begin(conn: Any) -> None:
     conn.exec_driver_sql("BEGIN IMMEDIATE")
+
+
+def _sqlite_begin_snapshot(conn: Any) -> None:
+    conn.exec_driver_sql("BEGIN")

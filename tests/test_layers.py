@@ -1,12 +1,16 @@
 """The layers of docs/architecture.md hold: each top-level package imports only the layers it may.
 
 Data flows one way (study_config → server → store → analysis; the planner below them all). An import that runs
-back up, or a tie between two top-level packages in both directions, fails here with the file and line.
+back up, or a tie between two top-level packages in both directions, fails here with the file and line. In the
+browser's modules, static/js/game/ (the top-down game) imports nothing of static/js/firstperson/ (the 3D view,
+which draws with the game's palette and stations); static/js/views.js chooses between the two.
 """
 
 from __future__ import annotations
 
 import ast
+import posixpath
+import re
 from pathlib import Path
 
 import pytest
@@ -74,3 +78,44 @@ def test_the_rule_catches_an_import_that_runs_back_up(tmp_path: Path) -> None:
 def test_no_two_top_level_packages_import_each_other() -> None:
     edges = {(package, target) for package in PACKAGES for _, _, target in package_imports(package)}
     assert sorted((a, b) for a, b in edges if (b, a) in edges) == []
+
+
+@pytest.mark.parametrize("package", ["analysis", "pilot"])
+def test_the_analysis_and_the_pilot_import_nothing_of_the_server(package: str) -> None:
+    assert [f"{rel}:{line}" for rel, line, target in package_imports(package) if target == "server"] == []
+
+
+JS = REPO / "static" / "js"
+_JS_IMPORT = re.compile(r"""(?:\bfrom\s*|\bimport\s*\(?\s*)["']([^"']+)["']""")
+
+
+def js_imports(source: str, folder: str) -> list[tuple[int, str]]:
+    """(line, module path relative to static/js) of every static or dynamic import of a relative module in the
+    ``source`` of a module in ``folder`` (relative to static/js)."""
+    found: list[tuple[int, str]] = []
+    for number, line in enumerate(source.splitlines(), start=1):
+        if line.lstrip().startswith(("*", "//", "/*")):
+            continue
+        found.extend((number, posixpath.normpath(posixpath.join(folder, spec)))
+                     for spec in _JS_IMPORT.findall(line) if spec.startswith("."))
+    return found
+
+
+def module_imports(path: Path) -> list[tuple[int, str]]:
+    return js_imports(path.read_text(encoding="utf-8"), path.parent.relative_to(JS).as_posix())
+
+
+def test_the_game_modules_import_nothing_of_the_first_person_view() -> None:
+    bad = [f"{path.relative_to(REPO).as_posix()}:{line} imports {target}"
+           for path in sorted((JS / "game").rglob("*.js"))
+           for line, target in module_imports(path) if target.startswith("firstperson/")]
+    assert bad == []
+
+
+def test_the_js_rule_sees_static_and_dynamic_imports() -> None:
+    source = ('import { A } from "../firstperson/steering.js";\n'
+              'const v = import("../firstperson/view.js");\n'
+              '/** see ../firstperson/ in a comment */\nimport { h } from "../dom.js";\n')
+    assert js_imports(source, "game") == [(1, "firstperson/steering.js"), (2, "firstperson/view.js"), (4, "dom.js")]
+    assert [t for _, t in module_imports(JS / "views.js")] == [
+        "game/renderer.js", "firstperson/steering.js", "firstperson/view.js"]

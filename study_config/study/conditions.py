@@ -1,10 +1,8 @@
-"""Experimental conditions: one robot in one kitchen (seen in one view, at one field-of-view angle), crossed over
-the study's factors."""
+"""Experimental conditions: one robot in one kitchen (seen in one view, at one field-of-view angle). The study's
+factors cross into them in ``study_config/study/design.py``."""
 
 from __future__ import annotations
 
-import itertools
-from collections.abc import Mapping, Sequence
 from typing import Literal
 
 from planner.perception import FOV_ANGLE
@@ -49,14 +47,3 @@ def condition_id(robot: str, kitchen: str, view: str | None = None, fov_angle: f
     parts = [robot, kitchen, *([view] if view is not None else []),
              *([angle_level(fov_angle)] if fov_angle is not None else [])]
     return "@".join(parts)
-
-
-def cross_conditions(levels: Mapping[Factor, Sequence[object]], factors: Sequence[Factor]) -> tuple[Condition, ...]:
-    """The cross product of every factor's ``levels``: the factors in ``factors`` order, the first varying
-    slowest; a dimension that is not a factor has one level and comes last."""
-    order = [*factors, *(f for f in FACTORS if f not in factors)]
-    flags = {"view_is_factor": "view" in factors, "fov_angle_is_factor": "fov_angle" in factors}
-    return tuple(
-        Condition.model_validate({**dict(zip(order, combination, strict=True)), **flags})
-        for combination in itertools.product(*(levels[f] for f in order))
-    )

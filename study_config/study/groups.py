@@ -1,8 +1,9 @@
 """Factors between participants: the study's groups and what cannot be balanced.
 
-A study's ``between`` factors (robot, kitchen, view, fov_angle) are crossed before its within ``factors``, so the
-conditions of one group (one combination of between levels) form one consecutive block of the condition list, and each
-group's within conditions are counterbalanced on their own: the study's orders are group 0's orders, then group
+A study's ``between`` factors (robot, kitchen, view, fov_angle) are crossed before its within ``factors``
+(``study_config/study/design.py``, which also cuts the condition list into groups), so the conditions of one group
+(one combination of between levels) form one consecutive block of the condition list, and each group's within
+conditions are counterbalanced on their own: the study's orders are group 0's orders, then group
 1's, and so on. A participant is assigned to one order, hence to one group (``store/group_assignment.py``
 fills the groups in balance, then the orders inside the chosen group).
 
@@ -12,33 +13,9 @@ a ``fixed`` order (one order cannot hold the conditions of several groups).
 
 from __future__ import annotations
 
-import math
-from collections.abc import Mapping, Sequence
-from typing import Any
+from collections.abc import Sequence
 
 from study_config.study.base import Loc
-from study_config.study.views import DEFAULT_VIEW
-
-LEVEL_FIELDS = {"robot": "robots", "kitchen": "kitchens"}
-
-
-def level_count(data: Mapping[str, Any], factor: str) -> int:
-    """How many levels ``factor`` has in the (partly validated) study ``data``."""
-    if factor == "view":
-        return len(data.get("views") or [data.get("view") or DEFAULT_VIEW])
-    if factor == "fov_angle":
-        return len(data.get("fov_angles") or [None])  # without levels: the one world.fov_angle
-    return len(data.get(LEVEL_FIELDS[factor]) or ())
-
-
-def groups_of(ids: Sequence[str], data: Mapping[str, Any]) -> list[list[str]]:
-    """The condition ids of each group, in study order (one group holding every id without between factors)."""
-    between = tuple(data.get("between") or ())
-    n_groups = math.prod(level_count(data, f) for f in between) if between else 1
-    if n_groups < 1 or len(ids) % n_groups:
-        return [list(ids)]
-    size = len(ids) // n_groups
-    return [list(ids[g * size:(g + 1) * size]) for g in range(n_groups)]
 
 
 def between_problems(factors: Sequence[str], between: Sequence[str]) -> list[tuple[Loc, str]]:

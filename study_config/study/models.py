@@ -27,18 +27,19 @@ from study_config.study.base import (
     raise_problems,
     robot_problem,
 )
-from study_config.study.conditions import Condition, Factor, cross_conditions
+from study_config.study.conditions import Condition, Factor
 from study_config.study.counterbalance import MAX_FULL_CONDITIONS, condition_orders
+from study_config.study.design import Design, view_levels
 from study_config.study.device import DeviceRequirements
 from study_config.study.fov_angles import angle_level
-from study_config.study.groups import between_problems, groups_of, scheme_problems
+from study_config.study.groups import between_problems, scheme_problems
 from study_config.study.kitchens import Kitchen, KitchenEntry, base_dir_of, entry_name, resolve_kitchens
 from study_config.study.questionnaire import Questionnaire
 from study_config.study.quiz import Quiz
 from study_config.study.sections import Assignment, Counterbalancing, Practice, Reconnect, Recruiting, Timing, World
 from study_config.study.texts import DEFAULT_CONSENT, DEFAULT_INSTRUCTIONS
 from study_config.study.validity import Validity
-from study_config.study.views import DEFAULT_VIEW, ViewName
+from study_config.study.views import ViewName
 
 _FACTOR_LEVELS = {"robot": "robots", "kitchen": "kitchens", "view": "views", "fov_angle": "fov_angles"}
 
@@ -68,8 +69,8 @@ class Study(StudyModel):
     (``study_config.study.fov_angles``). Without it every trial has ``world.fov_angle``; write one of the two."""
     between: tuple[Factor, ...] = ()
     """Factors between participants (``robot``, ``kitchen``, ``view``, ``fov_angle``), e.g. ``[view]`` with
-    ``views: [top_down, first_person]``: each participant plays one level (one group per combination of levels), groups
-    are filled in balance, and the within ``factors`` are counterbalanced inside each group
+    ``views: [top_down, first_person]``: each participant plays one level (one group per combination of levels),
+    groups are filled in balance, and the within ``factors`` are counterbalanced inside each group
     (``study_config/study/groups.py``)."""
     factors: Annotated[tuple[Factor, ...], NotEmpty] = Field(default=("robot", "kitchen"), validate_default=True)
     """Within-subject factors (``robot``, ``kitchen``, ``view``, ``fov_angle``), crossed into the conditions; the
@@ -178,9 +179,10 @@ class Study(StudyModel):
         if not all(data.get(field) is not None for field in ("kitchens", "robots", "factors")) or not all(
                 field in data for field in ("view", "views", "fov_angles")):
             return value
-        ids = [c.id for c in _conditions(data)]
+        design = Design.from_config(data)
+        ids = [c.id for c in design.conditions]
         problems: list[tuple[Loc, str]] = list(scheme_problems(value.scheme, tuple(data.get("between") or ())))
-        per_group = len(ids) // len(groups_of(ids, data))
+        per_group = len(ids) // len(design.groups())
         if value.scheme == "full" and per_group > MAX_FULL_CONDITIONS:
             problems.append(
                 (("scheme",), f"full counterbalancing of {per_group} conditions gives too many orders; "
@@ -214,23 +216,34 @@ class Study(StudyModel):
         return value
 
     @property
+    def design(self) -> Design:
+        """The study's factors and their levels, and its questionnaires (``study_config/study/design.py``, the one
+        definition of how they cross into conditions)."""
+        return Design.from_config({**self._factor_fields(), "questionnaires": self.questionnaires})
+
+    @property
+    def _crossing(self) -> Design:
+        """:attr:`design` without the questionnaires: all the conditions, orders and groups need."""
+        return Design.from_config(self._factor_fields())
+
+    def _factor_fields(self) -> dict[str, Any]:
+        return {"robots": self.robots, "kitchens": self.kitchens, "view": self.view, "views": self.views,
+                "fov_angles": self.fov_angles, "world": self.world, "factors": self.factors, "between": self.between}
+
+    @property
     def view_levels(self) -> tuple[ViewName, ...]:
         """The views trials are played in: ``views``, else ``(view,)``, else the default (top-down)."""
-        return _view_levels({"view": self.view, "views": self.views})
+        return self._crossing.views
 
     @property
     def fov_angle_levels(self) -> tuple[float, ...]:
         """The fields of view trials are played with: ``fov_angles``, else ``(world.fov_angle,)``."""
-        return self.fov_angles or (self.world.fov_angle,)
+        return self._crossing.fov_angles
 
     @property
     def conditions(self) -> tuple[Condition, ...]:
         """Every robot × kitchen (× view × fov_angle) condition, in study order (first factor slowest)."""
-        return _conditions(self._level_data())
-
-    def _level_data(self) -> dict[str, Any]:
-        return {"robots": self.robots, "kitchens": self.kitchens, "view": self.view, "views": self.views,
-                "fov_angles": self.fov_angles, "world": self.world, "factors": self.factors, "between": self.between}
+        return self._crossing.conditions
 
     def condition_orders(self) -> list[tuple[str, ...]]:
         """The condition orders participants are assigned to (lists of condition ids); with between factors,
@@ -245,7 +258,7 @@ class Study(StudyModel):
                 for _ in condition_orders(group, scheme.scheme, scheme.order)]
 
     def _groups(self) -> list[list[str]]:
-        return groups_of([c.id for c in self.conditions], self._level_data())
+        return self._crossing.groups()
 
     def practice_view(self, practice: Practice) -> ViewName:
         """The view of a practice round: its own ``view``, else the study's first view level."""
@@ -290,29 +303,14 @@ class Study(StudyModel):
         return hashlib.sha256(self.canonical_json().encode("utf-8")).hexdigest()
 
 
-def _view_levels(data: dict[str, Any]) -> tuple[ViewName, ...]:
-    views: tuple[ViewName, ...] | None = data.get("views")
-    if views:
-        return views
-    view: ViewName | None = data.get("view")
-    return (view or DEFAULT_VIEW,)
-
-
 def _factor_levels(info: ValidationInfo, factor: str, field: str) -> Any:
     """The levels of ``factor`` for the checks of ``factors``: a view or a field of view not given as levels is
     one level (the study's ``view`` or ``world.fov_angle``)."""
     if factor == "view":
-        return _view_levels(info.data)
+        return view_levels(info.data)
     if factor == "fov_angle":
         return _levels(info, field) or (FOV_ANGLE,)
     return _levels(info, field)
-
-
-def _fov_levels(data: dict[str, Any]) -> tuple[float, ...]:
-    """``fov_angles``, else the world's angle (the paper's while ``world`` is not validated yet: it is not part of
-    a condition's id then, and ids are all the checks before ``world`` need)."""
-    world = data.get("world")
-    return data.get("fov_angles") or (world.fov_angle if isinstance(world, World) else FOV_ANGLE,)
 
 
 def _remember_levels(info: ValidationInfo, field: str, names: list[str | None]) -> None:
@@ -329,11 +327,3 @@ def _levels(info: ValidationInfo, field: str) -> Any:
         return info.data[field]
     context = info.context if isinstance(info.context, dict) else {}
     return context.get("levels_as_written", {}).get(field)
-
-
-def _conditions(data: dict[str, Any]) -> tuple[Condition, ...]:
-    kitchens = [k if isinstance(k, str) else k.name for k in data["kitchens"]]
-    levels: dict[Factor, Sequence[object]] = {"robot": data["robots"], "kitchen": kitchens,
-                                              "view": _view_levels(data), "fov_angle": _fov_levels(data)}
-    return cross_conditions(levels, [*(data.get("between") or ()), *data["factors"]])
-

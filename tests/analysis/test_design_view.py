@@ -3,11 +3,13 @@ and field-of-view factors the analysis reads the cells the server crosses."""
 
 from __future__ import annotations
 
-from analysis.design import Design
+from pathlib import Path
+
+from analysis.design import ExportDesign
 
 
 def test_condition_ids_with_a_view_name_their_robot_and_kitchen() -> None:
-    design = Design.from_config({"robots": ["fov_aware"], "kitchens": [{"name": "none_3"}], "factors": ["view"],
+    design = ExportDesign.from_config({"robots": ["fov_aware"], "kitchens": [{"name": "none_3"}], "factors": ["view"],
                                  "views": ["top_down", "first_person"]})
     assert design.condition_of("fov_aware@none_3@first_person") == ("fov_aware", "none_3")
     assert design.condition_of("fov_aware@none_3") == ("fov_aware", "none_3")
@@ -15,7 +17,7 @@ def test_condition_ids_with_a_view_name_their_robot_and_kitchen() -> None:
 
 
 def test_a_view_factor_makes_every_robot_kitchen_view_cell_a_condition() -> None:
-    design = Design.from_config({"robots": ["fov_aware", "baseline"], "kitchens": ["none_3"],
+    design = ExportDesign.from_config({"robots": ["fov_aware", "baseline"], "kitchens": ["none_3"],
                                  "factors": ["robot", "kitchen", "view"], "views": ["top_down", "first_person"]})
     assert design.conditions == (("fov_aware", "none_3", "top_down"), ("fov_aware", "none_3", "first_person"),
                                  ("baseline", "none_3", "top_down"), ("baseline", "none_3", "first_person"))
@@ -23,14 +25,14 @@ def test_a_view_factor_makes_every_robot_kitchen_view_cell_a_condition() -> None
 
 
 def test_without_a_view_factor_the_cells_are_robot_by_kitchen_in_study_order() -> None:
-    design = Design.from_config({"robots": ["fov_aware", "baseline"], "kitchens": ["none_3", "mid_2"],
+    design = ExportDesign.from_config({"robots": ["fov_aware", "baseline"], "kitchens": ["none_3", "mid_2"],
                                  "factors": ["kitchen", "robot"]})
     assert design.conditions == (("fov_aware", "none_3"), ("baseline", "none_3"),
                                  ("fov_aware", "mid_2"), ("baseline", "mid_2"))
     assert design.cell_of("baseline", "mid_2", "first_person") == ("baseline", "mid_2")
 
 
-def test_the_analysis_reads_the_same_cells_as_the_server_crosses_with_view_and_angle_factors(tmp_path) -> None:
+def test_the_analysis_reads_the_same_cells_as_the_server_crosses_with_view_and_angle_factors(tmp_path: Path) -> None:
     """A stored study's configuration gives the analysis the server's conditions, the angle spelt as in the
     ids (``90``), whether the angle is within (with a view factor) or between participants."""
     import json
@@ -43,7 +45,7 @@ def test_the_analysis_reads_the_same_cells_as_the_server_crosses_with_view_and_a
         path = tmp_path / "study.yaml"
         path.write_text("id: t\ntitle: T\nkitchens: [none_3]\nrobots: [fov_aware, baseline]\n" + factors)
         study = load_study(path)
-        design = Design.from_config(json.loads(study.canonical_json()))
+        design = ExportDesign.from_config(json.loads(study.canonical_json()))
         assert design.fields == ("robot", "kitchen", "view", "fov_angle")
         assert ["@".join(cell) for cell in design.conditions] == [c.id for c in study.conditions]
         first = study.conditions[-1]

@@ -2,7 +2,7 @@
  * The first-person kitchen: a WebGL canvas showing the server's `state` messages through the cook's eyes
  * (the participant's view of a `first_person` study, docs/client.md). The same interface as the top-down
  * KitchenView (`setGrid`, `update`, `destroy`) plus `configure(hello)` for the field of view and the tick
- * period. The participant's page wraps it with the keys relative to the view (game/views.js); the admin's
+ * period. The participant's page wraps it with the keys relative to the view (static/js/views.js); the admin's
  * replay shows it as the participant's camera.
  *
  * Frames are drawn in requestAnimationFrame while something glides between two ticks (motion.js) or after a

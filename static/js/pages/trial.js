@@ -10,7 +10,7 @@
 
 import { h, show } from "../dom.js";
 import { GameConnection, Link } from "../game/connection.js";
-import { kitchenViewFor } from "../game/views.js";
+import { kitchenViewFor } from "../views.js";
 import { Hud } from "../game/hud.js";
 import { Controls } from "../game/controls.js";
 import { Activity } from "../game/activity.js";

@@ -1,13 +1,14 @@
 /**
  * The kitchen view a round is drawn with, chosen by the server's `hello.view`: the top-down canvas
- * (renderer.js) or the first-person 3D view (../firstperson/, loaded only when a round needs it, so a
- * top-down participant never downloads three.js). Both answer the same calls: `configure(hello)`,
+ * (game/renderer.js) or the first-person 3D view (firstperson/, loaded only when a round needs it, so a
+ * top-down participant never downloads three.js). It sits above both: game/ imports nothing of firstperson/
+ * (firstperson/ draws with game/'s palette and stations), so the choice between them is made here. Both answer the same calls: `configure(hello)`,
  * `update(state)`, `interruptFor(action)` (the interrupt a key or button sends: the same for top-down,
  * relative to the view in first person), `interruptSent(seq)`, `interruptLabels` and `destroy()`.
  */
 
-import { KitchenView } from "./renderer.js";
-import { RELATIVE_LABELS, Steering } from "../firstperson/steering.js";
+import { KitchenView } from "./game/renderer.js";
+import { RELATIVE_LABELS, Steering } from "./firstperson/steering.js";
 
 class TopDown {
   constructor(stage, canvas) {
@@ -35,7 +36,7 @@ class TopDown {
 }
 
 /**
- * The first-person view with keys relative to the view (steering.js). The 3D module is loaded on first use;
+ * The first-person view with keys relative to the view (firstperson/steering.js). The 3D module is loaded on first use;
  * calls made before it is there are replayed (the fixed facts and the latest state).
  */
 class FirstPerson {
@@ -46,7 +47,7 @@ class FirstPerson {
     this.gone = false;
     this.steering = new Steering();
     this.interruptLabels = RELATIVE_LABELS;
-    this.ready = import("../firstperson/view.js").then(({ FirstPersonView }) => {
+    this.ready = import("./firstperson/view.js").then(({ FirstPersonView }) => {
       if (this.gone) return;
       canvas.remove();
       this.inner = new FirstPersonView(stage, options);
