@@ -18,6 +18,7 @@ import pandas as pd
 
 from analysis.anova import rm_anova
 from analysis.cells import factor_levels, slices
+from analysis.paired import paired_difference
 
 SIMPLE_EFFECT_COLUMNS = [
     "factor", "at", "df1", "df2", "MSE", "F", "p", "ges", "eps_gg", "eps_hf", "correction",
@@ -48,8 +49,6 @@ def slice_effect(part: pd.DataFrame, dv: str, factor: str, subject: str, label: 
     row.insert(1, "at", label)
     levels = factor_levels(part, factor)
     if len(levels) == 2:
-        from analysis.pairwise import paired_difference
-
         wide = part.pivot_table(index=subject, columns=factor, values=dv, observed=True)[levels]
         diff = paired_difference(wide[levels[0]].to_numpy(float), wide[levels[1]].to_numpy(float))
         row = row.assign(level_1=levels[0], level_2=levels[1], **{c: diff[c] for c in TWO_LEVEL_COLUMNS})

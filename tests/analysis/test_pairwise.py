@@ -9,7 +9,8 @@ from statsmodels.stats.multitest import multipletests
 from steakhouse_published import JASP_PROPORTIONS, reacttime_long
 
 from analysis.levels import apply_level_order
-from analysis.pairwise import PAIRWISE_COLUMNS, paired_difference, pairwise_comparisons
+from analysis.paired import paired_difference
+from analysis.pairwise import PAIRWISE_COLUMNS, pairwise_comparisons
 
 
 def test_paired_difference_matches_jasp() -> None:
