@@ -8,7 +8,7 @@
 - The robot's cell is avoided only where the participant can know the robot is: in view now, or where
   the participant last acknowledged it (its modelled KB), so the avatar never routes around a robot the
   participant cannot know about (if it bumps into one, it is then facing it). A robot known to have stood
-  still for ``STILL_TICKS`` ticks is walked around (the simulated human's rule); without this the avatar
+  still for ``planner.human.STUCK_TICKS`` ticks is walked around (the simulated human's rule); without this the avatar
   dithered beside a parked robot that flickered in and out of view as it turned.
 - ``interrupt(up/down/left/right/stay/interact)`` overrides the subtask for one tick, at the next tick, in
   the order pressed (at most ``QUEUE_LIMIT`` waiting); the subtask then continues from the new pose.
@@ -33,15 +33,25 @@ import numpy as np
 from planner.events import Event, EventKind
 from planner.fov import view
 from planner.geometry import Action, Pos, manhattan
-from planner.human import HumanModel
+from planner.human import STUCK_TICKS, HumanModel
 from planner.kb import KnowledgeBase
 from planner.layout import Layout
 from planner.rules import Rules
 from planner.state import WorldState
 from planner.subtasks import Believed, Subtask, available, is_done, targets
-from server.game.blocked import (Blocked, Intent, Reason, Stall, hands_reason, interaction_reason, no_target_reason,
-                                 nothing_left, progressed)
+from server.game.blocked import (
+    Blocked,
+    Intent,
+    Reason,
+    Stall,
+    hands_reason,
+    interaction_reason,
+    no_target_reason,
+    nothing_left,
+    progressed,
+)
 from server.protocol.interrupts import Interrupt
+
 
 class Unchecked:
     """The type of :data:`UNCHECKED`: ``select`` was not told what the avatar holds."""
@@ -50,7 +60,6 @@ class Unchecked:
 UNCHECKED = Unchecked()
 
 QUEUE_LIMIT = 3
-STILL_TICKS = 2
 OFF_GRID: Pos = (-1, -1)
 
 
@@ -81,7 +90,7 @@ class ParticipantController:
         self.key_interact = False
         """Whether the last step's action was an ``interact`` key (an interrupt), for :meth:`review`."""
 
-    def select(self, subtask: Subtask, held: str | None | Unchecked = UNCHECKED) -> Blocked | None:
+    def select(self, subtask: Subtask, held: str | Unchecked | None = UNCHECKED) -> Blocked | None:
         """Make ``subtask`` the current one (dropping queued interrupts), unless it cannot work with ``held``
         in hand: then nothing changes and the refusal says why. Without ``held`` (scripted players choosing
         from :meth:`available`, which always fits the hands) nothing is checked."""
@@ -130,7 +139,7 @@ class ParticipantController:
         blocked = robot if known else OFF_GRID
         cells = targets(self.layout, self.subtask, kb, self.rules)
         action, wants_move = self.model.move_toward((human.pos, human.facing), cells, blocked, rng,
-                                                    partner_parked=known and self.robot_still >= STILL_TICKS)
+                                                    partner_parked=known and self.robot_still >= STUCK_TICKS)
         if action is Action.INTERACT:
             self.intent = "interact"
         elif action is not Action.STAY:
