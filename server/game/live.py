@@ -45,7 +45,6 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from study_config.catalog import LoadedStudy
 from server.flow import service
 from server.game import snapshot
 from server.game.blocked import Blocked
@@ -57,16 +56,19 @@ from server.game.health import RobotHealth
 from server.game.meta import TrialMeta
 from server.game.records import tick_row
 from server.game.round_time import RoundTime
-from server.game.stall_hint import Hint, StallWatch, advance as watch_stall
+from server.game.stall_hint import Hint, StallWatch
+from server.game.stall_hint import advance as watch_stall
 from server.protocol.client import Blur, Focus, Heartbeat, Idle, InterruptMessage, SelectSubtask
 from server.protocol.inbound import Inbound, ProtocolError
 from server.protocol.server import Ack, Error, Nudge, Pong, State, TrialEnd
 from server.protocol.server import StallHint as StallHintMessage
 from server.robots import RobotChoice, RobotPool
+from server.robots import deadline as decision_deadline
 from store import trials
 from store.engine import Store
 from store.types import utcnow
 from store.writer import BatchWriter
+from study_config.catalog import LoadedStudy
 
 log = logging.getLogger(__name__)
 MAX_LOGGED_ERRORS = 50
@@ -316,7 +318,7 @@ class LiveGame:
 
     def _request_decision(self, budget: float | None = None) -> None:
         world = self.engine.world
-        deadline = time.monotonic() + (self.decision_budget() if budget is None else budget)
+        deadline = decision_deadline.after(self.decision_budget() if budget is None else budget)
         self._decision = asyncio.create_task(self.deps.pool.decide(
             self.meta.trial_id, world, self.engine.last_events, self.meta.seed, world.tick, deadline))
         self._decision_tick = world.tick
@@ -366,7 +368,7 @@ class LiveGame:
             await self.deps.pool.open(self.meta.trial_id, self.meta.robot, self.engine.layout, self.engine.rules,
                                       self.loaded.planner_config(self.engine.angle), self.engine.world,
                                       self.engine.kb)
-        except Exception as exc:  # noqa: BLE001 - the robot stays until a worker is back
+        except Exception as exc:  # the robot stays until a worker is back
             log.error("cannot re-open the planner of trial %d: %s", self.meta.trial_id, exc)
 
     def _record(self, outcome: TickOutcome, choice: RobotChoice, lateness_ms: float) -> None:
