@@ -16,7 +16,8 @@ robot's planner or the condition. In order, the first that applies:
 4. ``look_around``: nothing else they know of ("Nothing has moved on for a while: look around for what is
    needed next").
 
-State is an immutable :class:`StallWatch`, advanced once per tick by :func:`advance`.
+State is an immutable :class:`StallWatch`, advanced once per tick by :func:`advance` (a live trial keeps it in a
+:class:`StallHints`).
 """
 
 from __future__ import annotations
@@ -60,6 +61,23 @@ class StallWatch:
     """A hint was given in this quiet stretch."""
     loaded_by_you: frozenset[Pos] = frozenset()
     """Boards and sinks the participant loaded last."""
+
+
+class StallHints:
+    """One live trial's watch (advanced once per tick), the ticks a stall must last, and how many hints it gave."""
+
+    def __init__(self, ticks: int) -> None:
+        self.ticks = ticks
+        self.watch = StallWatch()
+        self.given = 0
+
+    def step(self, layout: Layout, rules: Rules, world: WorldState, kb: KnowledgeBase,
+             events: Sequence[Event]) -> Hint | None:
+        """Advance the watch by one step (see :func:`advance`); the hint to give now, counted, if any."""
+        self.watch, hint = advance(self.watch, layout, rules, world, kb, events, self.ticks)
+        if hint is not None:
+            self.given += 1
+        return hint
 
 
 def advance(state: StallWatch, layout: Layout, rules: Rules, world: WorldState, kb: KnowledgeBase,
