@@ -3,7 +3,8 @@ names), the states a station shows, and the objects a cook can hold.
 
 Every layer above takes its words from here: the layout parser (the characters), the participant's view and the
 websocket protocol (the names and states, ``server/protocol/server.py``), the pilot's reading of that view, the
-tick summaries and the analysis' columns.
+tick summaries and the analysis' columns. The browser spells them in one module of its own
+(``static/js/vocabulary.js``), held to this one by ``tests/static/test_client_sources.py``.
 
 A dish is made as: meat → grill; onion → board, chopped; dirty plate → sink, washed, taken out clean;
 clean plate takes the steak from the grill (``steak_plate``); the plated steak takes the garnish from
