@@ -71,7 +71,8 @@ def test_the_clients_kitchen_words_are_the_planners_and_spelled_once():
     table = {quoted or bare: constants.get(value, value)
              for quoted, bare, value in re.findall(r'(?:"(.)"|\b(\w)): "?(\w+)"?', chars)}
     assert table == {terrain.value: name for terrain, name in TERRAIN_NAMES.items()}
-    pattern = r'state(:| *[!=]==) *"(%s)"' % "|".join(get_args(StationState))
+    words = "|".join(get_args(StationState))
+    pattern = rf'state(:| *[!=]==) *"({words})"'
     spelled = [str(path.relative_to(STATIC)) for path in (STATIC / "js").rglob("*.js")
                if path.name != "vocabulary.js" and re.search(pattern, path.read_text(encoding="utf-8"))]
     assert spelled == [], "station states are compared and written through static/js/vocabulary.js"
