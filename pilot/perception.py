@@ -26,8 +26,6 @@ from planner.layout import Layout, Terrain
 from planner.state import AgentState, WorldState
 from planner.vocabulary import EMPTY, TERRAIN_OF_NAME
 
-TERRAIN_OF: dict[str, Terrain] = TERRAIN_OF_NAME
-"""The terrain a cell of the server's view names (``planner.vocabulary``)."""
 OUT_OF_SIGHT: Pos = (-100, -100)
 """Where the seen world puts a robot that is not in view (no cell of any kitchen)."""
 
@@ -39,7 +37,7 @@ class UnknownKitchen(Exception):
 def consistent(layout: Layout, width: int, height: int, seen: Mapping[Pos, str]) -> bool:
     if (layout.width, layout.height) != (width, height):
         return False
-    return all(layout.terrain(pos) is TERRAIN_OF[name] for pos, name in seen.items())
+    return all(layout.terrain(pos) is TERRAIN_OF_NAME[name] for pos, name in seen.items())
 
 
 @dataclass(frozen=True, slots=True)

@@ -17,9 +17,6 @@ from planner.state import AgentState, WorldState
 from planner.vocabulary import STATION_STATES, TERRAIN_NAMES, StationState, station_state
 from server.protocol.server import AgentView, CellView, StationView
 
-TERRAIN_NAME = TERRAIN_NAMES
-"""The terrain's name sent to the browser (``planner.vocabulary``)."""
-
 _STATUS_KINDS = frozenset(STATION_STATES)
 
 
@@ -99,5 +96,5 @@ def _station_entry(layout: Layout, pos: Pos) -> tuple[Terrain, int] | None:
 
 
 def _bare_cell(layout: Layout, pos: Pos) -> CellView:
-    return CellView.model_construct(x=pos[0], y=pos[1], terrain=TERRAIN_NAME[layout.terrain(pos)], object=None,
+    return CellView.model_construct(x=pos[0], y=pos[1], terrain=TERRAIN_NAMES[layout.terrain(pos)], object=None,
                                     station=None)
