@@ -32,7 +32,7 @@ from analysis.dictionary import (
     wide_columns,
 )
 from analysis.dictionary_items import item_key as item_column
-from analysis.measures import GAP_COMPONENTS, TRIAL_MEASURES, trial_measures
+from analysis.measures import TRIAL_MEASURES, trial_measures
 from analysis.participation import participation_values, trial_status
 from analysis.roster import Used, excluded_row, participant_row, used_trials
 from analysis.scales import response_scores
@@ -47,6 +47,7 @@ from analysis.store_reader import (
 )
 from analysis.study_design import ScaleSpec
 from analysis.work import redundant_action_flags, subtask_switch_flags
+from planner.summary import GAP_COMPONENTS
 from study_config.study.fov_angles import angle_value
 
 FILES = ("ticks.csv", "trials.csv", "cells.csv", "wide.csv", "answers.csv", "participants.csv", "excluded.csv")

@@ -13,7 +13,8 @@ from typing import Any
 
 from analysis.dictionary_items import item_key as item_column
 from analysis.dictionary_items import md_cell, questionnaire_items, questionnaire_markdown, questionnaire_scales
-from analysis.measures import CONDUCT_COUNTS, GAP_COMPONENTS, TRIAL_MEASURES
+from analysis.measures import CONDUCT_COUNTS, TRIAL_MEASURES
+from planner.summary import GAP_COMPONENTS
 
 
 @dataclass(frozen=True, slots=True)

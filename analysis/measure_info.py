@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 
 from analysis.dictionary import FLAG, INT, MEASURES, UNITS
-from analysis.measures import GAP_COMPONENTS
+from planner.summary import GAP_COMPONENTS
 
 MAX_DIVISOR = 24
 """Resolutions looked for: 1/k for k = 1..MAX_DIVISOR (a rating item: 1; the mean of k items: 1/k)."""

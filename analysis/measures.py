@@ -32,8 +32,7 @@ import numpy as np
 
 from analysis.store_reader import StoredEvent, StoredTick, StoredTrial
 from analysis.work import redundant_action_flags, subtask_switch_flags, work_shares
-
-GAP_COMPONENTS: tuple[str, ...] = ("grill", "board", "sink", "robot_held")
+from planner.summary import GAP_COMPONENTS
 
 TRIAL_MEASURES: tuple[str, ...] = (
     "ticks", "finished", "delivered", "score",

@@ -2,7 +2,8 @@
 "Engagement"): the ``trials.csv`` columns of their activity and the trial's status for analysis.
 
 ``trial_status``: ``running``, ``abandoned``, ``low_engagement`` (finished, but the participant did not take
-part), ``robot_invalid`` (finished, the robot's decisions missed their deadlines too often) or ``finished``.
+part), ``robot_invalid`` (finished, the robot's decisions missed their deadlines too often) or ``finished``: the
+rule the server judges a participant's rounds by, ``study_config.study.validity.round_status``.
 """
 
 from __future__ import annotations
@@ -10,16 +11,11 @@ from __future__ import annotations
 from typing import Any
 
 from analysis.store_reader import StoredTrial
+from study_config.study.validity import round_status
 
 
 def trial_status(trial: StoredTrial) -> str:
-    if trial.status != "finished":
-        return trial.status
-    if trial.engagement_reason:
-        return "low_engagement"
-    if trial.invalid_reason:
-        return "robot_invalid"
-    return "finished"
+    return round_status(trial.status, trial.engagement_reason, trial.invalid_reason)
 
 
 def participation_values(trial: StoredTrial) -> dict[str, Any]:

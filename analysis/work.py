@@ -1,8 +1,8 @@
 """Who did which work, tick by tick: subtask switches, redundant actions and the share of the prep and
 plating work each agent did (docs/domain.md §6, "also worth logging").
 
-Switches and redundant actions are judged from the stored ticks alone (``subtask`` and ``controller`` columns, and the
-world state after each step), so they can be recomputed from an export of the store.
+Switches and redundant actions are judged from the stored ticks alone (``subtask`` and ``controller`` columns, and
+the world state after each step), so they can be recomputed from an export of the store.
 
 **Subtask switch.** At tick t the avatar runs subtask B, at tick t − 1 it ran a different subtask A, and
 the controller state stored after tick t − 1 still held A: the participant replaced a subtask that was
@@ -35,8 +35,9 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 from planner.geometry import Direction
+from planner.vocabulary import DIRTY_PLATE, MEAT, ONION
 
-STATION_OF_ITEM: dict[str, str] = {"meat": "grills", "onion": "boards", "dirty_plate": "sinks"}
+STATION_OF_ITEM: dict[str, str] = {MEAT: "grills", ONION: "boards", DIRTY_PLATE: "sinks"}
 PREP_EVENTS = frozenset({"start_cooking", "load_board", "load_sink", "chop", "wash"})
 PLATING_EVENTS = frozenset({"plate_steak", "garnish", "deliver"})
 COLLISION_EVENT = "blocked"

@@ -24,12 +24,8 @@ from planner.geometry import Direction, Pos
 from planner.kb import KnowledgeBase, update_kb
 from planner.layout import Layout, Terrain
 from planner.state import AgentState, WorldState
+from planner.vocabulary import EMPTY, TERRAIN_OF_NAME
 
-TERRAIN_OF: dict[str, Terrain] = {
-    "floor": Terrain.FLOOR, "counter": Terrain.COUNTER, "onion": Terrain.ONION, "meat": Terrain.MEAT,
-    "plate": Terrain.PLATE, "grill": Terrain.GRILL, "board": Terrain.BOARD, "sink": Terrain.SINK,
-    "serve": Terrain.SERVE,
-}
 OUT_OF_SIGHT: Pos = (-100, -100)
 """Where the seen world puts a robot that is not in view (no cell of any kitchen)."""
 
@@ -41,7 +37,7 @@ class UnknownKitchen(Exception):
 def consistent(layout: Layout, width: int, height: int, seen: Mapping[Pos, str]) -> bool:
     if (layout.width, layout.height) != (width, height):
         return False
-    return all(layout.terrain(pos) is TERRAIN_OF[name] for pos, name in seen.items())
+    return all(layout.terrain(pos) is TERRAIN_OF_NAME[name] for pos, name in seen.items())
 
 
 @dataclass(frozen=True, slots=True)
@@ -112,7 +108,7 @@ def seen_world(layout: Layout, state: Mapping[str, Any], kb: KnowledgeBase | Non
                 objects[pos] = cell["object"]
         elif kind in stations and cell["station"] is not None:
             status = cell["station"]
-            stations[kind][index] = None if status["state"] == "empty" else int(status["progress"])
+            stations[kind][index] = None if status["state"] == EMPTY else int(status["progress"])
     robot_agent = (AgentState((robot["x"], robot["y"]), Direction(robot["facing"]), robot["held"])
                    if robot is not None else AgentState(OUT_OF_SIGHT, Direction.SOUTH, None))
     return WorldState(human=AgentState((you["x"], you["y"]), Direction(you["facing"]), you["held"]),
@@ -130,7 +126,7 @@ def _disagreements(layout: Layout, state: Mapping[str, Any], kb: KnowledgeBase) 
         entry = layout.stations.get((cell["x"], cell["y"]))
         if entry is not None and entry[0] in statuses and cell["station"] is not None:
             believed = statuses[entry[0]][entry[1]]
-            count += int((believed is None) != (cell["station"]["state"] == "empty"))
+            count += int((believed is None) != (cell["station"]["state"] == EMPTY))
     robot = state["robot"]
     if robot is not None and kb.robot is not None:
         count += int(robot["held"] != kb.robot.held)

@@ -26,6 +26,8 @@ from planner.state import WorldState
 from planner.subtasks import Believed, Subtask, available, is_done, targets
 
 STUCK_TICKS = 2
+"""Ticks a cook (or its partner) stands still before it is taken as stuck or parked; the participant's avatar
+walks around a robot parked this long by the same rule (``planner.avatar``)."""
 WAIT_WHEN_BLOCKED = 0.5
 YIELD_TICKS = 4
 _DIRECTION_OF = {move_action(d): d for d in DIRECTIONS}
@@ -60,7 +62,8 @@ class HumanModel:
         return "robot" if self.me == "human" else "human"
 
     def believed(self, world: WorldState, kb: KnowledgeBase) -> Believed:
-        partner_held = (kb.robot.held if kb.robot is not None else None) if self.me == "human" else world.human.held
+        partner_held = ((kb.robot.held if kb.robot is not None else None) if self.me == "human"
+                        else world.human.held)
         return Believed(kb=kb, held=world.agent(self.me).held, partner_held=partner_held,
                         orders_left=world.orders_left)
 

@@ -1,8 +1,8 @@
 """Kitchen layouts: parsing and validation of the plain grids (docs/domain.md §1).
 
-Characters: ``X`` counter, space floor, ``O`` onion dispenser, ``M`` meat dispenser, ``D`` plate
-dispenser, ``P`` grill, ``B`` chopping board, ``W`` sink, ``S`` serving counter, ``1`` the robot's
-start, ``2`` the human's start (both start cells are floor). A valid layout is rectangular, closed by
+Characters (spelled in ``planner.vocabulary``): ``X`` counter, space floor, ``O`` onion dispenser, ``M`` meat
+dispenser, ``D`` plate dispenser, ``P`` grill, ``B`` chopping board, ``W`` sink, ``S`` serving counter, ``1`` the
+robot's start, ``2`` the human's start (both start cells are floor). A valid layout is rectangular, closed by
 non-floor cells, has at least one of each station and exactly one start per agent. Every station must
 be reachable: some floor cell next to it is reachable from both starts.
 """
@@ -10,27 +10,11 @@ be reachable: some floor cell next to it is reachable from both starts.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from enum import Enum
 
 from planner.geometry import DIRECTIONS, Pos
+from planner.vocabulary import START_CHARS, STATIONS, Terrain
 
-
-class Terrain(str, Enum):
-    FLOOR = " "
-    COUNTER = "X"
-    ONION = "O"
-    MEAT = "M"
-    PLATE = "D"
-    GRILL = "P"
-    BOARD = "B"
-    SINK = "W"
-    SERVE = "S"
-
-
-STATIONS: tuple[Terrain, ...] = (
-    Terrain.ONION, Terrain.MEAT, Terrain.PLATE, Terrain.GRILL, Terrain.BOARD, Terrain.SINK, Terrain.SERVE,
-)
-START_CHARS = {"1": "robot", "2": "human"}
+__all__ = ["START_CHARS", "STATIONS", "Layout", "LayoutError", "LayoutProblem", "Terrain", "parse_layout"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -109,7 +93,7 @@ class Layout:
         """The layout as its grid text, starts included (round-trips through :func:`parse_layout`)."""
         grid = [list(row) for row in self.rows]
         for agent, (x, y) in self.starts:
-            grid[y][x] = "1" if agent == "robot" else "2"
+            grid[y][x] = _START_CHAR[agent]
         return "\n".join("".join(row) for row in grid) + "\n"
 
 
@@ -158,7 +142,8 @@ def parse_layout(text: str, name: str = "layout", source: str | None = None) -> 
 
 
 _TERRAIN_CHARS = {t.value for t in Terrain}
-_ALLOWED = "X, space, O, M, D, P, B, W, S, 1, 2"
+_ALLOWED = ", ".join([Terrain.COUNTER.value, "space", *(t.value for t in STATIONS), *START_CHARS])
+_START_CHAR = {agent: ch for ch, agent in START_CHARS.items()}
 
 
 def _read_cells(lines: list[str]) -> tuple[list[str], dict[str, Pos], list[LayoutProblem]]:

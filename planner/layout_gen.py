@@ -26,7 +26,7 @@ import numpy as np
 
 from planner.fov import in_view
 from planner.geometry import DIRECTIONS, Pos, manhattan
-from planner.layout import STATIONS, Layout, LayoutError, Terrain, parse_layout
+from planner.layout import START_CHARS, STATIONS, Layout, LayoutError, Terrain, parse_layout
 
 STYLES: tuple[str, ...] = ("island", "peninsula", "corridor", "split")
 SIZE_RANGES: dict[str, tuple[tuple[int, int], tuple[int, int]]] = {
@@ -215,12 +215,12 @@ def _place(rng: np.random.Generator, w: int, h: int, floor: set[Pos], divider: i
     starts = _starts(rng, floor, divider)
     if starts is None:
         return None
-    grid = [["X"] * w for _ in range(h)]
+    grid = [[Terrain.COUNTER.value] * w for _ in range(h)]
     for x, y in floor:
-        grid[y][x] = " "
+        grid[y][x] = Terrain.FLOOR.value
     for (x, y), kind in chosen.items():
         grid[y][x] = kind.value
-    for (x, y), ch in zip(starts, "12", strict=True):
+    for (x, y), ch in zip(starts, START_CHARS, strict=True):
         grid[y][x] = ch
     return "\n".join("".join(row) for row in grid) + "\n"
 

@@ -1,17 +1,9 @@
-"""The objects an agent can hold or a counter can carry (docs/domain.md §1).
-
-A dish is made as: meat → grill; onion → board, chopped; dirty plate → sink, washed, taken out clean;
-clean plate takes the steak from the grill (``steak_plate``); the plated steak takes the garnish from
-the board (``dish``); the dish is delivered at the serving counter.
+"""The objects an agent can hold or a counter can carry: their names live in :mod:`planner.vocabulary` (the
+kitchen's words, spelled once); this module keeps them where the world's code has always imported them from.
 """
 
 from __future__ import annotations
 
-ONION = "onion"
-MEAT = "meat"
-DIRTY_PLATE = "dirty_plate"
-CLEAN_PLATE = "clean_plate"
-STEAK_PLATE = "steak_plate"
-DISH = "dish"
+from planner.vocabulary import CLEAN_PLATE, DIRTY_PLATE, DISH, MEAT, OBJECTS, ONION, STEAK_PLATE
 
-OBJECTS: tuple[str, ...] = (ONION, MEAT, DIRTY_PLATE, CLEAN_PLATE, STEAK_PLATE, DISH)
+__all__ = ["CLEAN_PLATE", "DIRTY_PLATE", "DISH", "MEAT", "OBJECTS", "ONION", "STEAK_PLATE"]

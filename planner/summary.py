@@ -1,8 +1,9 @@
 """The compact status summary of a world or a KB, and the KB gap (docs/domain.md §6, paper §VII).
 
 Components: grill status (empty / cooking / ready), board status (empty / chopping / ready), sink status
-(empty / washing / clean) and the robot's held object. The KB gap at a tick is the number of components
-where the human's KB differs from the world (a kind with several stations differs if any of them does).
+(empty / washing / clean; the states are ``planner.vocabulary``'s) and the robot's held object. The KB gap at a
+tick is the number of components where the human's KB differs from the world (a kind with several stations differs
+if any of them does).
 """
 
 from __future__ import annotations
@@ -12,15 +13,16 @@ from dataclasses import dataclass
 from planner.kb import KnowledgeBase
 from planner.rules import Rules
 from planner.state import WorldState
+from planner.vocabulary import StationState, Terrain, station_state
 
 GAP_COMPONENTS: tuple[str, ...] = ("grill", "board", "sink", "robot_held")
 
 
 @dataclass(frozen=True, slots=True)
 class Summary:
-    grills: tuple[str, ...]
-    boards: tuple[str, ...]
-    sinks: tuple[str, ...]
+    grills: tuple[StationState, ...]
+    boards: tuple[StationState, ...]
+    sinks: tuple[StationState, ...]
     robot_held: str | None
 
     def to_dict(self) -> dict[str, object]:
@@ -28,19 +30,13 @@ class Summary:
                 "robot_held": self.robot_held}
 
 
-def _status(value: int | None, done_at: int, working: str, done: str) -> str:
-    if value is None:
-        return "empty"
-    return done if value >= done_at else working
-
-
 def summarize(statuses: WorldState | KnowledgeBase, rules: Rules) -> Summary:
     """The summary of a world state or of a KB (the same fields in both)."""
     robot = statuses.robot
     return Summary(
-        grills=tuple(_status(g, rules.cook_time, "cooking", "ready") for g in statuses.grills),
-        boards=tuple(_status(b, rules.chop_time, "chopping", "ready") for b in statuses.boards),
-        sinks=tuple(_status(s, rules.wash_time, "washing", "clean") for s in statuses.sinks),
+        grills=tuple(station_state(Terrain.GRILL, g, rules.cook_time) for g in statuses.grills),
+        boards=tuple(station_state(Terrain.BOARD, b, rules.chop_time) for b in statuses.boards),
+        sinks=tuple(station_state(Terrain.SINK, s, rules.wash_time) for s in statuses.sinks),
         robot_held=None if robot is None else robot.held,
     )
 
@@ -69,7 +65,7 @@ def kb_gap_components(kb: KnowledgeBase, world: WorldState, rules: Rules) -> dic
 def _same(believed: tuple[int | None, ...], actual: tuple[int | None, ...], done_at: int) -> bool:
     if believed == actual:
         return True
-    for a, b in zip(believed, actual, strict=True):
+    for a, b in zip(believed, actual, strict=False):
         if (a is None) != (b is None) or (a is not None and b is not None and (a >= done_at) != (b >= done_at)):
             return False
     return True

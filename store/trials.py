@@ -16,9 +16,10 @@ from sqlalchemy.orm import Session
 
 from store.tables import EventRow, TickRow, TrialRow
 from store.types import utcnow
+from study_config.study.validity import ABANDONED as ABANDONED  # the statuses, spelled with the rule reading them
+from study_config.study.validity import FINISHED as FINISHED
+from study_config.study.validity import RUNNING as RUNNING
 from study_config.study.views import DEFAULT_VIEW
-
-RUNNING, FINISHED, ABANDONED = "running", "finished", "abandoned"
 
 
 def create(session: Session, *, study_id: str, participant_id: int, kind: str, index: int, condition_id: str,

@@ -17,13 +17,14 @@ from planner.kb import KnowledgeBase
 from planner.layout import Layout
 from planner.rules import Rules
 from planner.state import AgentState, WorldState
-from server.game.view import TERRAIN_NAME, station_view
+from planner.vocabulary import TERRAIN_NAMES
+from server.game.view import station_view
 
 
 def grid(layout: Layout) -> dict[str, Any]:
     """The fixed part: the kitchen's name, size and terrain name of every cell (rows of columns)."""
     return {"name": layout.name, "width": layout.width, "height": layout.height,
-            "terrain": [[TERRAIN_NAME[layout.terrain((x, y))] for x in range(layout.width)]
+            "terrain": [[TERRAIN_NAMES[layout.terrain((x, y))] for x in range(layout.width)]
                         for y in range(layout.height)]}
 
 

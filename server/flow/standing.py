@@ -24,13 +24,13 @@ from sqlalchemy.orm import Session
 
 from store import trials
 from store.tables import ParticipantRow, TrialRow
-from study_config.study.validity import Validity
+from study_config.study.validity import ABANDONED, LOW_ENGAGEMENT, ROBOT_INVALID, RoundStatus, Validity, round_status
 
 log = logging.getLogger(__name__)
 
 DEVICE_REFUSED = "device_refused"
 ABANDONED_ROUNDS = "abandoned_rounds"
-LOW_ENGAGEMENT = "low_engagement"
+LOW_ENGAGEMENT_ROUNDS = "low_engagement"
 
 
 def latest_main_trials(session: Session, participant_id: int) -> list[TrialRow]:
@@ -44,13 +44,19 @@ def latest_main_trials(session: Session, participant_id: int) -> list[TrialRow]:
     return [latest[i] for i in sorted(latest)]
 
 
+def _status(row: TrialRow) -> RoundStatus:
+    return round_status(row.status, row.engagement_reason, row.invalid_reason)
+
+
 def round_problem(row: TrialRow) -> str | None:
-    """Why a main trial cannot become an analysable cell, or ``None``."""
-    if row.status == trials.ABANDONED:
+    """Why an ended main trial cannot become an analysable cell (``study_config.study.validity.round_status``),
+    or ``None``."""
+    status = _status(row)
+    if status == ABANDONED:
         return f"main round {row.index + 1} abandoned ({row.end_reason})"
-    if row.engagement_reason:
+    if status == LOW_ENGAGEMENT:
         return f"main round {row.index + 1} {row.engagement_reason}"
-    if row.invalid_reason:
+    if status == ROBOT_INVALID:
         return f"main round {row.index + 1} robot-invalid: {row.invalid_reason}"
     return None
 
@@ -58,11 +64,11 @@ def round_problem(row: TrialRow) -> str | None:
 def not_taking_part(rounds: Sequence[TrialRow], validity: Validity) -> str | None:
     """The screen-out reason when the participant's abandoned and low-engagement rounds exceed
     ``validity.max_invalid_rounds``, else ``None``."""
-    abandoned = sum(1 for r in rounds if r.status == trials.ABANDONED)
-    low = sum(1 for r in rounds if r.status != trials.ABANDONED and r.engagement_reason)
+    statuses = [_status(r) for r in rounds]
+    abandoned, low = statuses.count(ABANDONED), statuses.count(LOW_ENGAGEMENT)
     if abandoned + low <= validity.max_invalid_rounds:
         return None
-    return ABANDONED_ROUNDS if abandoned else LOW_ENGAGEMENT
+    return ABANDONED_ROUNDS if abandoned else LOW_ENGAGEMENT_ROUNDS
 
 
 def review_rounds(session: Session, row: ParticipantRow, validity: Validity) -> str | None:

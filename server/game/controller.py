@@ -1,15 +1,9 @@
 """The participant's control of the avatar: a chosen subtask, or interrupt actions (docs/domain.md §4).
 
-- ``select(subtask)`` replaces the current subtask (and drops queued interrupts). Each tick the avatar
-  takes the first move of a shortest path over (cell, facing) to the nearest target of the subtask,
-  re-planned every tick, and interacts when it faces the target (``HumanModel.move_toward``). Targets are
-  judged on the participant's **modelled KB**, not the world: the avatar walks to where the participant
-  can know things are (a steak they have not seen is not a target).
-- The robot's cell is avoided only where the participant can know the robot is: in view now, or where
-  the participant last acknowledged it (its modelled KB), so the avatar never routes around a robot the
-  participant cannot know about (if it bumps into one, it is then facing it). A robot known to have stood
-  still for ``STILL_TICKS`` ticks is walked around (the simulated human's rule); without this the avatar
-  dithered beside a parked robot that flickered in and out of view as it turned.
+- ``select(subtask)`` replaces the current subtask (and drops queued interrupts). Each tick the avatar walks
+  toward the subtask's nearest target by the movement rule of ``planner.avatar`` (one call, ``avatar_move``): a
+  shortest path re-planned every tick, targets judged on the participant's **modelled KB**, the robot avoided
+  only where the participant can know it is, and walked around once it is known to be parked.
 - ``interrupt(up/down/left/right/stay/interact)`` overrides the subtask for one tick, at the next tick, in
   the order pressed (at most ``QUEUE_LIMIT`` waiting); the subtask then continues from the new pose.
   ``interrupt(stop)`` cancels the subtask and the queued interrupts at once.
@@ -30,15 +24,16 @@ from typing import Any
 
 import numpy as np
 
+from planner.avatar import RobotWatch, avatar_move
 from planner.events import Event, EventKind
 from planner.fov import view
-from planner.geometry import Action, Pos, manhattan
+from planner.geometry import Action, manhattan
 from planner.human import HumanModel
 from planner.kb import KnowledgeBase
 from planner.layout import Layout
 from planner.rules import Rules
 from planner.state import WorldState
-from planner.subtasks import Believed, Subtask, available, is_done, targets
+from planner.subtasks import Believed, Subtask, available, is_done
 from server.game.blocked import (
     Blocked,
     Intent,
@@ -60,8 +55,6 @@ class Unchecked:
 UNCHECKED = Unchecked()
 
 QUEUE_LIMIT = 3
-STILL_TICKS = 2
-OFF_GRID: Pos = (-1, -1)
 
 
 INTERRUPT_ACTION: dict[Interrupt, Action] = {
@@ -80,8 +73,7 @@ class ParticipantController:
         self.blocked_ticks = blocked_ticks
         """Steps without progress after which a subtask ends itself (``None``: never)."""
         self.queue: deque[Interrupt] = deque()
-        self.robot_last: Pos | None = None
-        self.robot_still = 0
+        self.robot_watch = RobotWatch()
         self.intent: Intent = "idle"
         self.stall = Stall()
         self.worked = False
@@ -121,9 +113,7 @@ class ParticipantController:
 
     def decide(self, world: WorldState, kb: KnowledgeBase, rng: np.random.Generator) -> tuple[Action, str]:
         """The avatar's action this tick and its source: ``interrupt``, ``subtask`` or ``idle``."""
-        robot = world.robot.pos
-        self.robot_still = self.robot_still + 1 if robot == self.robot_last else 0
-        self.robot_last = robot
+        self.robot_watch = self.robot_watch.seen(world)
         self.key_interact = False
         if self.queue:
             self.intent = "idle"
@@ -133,14 +123,7 @@ class ParticipantController:
         if self.subtask is None:
             self.intent = "idle"
             return Action.STAY, "idle"
-        human = world.human
-        seen = view(self.layout, human.pos, human.facing, self.angle).cells
-        believed_there = kb.robot is not None and kb.robot.pos == robot
-        known = robot in seen or believed_there
-        blocked = robot if known else OFF_GRID
-        cells = targets(self.layout, self.subtask, kb, self.rules)
-        action, wants_move = self.model.move_toward((human.pos, human.facing), cells, blocked, rng,
-                                                    partner_parked=known and self.robot_still >= STILL_TICKS)
+        action, wants_move = avatar_move(self.model, self.angle, world, kb, self.subtask, self.robot_watch, rng)
         if action is Action.INTERACT:
             self.intent = "interact"
         elif action is not Action.STAY:

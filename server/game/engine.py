@@ -6,17 +6,15 @@ angle and KB delay and the participant's own events (docs/domain.md §3); the KB
 whether the robot is in the participant's FOV are computed for the tick record; and whether the participant's
 subtask got anywhere (a notice, or its end after ``blocked_ticks`` steps without progress: ``server.game.blocked``).
 
-Randomness: the avatar's tie-breaks draw from ``default_rng([seed, tick, 0])``; the robot's planner, in its
-pool, from ``default_rng([seed, tick, 1])`` (``server.robots.choice.robot_rng``), so a trial resumed at tick t
-draws what it would have drawn.
+Randomness: the avatar's tie-breaks draw from the trial's avatar stream at the tick, the robot's planner (in its
+pool) from its robot stream, both by the one rule of ``planner.streams``, so a trial resumed at tick t draws what
+it would have drawn.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import Any
-
-import numpy as np
 
 from planner.events import Event
 from planner.fov import View, view
@@ -26,6 +24,7 @@ from planner.layout import Layout
 from planner.rules import Rules
 from planner.state import WorldState, initial_state, is_done
 from planner.step import step
+from planner.streams import avatar_rng
 from planner.subtasks import Subtask
 from planner.summary import gap_components, summarize
 from server.game.blocked import Blocked
@@ -81,7 +80,7 @@ class TrialEngine:
         if self.done:
             raise RuntimeError("the trial is over")
         before = self.world
-        rng = np.random.default_rng([self.seed, before.tick, 0])
+        rng = avatar_rng(self.seed, before.tick)
         subtask = self.controller.subtask
         human_action, source = self.controller.decide(before, self.kb, rng)
         world, events = step(self.layout, before, {"human": human_action, "robot": robot_action}, self.rules)

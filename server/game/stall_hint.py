@@ -16,7 +16,8 @@ robot's planner or the condition. In order, the first that applies:
 4. ``look_around``: nothing else they know of ("Nothing has moved on for a while: look around for what is
    needed next").
 
-State is an immutable :class:`StallWatch`, advanced once per tick by :func:`advance`.
+State is an immutable :class:`StallWatch`, advanced once per tick by :func:`advance` (a live trial keeps it in a
+:class:`StallHints`).
 """
 
 from __future__ import annotations
@@ -32,14 +33,15 @@ from planner.planner_config import PlannerConfig
 from planner.rollout import potential
 from planner.rules import Rules
 from planner.state import WorldState
+from planner.vocabulary import CLEAN_PLATE, DIRTY_PLATE, DISH, MEAT, ONION, STEAK_PLATE
 from server.protocol.server import StallHintCode
 
 STATION_NAMES: dict[Terrain, str] = {
     Terrain.BOARD: "board", Terrain.GRILL: "grill", Terrain.SINK: "sink", Terrain.SERVE: "serving counter",
     Terrain.ONION: "onion crate", Terrain.MEAT: "meat crate", Terrain.PLATE: "plate rack"}
 """The stations in the order a hint names them, with the words the participant's screen uses."""
-OBJECT_NAMES: dict[str, str] = {"onion": "onion", "meat": "meat", "dirty_plate": "dirty plate",
-                                "clean_plate": "clean plate", "steak_plate": "plated steak", "dish": "dish"}
+OBJECT_NAMES: dict[str, str] = {ONION: "onion", MEAT: "meat", DIRTY_PLATE: "dirty plate", CLEAN_PLATE: "clean plate",
+                                STEAK_PLATE: "plated steak", DISH: "dish"}
 _SCORE = PlannerConfig()
 
 
@@ -59,6 +61,23 @@ class StallWatch:
     """A hint was given in this quiet stretch."""
     loaded_by_you: frozenset[Pos] = frozenset()
     """Boards and sinks the participant loaded last."""
+
+
+class StallHints:
+    """One live trial's watch (advanced once per tick), the ticks a stall must last, and how many hints it gave."""
+
+    def __init__(self, ticks: int) -> None:
+        self.ticks = ticks
+        self.watch = StallWatch()
+        self.given = 0
+
+    def step(self, layout: Layout, rules: Rules, world: WorldState, kb: KnowledgeBase,
+             events: Sequence[Event]) -> Hint | None:
+        """Advance the watch by one step (see :func:`advance`); the hint to give now, counted, if any."""
+        self.watch, hint = advance(self.watch, layout, rules, world, kb, events, self.ticks)
+        if hint is not None:
+            self.given += 1
+        return hint
 
 
 def advance(state: StallWatch, layout: Layout, rules: Rules, world: WorldState, kb: KnowledgeBase,
@@ -85,11 +104,11 @@ def hint_for(layout: Layout, rules: Rules, world: WorldState, kb: KnowledgeBase,
     for kind, name in STATION_NAMES.items():
         if any(_only_access(layout, cell) == you.pos for cell in _around(layout, you.pos, kind)):
             return Hint("standing_at_station", f"You are standing where the {name} is used.")
-    for cell, count in zip(layout.boards, kb.boards, strict=True):
+    for cell, count in zip(layout.boards, kb.boards, strict=False):
         if count is not None and count < rules.chop_time:
             whose = "you put " if cell in loaded_by_you else ""
             return Hint("onion_needs_chopping", f"The onion {whose}on the board still needs chopping.")
-    for cell, count in zip(layout.sinks, kb.sinks, strict=True):
+    for cell, count in zip(layout.sinks, kb.sinks, strict=False):
         if count is not None and count < rules.wash_time:
             whose = "you put " if cell in loaded_by_you else ""
             return Hint("plate_needs_washing", f"The plate {whose}in the sink still needs washing.")

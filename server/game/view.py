@@ -14,15 +14,10 @@ from planner.geometry import Direction, Pos
 from planner.layout import Layout, Terrain
 from planner.rules import Rules
 from planner.state import AgentState, WorldState
-from server.protocol.server import AgentView, CellView, StationState, StationView, TerrainName
+from planner.vocabulary import STATION_STATES, TERRAIN_NAMES, StationState, station_state
+from server.protocol.server import AgentView, CellView, StationView
 
-TERRAIN_NAME: dict[Terrain, TerrainName] = {
-    Terrain.FLOOR: "floor", Terrain.COUNTER: "counter", Terrain.ONION: "onion", Terrain.MEAT: "meat",
-    Terrain.PLATE: "plate", Terrain.GRILL: "grill", Terrain.BOARD: "board", Terrain.SINK: "sink",
-    Terrain.SERVE: "serve",
-}
-
-_STATUS_KINDS = frozenset({Terrain.GRILL, Terrain.BOARD, Terrain.SINK})
+_STATUS_KINDS = frozenset(STATION_STATES)
 
 
 def agent_view(agent: AgentState) -> AgentView:
@@ -31,19 +26,15 @@ def agent_view(agent: AgentState) -> AgentView:
 
 def station_view(layout: Layout, world: WorldState, rules: Rules, kind: Terrain, index: int) -> StationView | None:
     """The status of grill / board / sink ``index`` as the participant sees it when it is in view."""
-    working: StationState
-    done: StationState
     if kind is Terrain.GRILL:
-        value, total, working, done = world.grills[index], rules.cook_time, "cooking", "ready"
+        value, total = world.grills[index], rules.cook_time
     elif kind is Terrain.BOARD:
-        value, total, working, done = world.boards[index], rules.chop_time, "chopping", "ready"
+        value, total = world.boards[index], rules.chop_time
     elif kind is Terrain.SINK:
-        value, total, working, done = world.sinks[index], rules.wash_time, "washing", "clean"
+        value, total = world.sinks[index], rules.wash_time
     else:
         return None
-    if value is None:
-        return _station("empty", 0, total)
-    return _station(done if value >= total else working, min(value, total), total)
+    return _station(station_state(kind, value, total), 0 if value is None else min(value, total), total)
 
 
 @lru_cache(maxsize=1024)
@@ -95,7 +86,7 @@ def visible_world(layout: Layout, world: WorldState, rules: Rules,
 
 @lru_cache(maxsize=256)
 def _ordered_table(layout: Layout, angle: float) -> dict[tuple[Pos, Direction],
-                                                         tuple[tuple[Pos, tuple[Terrain, int] | None, CellView], ...]]:
+                                                        tuple[tuple[Pos, tuple[Terrain, int] | None, CellView], ...]]:
     return {}
 
 
@@ -105,5 +96,5 @@ def _station_entry(layout: Layout, pos: Pos) -> tuple[Terrain, int] | None:
 
 
 def _bare_cell(layout: Layout, pos: Pos) -> CellView:
-    return CellView.model_construct(x=pos[0], y=pos[1], terrain=TERRAIN_NAME[layout.terrain(pos)], object=None,
+    return CellView.model_construct(x=pos[0], y=pos[1], terrain=TERRAIN_NAMES[layout.terrain(pos)], object=None,
                                     station=None)

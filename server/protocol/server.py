@@ -13,6 +13,8 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, TypeAdapter
 
+from planner.vocabulary import StationState as StationState
+from planner.vocabulary import TerrainName as TerrainName
 from study_config.study.views import ViewName
 
 BlockedReason = Literal[
@@ -20,9 +22,6 @@ BlockedReason = Literal[
     "board_busy", "nothing_to_chop", "no_garnish", "not_chopped", "already_chopped", "sink_busy", "nothing_to_wash",
     "already_washed", "no_clean_plate", "robot_in_way", "no_way", "unknown_place", "stuck"]
 """Why a subtask is not getting anywhere (``blocked`` messages; docs/protocol.md lists each with its words)."""
-
-TerrainName = Literal["floor", "counter", "onion", "meat", "plate", "grill", "board", "sink", "serve"]
-StationState = Literal["empty", "cooking", "ready", "chopping", "washing", "clean"]
 
 
 class ServerMessage(BaseModel):

@@ -19,6 +19,7 @@ from planner.layout import Layout
 from planner.planner_config import PlannerConfig
 from planner.rules import Rules
 from planner.state import WorldState
+from server.robots import deadline as clock
 from server.robots.choice import RobotChoice, run_decision
 from server.robots.reply import Reply, await_reply
 
@@ -57,11 +58,11 @@ class InProcessRobots:
         def call() -> Reply:
             policy = self._policies.get(trial_id)
             if policy is None:
-                return ("lost", f"trial {trial_id} has no planner", time.monotonic())
+                return ("lost", f"trial {trial_id} has no planner", clock.now())
             try:
-                return ("ok", run_decision(policy, world, tuple(events), seed, tick, deadline), time.monotonic())
-            except Exception as exc:
-                return ("error", f"{type(exc).__name__}: {exc}", time.monotonic())
+                return ("ok", run_decision(policy, world, tuple(events), seed, tick, deadline), clock.now())
+            except Exception as exc:  # a planner failure makes the robot stay
+                return ("error", f"{type(exc).__name__}: {exc}", clock.now())
 
         start = time.perf_counter()
         return await await_reply(self._run(call), deadline, start)

@@ -110,7 +110,7 @@ class _Worker:
 
     def request(self, op: str, *args: Any) -> asyncio.Future[Reply]:
         """Send ``(op, req, *args)``; the future gets ``(status, payload, sent)`` (``"lost"`` if the worker
-        died), ``sent`` being the ``time.monotonic()`` at which the worker sent its reply."""
+        died), ``sent`` being when the worker sent its reply (``server.robots.deadline.now``)."""
         req = next(self._ids)
         message = (op, req, *args)
         future: asyncio.Future[Reply] = asyncio.get_running_loop().create_future()

@@ -5,7 +5,7 @@ planner with the factory (``factory(robot, layout, rules, config)``) and resets 
 person's modelled KB the trial starts or resumes from; ``("decide", req, trial_id, world, events, seed, tick,
 deadline)`` answers the action; ``("close", req, trial_id)`` drops the planner; ``("stop",)`` ends the
 process. Replies are ``(req, "ok", payload, sent)`` or ``(req, "error", message, sent)``, ``sent`` being the
-``time.monotonic()`` just before the reply is written (the server judges deadlines on it). Requests are
+``server.robots.deadline.now()`` just before the reply is written (the server judges deadlines on it). Requests are
 served one at a time, so a trial's planner is never used concurrently. The process ignores SIGINT (the
 server shuts it down) and exits when the pipe closes (the server died). It runs at the server's CPU
 priority: at a lower one (nice +5) the game loop's ticks went first on a saturated machine, but the workers
@@ -17,11 +17,11 @@ from __future__ import annotations
 
 import gc
 import signal
-import time
 from multiprocessing.connection import Connection
 from typing import Any
 
 from planner.decision import Robot, RobotFactory
+from server.robots import deadline as clock
 from server.robots.choice import load_factory, run_decision
 
 FREEZE_EVERY = 100
@@ -43,12 +43,12 @@ def worker_main(conn: Connection, factory_path: str) -> None:
         op, req = message[0], message[1]
         try:
             payload = _serve(op, message, policies, factory)
-        except Exception as exc:
+        except Exception as exc:  # report every planner failure to the server
             reply: tuple[Any, ...] = (req, "error", f"{type(exc).__name__}: {exc}")
         else:
             reply = (req, "ok", payload)
         try:
-            conn.send((*reply, time.monotonic()))
+            conn.send((*reply, clock.now()))
         except (BrokenPipeError, OSError):
             break
         served += 1

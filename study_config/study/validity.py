@@ -5,9 +5,15 @@ Two rules mark a main trial as not analysable: the robot's health (decisions pas
 ``server.game.health``) and the participant's engagement (``server.flow.engagement``: a round played without
 taking part). A participant with more abandoned or low-engagement main rounds than ``max_invalid_rounds`` gets
 the screen-out outcome instead of the completion code (``server.flow.standing``).
+
+:func:`round_status` is the one rule for what an attempt at a trial is worth as data, shared by the server
+(whether a participant still counts toward their condition order, and whether they took part:
+``server.flow.standing``) and the analysis (the ``trial_status`` column: ``analysis.participation``).
 """
 
 from __future__ import annotations
+
+from typing import Literal
 
 from pydantic import Field
 
@@ -21,6 +27,32 @@ low-engagement. Chosen from the real-time pilots of docs/pilot.md §4 (28 simula
 think 0.5–3 s per choice): their highest per-trial idle share was 70.8 % (``fixed_rate``) and 86.8 %
 (``wait_for_participant``); on their median round, 95 % takes about 21 s of idleness per choice (90 % only
 about 10 s, within reach of a slow but real player), while a participant who never acts has 100 %."""
+
+
+RoundStatus = Literal["running", "abandoned", "low_engagement", "robot_invalid", "finished"]
+RUNNING: RoundStatus = "running"
+ABANDONED: RoundStatus = "abandoned"
+LOW_ENGAGEMENT: RoundStatus = "low_engagement"
+ROBOT_INVALID: RoundStatus = "robot_invalid"
+FINISHED: RoundStatus = "finished"
+
+
+def round_status(status: str, engagement_reason: str | None, invalid_reason: str | None) -> RoundStatus:
+    """What an attempt at a trial is worth as data, from its stored ``status`` (running / finished / abandoned)
+    and the server's marks: ``running``, ``abandoned`` (the participant did not return within the grace window),
+    ``low_engagement`` (finished, but the participant did not take part), ``robot_invalid`` (finished, the
+    robot's decisions missed their deadlines too often) or ``finished`` (it can be an analysable cell)."""
+    if status == RUNNING:
+        return RUNNING
+    if status == ABANDONED:
+        return ABANDONED
+    if status != FINISHED:
+        raise ValueError(f"unknown trial status {status!r}")
+    if engagement_reason:
+        return LOW_ENGAGEMENT
+    if invalid_reason:
+        return ROBOT_INVALID
+    return FINISHED
 
 
 class Validity(StudyModel):

@@ -1,6 +1,7 @@
 """Checks of the client's files against the server and the planner, without a browser: the instructions'
 example view is the planner's FOV, and every protocol name (subtask, interrupt, terrain, object) has a
-label and a drawing, so a new one cannot silently fall back to a placeholder."""
+label and a drawing, so a new one cannot silently fall back to a placeholder; the client's kitchen words are the
+planner's, spelled in one module."""
 
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ from planner.geometry import Direction
 from planner.layout import parse_layout
 from planner.objects import OBJECTS
 from planner.subtasks import SUBTASKS
+from planner.vocabulary import TERRAIN_NAMES, StationState
 from server.protocol.interrupts import Interrupt
 from server.protocol.server import TerrainName
 
@@ -57,3 +59,20 @@ def test_every_terrain_and_object_has_a_drawing():
     labels = source("js/labels.js")
     objects = labels[labels.index("export const OBJECTS"):labels.index("export function heldLabel")]
     assert set(re.findall(r"^  (\w+):", objects, flags=re.MULTILINE)) == set(OBJECTS)
+
+
+def test_the_clients_kitchen_words_are_the_planners_and_spelled_once():
+    vocabulary = source("js/vocabulary.js")
+    states = vocabulary[vocabulary.index("export const STATE"):vocabulary.index("});")]
+    assert set(re.findall(r'\b[A-Z]+: "(\w+)"', states)) == set(get_args(StationState))
+    constants = dict(re.findall(r'export const (FLOOR|COUNTER) = "(\w+)"', vocabulary))
+    start = vocabulary.index("export const TERRAIN_OF_CHAR")
+    chars = vocabulary[start:vocabulary.index("});", start)].split("{", 1)[1]
+    table = {quoted or bare: constants.get(value, value)
+             for quoted, bare, value in re.findall(r'(?:"(.)"|\b(\w)): "?(\w+)"?', chars)}
+    assert table == {terrain.value: name for terrain, name in TERRAIN_NAMES.items()}
+    words = "|".join(get_args(StationState))
+    pattern = rf'state(:| *[!=]==) *"({words})"'
+    spelled = [str(path.relative_to(STATIC)) for path in (STATIC / "js").rglob("*.js")
+               if path.name != "vocabulary.js" and re.search(pattern, path.read_text(encoding="utf-8"))]
+    assert spelled == [], "station states are compared and written through static/js/vocabulary.js"

@@ -11,6 +11,7 @@ import * as THREE from "../../vendor/three/three.module.js";
 import { COLORS } from "../game/palette.js";
 import { BAR_COLOR, drawCheck } from "../game/stations.js";
 import { STATIONS } from "../labels.js";
+import { COUNTER, FLOOR, STATE, isDone, isEmpty } from "../vocabulary.js";
 import { COUNTER_TOP, bake, ball, box, cylinder, dome } from "./kit.js";
 import { dirtyPlate, cleanPlate, garnish, itemModel, meat, onion } from "./items.js";
 
@@ -142,7 +143,7 @@ export function terrainModel(terrain, x, y) {
   group.name = `terrain:${terrain}`;
   group.position.set(x, 0, y);
   (TERRAIN[terrain] || TERRAIN.counter)(group, x, y);
-  if (terrain !== "floor" && terrain !== "counter" && STATIONS[terrain]) {
+  if (terrain !== FLOOR && terrain !== COUNTER && STATIONS[terrain]) {
     if (!SIGN_MATERIALS.has(terrain)) {
       SIGN_MATERIALS.set(terrain, new THREE.SpriteMaterial({ map: signTexture(STATIONS[terrain].replace(/ \(.*\)$/, "")) }));
     }
@@ -155,14 +156,14 @@ export function terrainModel(terrain, x, y) {
 }
 
 function grillContents(g, station) {
-  if (station.state === "empty") return;
+  if (isEmpty(station)) return;
   box(g, COLORS.grillHot, 0.6, 0.012, 0.5, 0, COUNTER_TOP + 0.03, 0, { emissive: COLORS.grillHot });
   meat(g, 0, 0, COUNTER_TOP + 0.05, station.progress / Math.max(station.total, 1));
 }
 
 function boardContents(g, station) {
-  if (station.state === "empty") return;
-  if (station.state === "ready") {
+  if (isEmpty(station)) return;
+  if (station.state === STATE.READY) {
     garnish(g, -0.05, 0, COUNTER_TOP + 0.045);
     return;
   }
@@ -171,8 +172,8 @@ function boardContents(g, station) {
 }
 
 function sinkContents(g, station) {
-  if (station.state === "empty") return;
-  if (station.state === "clean") {
+  if (isEmpty(station)) return;
+  if (station.state === STATE.CLEAN) {
     cleanPlate(g, 0, 0.02, BASIN + 0.02);
     return;
   }
@@ -196,7 +197,7 @@ function progressTexture(terrain, station) {
     canvas.width = w;
     canvas.height = h;
     const ctx = canvas.getContext("2d");
-    const done = station.state === "ready" || station.state === "clean";
+    const done = isDone(station);
     const barW = w - h - 8;
     ctx.fillStyle = COLORS.barBack;
     ctx.fillRect(0, 10, barW, h - 20);
@@ -231,7 +232,7 @@ export function contentsModel(cell) {
   const station = cell.station;
   if (station && CONTENTS[cell.terrain]) {
     CONTENTS[cell.terrain](group, station);
-    if (station.state !== "empty" && station.total) {
+    if (!isEmpty(station) && station.total) {
       const sprite = new THREE.Sprite(new THREE.SpriteMaterial({ map: progressTexture(cell.terrain, station) }));
       sprite.scale.set(0.56, 0.14, 1);
       sprite.position.set(0, COUNTER_TOP + 0.5, 0);

@@ -4,6 +4,7 @@
  */
 
 import { h } from "../dom.js";
+import { FLOOR } from "../vocabulary.js";
 import { drawCell } from "./stations.js";
 import { drawObject } from "./items.js";
 
@@ -23,7 +24,7 @@ export function iconCanvas(draw, cssSize = 44, className = "legend-icon") {
 /** An object (onion, meat, plates, dish) on a floor tile. */
 export function objectIcon(kind, cssSize, className) {
   return iconCanvas((ctx, s) => {
-    drawCell(ctx, { terrain: "floor" }, 0, 0, s);
+    drawCell(ctx, { terrain: FLOOR }, 0, 0, s);
     drawObject(ctx, kind, s / 2, s / 2, s * 0.36);
   }, cssSize, className);
 }

@@ -10,14 +10,12 @@
 
 import { h } from "../dom.js";
 import { STATIONS } from "../labels.js";
+import { FLOOR, STATE, TERRAIN_OF_CHAR } from "../vocabulary.js";
 import { paintState } from "./renderer.js";
 import { drawCell } from "./stations.js";
 import { drawAgent, FACING } from "./agents.js";
 import { drawObject } from "./items.js";
 import { iconCanvas as icon } from "./icons.js";
-
-const TERRAIN = { X: "counter", " ": "floor", O: "onion", M: "meat", D: "plate", P: "grill", B: "board", W: "sink",
-                  S: "serve" };
 
 export async function loadExample() {
   const response = await fetch("/data/example_view.json", { cache: "no-store" });
@@ -62,7 +60,7 @@ export function exampleScenes(example, angle = example.fov_angle) {
   example.rows.forEach((row, y) => [...row].forEach((ch, x) => {
     const key = `${x},${y}`;
     const station = stations.get(key);
-    cells.push({ x, y, terrain: TERRAIN[ch] || "floor", object: objects.get(key) || null,
+    cells.push({ x, y, terrain: TERRAIN_OF_CHAR[ch] || FLOOR, object: objects.get(key) || null,
                  station: station ? { state: station.state, progress: station.progress, total: station.total } : null });
   }));
   const seen = new Set(exampleVisible(example, angle).map(([x, y]) => `${x},${y}`));
@@ -110,12 +108,12 @@ const OBJECT_LEGEND = [
 
 /** A legend: every station (with its progress bar), object and agent, drawn by the game's painters. */
 export function legend() {
-  const floorUnder = (ctx, s) => drawCell(ctx, { terrain: "floor" }, 0, 0, s);
+  const floorUnder = (ctx, s) => drawCell(ctx, { terrain: FLOOR }, 0, 0, s);
   const items = [
     ...["counter", "onion", "meat", "plate"].map((t) => [STATIONS[t], (ctx, s) => drawCell(ctx, { terrain: t }, 0, 0, s)]),
-    ["Grill, steak cooking (bar: cook time)", (ctx, s) => drawCell(ctx, { terrain: "grill", station: { state: "cooking", progress: 4, total: 10 } }, 0, 0, s)],
-    ["Chopping board, onion chopped once", (ctx, s) => drawCell(ctx, { terrain: "board", station: { state: "chopping", progress: 1, total: 2 } }, 0, 0, s)],
-    ["Sink, plate clean (✓ means done)", (ctx, s) => drawCell(ctx, { terrain: "sink", station: { state: "clean", progress: 2, total: 2 } }, 0, 0, s)],
+    ["Grill, steak cooking (bar: cook time)", (ctx, s) => drawCell(ctx, { terrain: "grill", station: { state: STATE.COOKING, progress: 4, total: 10 } }, 0, 0, s)],
+    ["Chopping board, onion chopped once", (ctx, s) => drawCell(ctx, { terrain: "board", station: { state: STATE.CHOPPING, progress: 1, total: 2 } }, 0, 0, s)],
+    ["Sink, plate clean (✓ means done)", (ctx, s) => drawCell(ctx, { terrain: "sink", station: { state: STATE.CLEAN, progress: 2, total: 2 } }, 0, 0, s)],
     [STATIONS.serve, (ctx, s) => drawCell(ctx, { terrain: "serve" }, 0, 0, s)],
     ...OBJECT_LEGEND.map(([kind, text]) => [text, (ctx, s) => { floorUnder(ctx, s); drawObject(ctx, kind, s / 2, s / 2, s * 0.32); }]),
     ["You (the pointer shows where you face)", (ctx, s) => { floorUnder(ctx, s); drawAgent(ctx, "human", { facing: "east" }, 0, 0, s); }],

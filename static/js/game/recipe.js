@@ -8,22 +8,23 @@
  */
 
 import { h } from "../dom.js";
+import { STATE } from "../vocabulary.js";
 import { objectIcon, stationIcon } from "./icons.js";
 
 export const RECIPE = [
   { id: "steak", title: "Steak", steps: [
     { id: "meat", label: "Meat", icon: (px) => objectIcon("meat", px) },
-    { id: "grill", label: "Grill", icon: (px) => stationIcon("grill", { state: "cooking", progress: 5, total: 10 }, px) },
+    { id: "grill", label: "Grill", icon: (px) => stationIcon("grill", { state: STATE.COOKING, progress: 5, total: 10 }, px) },
   ] },
   { id: "garnish", title: "Garnish", steps: [
     { id: "onion", label: "Onion", icon: (px) => objectIcon("onion", px) },
     { id: "board", label: "Board", icon: (px) => stationIcon("board", null, px) },
-    { id: "chop", label: "Chop", icon: (px) => stationIcon("board", { state: "chopping", progress: 1, total: 2 }, px) },
+    { id: "chop", label: "Chop", icon: (px) => stationIcon("board", { state: STATE.CHOPPING, progress: 1, total: 2 }, px) },
   ] },
   { id: "plate", title: "Plate", steps: [
     { id: "plate", label: "Plate", icon: (px) => objectIcon("dirty_plate", px) },
     { id: "sink", label: "Sink", icon: (px) => stationIcon("sink", null, px) },
-    { id: "wash", label: "Wash", icon: (px) => stationIcon("sink", { state: "washing", progress: 1, total: 2 }, px) },
+    { id: "wash", label: "Wash", icon: (px) => stationIcon("sink", { state: STATE.WASHING, progress: 1, total: 2 }, px) },
     { id: "take_out", label: "Pick up", icon: (px) => objectIcon("clean_plate", px) },
   ] },
   { id: "serve", title: "Serve", steps: [

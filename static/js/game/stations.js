@@ -4,6 +4,7 @@
  * ticks, chops, washes). A cell is drawn inside its own square (x0, y0, s) in device pixels.
  */
 
+import { STATE, isDone, isEmpty } from "../vocabulary.js";
 import { COLORS } from "./palette.js";
 import { drawCleanPlate, drawDirtyPlate, drawGarnish, drawMeat, drawObject, drawOnion } from "./items.js";
 
@@ -85,7 +86,7 @@ function drawPlateRack(ctx, x0, y0, s) {
 function drawGrill(ctx, x0, y0, s, station) {
   rect(ctx, x0, y0, s, s, COLORS.counter);
   const m = s * 0.08;
-  const hot = station && station.state !== "empty";
+  const hot = !isEmpty(station);
   rounded(ctx, x0 + m, y0 + m, s - 2 * m, s - 2 * m, s * 0.08, COLORS.grillBody, COLORS.grillBar, Math.max(1, s / 30));
   ctx.strokeStyle = hot ? COLORS.grillHot : COLORS.grillBar;
   ctx.lineWidth = Math.max(1.5, s * 0.05);
@@ -98,7 +99,7 @@ function drawGrill(ctx, x0, y0, s, station) {
   }
   if (hot) {
     const cooked = station.total ? station.progress / station.total : 1;
-    drawMeat(ctx, x0 + s * 0.5, y0 + s * 0.47, s * 0.28, station.state === "ready" ? 1 : cooked * 0.85);
+    drawMeat(ctx, x0 + s * 0.5, y0 + s * 0.47, s * 0.28, station.state === STATE.READY ? 1 : cooked * 0.85);
   }
 }
 
@@ -117,8 +118,8 @@ function drawBoard(ctx, x0, y0, s, station) {
   ctx.moveTo(x0 + s * 0.84, y0 + s * 0.5);
   ctx.lineTo(x0 + s * 0.88, y0 + s * 0.62);
   ctx.stroke();
-  if (!station || station.state === "empty") return;
-  if (station.state === "ready") {
+  if (isEmpty(station)) return;
+  if (station.state === STATE.READY) {
     drawGarnish(ctx, x0 + s * 0.42, y0 + s * 0.5, s * 0.24);
     return;
   }
@@ -139,8 +140,8 @@ function drawSink(ctx, x0, y0, s, station) {
   const m = s * 0.14;
   rounded(ctx, x0 + m, y0 + m * 1.4, s - 2 * m, s - 2.2 * m, s * 0.16, COLORS.sinkBasin, COLORS.sinkEdge, Math.max(1, s / 24));
   rounded(ctx, x0 + s * 0.44, y0 + s * 0.06, s * 0.12, s * 0.2, s * 0.04, COLORS.tap, COLORS.ink, Math.max(1, s / 60));
-  if (!station || station.state === "empty") return;
-  if (station.state === "clean") {
+  if (isEmpty(station)) return;
+  if (station.state === STATE.CLEAN) {
     drawCleanPlate(ctx, x0 + s * 0.5, y0 + s * 0.56, s * 0.25);
     return;
   }
@@ -193,8 +194,8 @@ export const BAR_COLOR = { grill: COLORS.barCook, board: COLORS.barChop, sink: C
 
 /** A segmented bar along the cell's bottom edge, and a check badge when the work is done. */
 export function drawProgress(ctx, terrain, station, x0, y0, s) {
-  if (station.state === "empty" || !station.total) return;
-  const done = station.state === "ready" || station.state === "clean";
+  if (isEmpty(station) || !station.total) return;
+  const done = isDone(station);
   const bx = x0 + s * 0.1;
   const bw = s * 0.8;
   const bh = Math.max(4, Math.round(s * 0.12));

@@ -11,7 +11,8 @@ from planner.geometry import DIRECTIONS
 from planner.objects import OBJECTS
 from planner.rules import Rules
 from planner.state import AgentState, WorldState
-from server.game.view import TERRAIN_NAME, visible_world
+from planner.vocabulary import TERRAIN_NAMES
+from server.game.view import visible_world
 from study_config import load_layout
 
 LAYOUT = load_layout("mid_2")
@@ -41,7 +42,7 @@ def test_exactly_the_visible_part_of_the_world_is_sent(world, angle):
     objects = dict(world.objects)
     for cell in cells:
         pos = (cell.x, cell.y)
-        assert cell.terrain == TERRAIN_NAME[LAYOUT.terrain(pos)]
+        assert cell.terrain == TERRAIN_NAMES[LAYOUT.terrain(pos)]
         assert cell.object == objects.get(pos)
         assert (cell.station is not None) == (cell.terrain in ("grill", "board", "sink"))
     assert (robot is not None) == (world.robot.pos in seen)

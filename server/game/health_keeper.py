@@ -1,0 +1,59 @@
+"""The robot health of one live trial, kept current and in the store (``server.game.health`` judges it; docs/
+operations.md, "Robot health").
+
+Every decision is counted; the moment the trial becomes invalid it says so in the server log, in a
+``trial_invalid`` event and on the trial row (written off the event loop). At the end the health is judged over
+the decisions the trial made and stored once more.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+from collections.abc import Callable
+from typing import Any
+
+from server.game.health import RobotHealth
+from server.game.meta import TrialMeta
+from store import trials
+from store.engine import Store
+
+log = logging.getLogger("server.game.live")
+"""The game's log: a trial turning invalid is reported where the rest of its story is."""
+
+
+class HealthKeeper:
+    def __init__(self, health: RobotHealth, store: Store, meta: TrialMeta,
+                 event: Callable[[str, dict[str, Any]], None]) -> None:
+        self.health, self.store, self.meta, self.event = health, store, meta, event
+        self._writes: set[asyncio.Task[None]] = set()
+
+    def record(self, missed: bool) -> None:
+        """Count one decision; the moment the trial becomes invalid, say so and store it."""
+        if self.update(self.health.record(missed), "is invalid"):
+            task = asyncio.create_task(asyncio.to_thread(self.store_now, self.health))
+            self._writes.add(task)
+            task.add_done_callback(self._writes.discard)
+
+    def update(self, health: RobotHealth, verb: str) -> bool:
+        """Take ``health``; when it makes the trial invalid, log a warning and a ``trial_invalid`` event and
+        answer ``True``."""
+        became_invalid = health.invalid and not self.health.invalid
+        self.health = health
+        if became_invalid:
+            log.warning("trial %d (participant %s) %s: %s", self.meta.trial_id, self.meta.participant, verb,
+                        health.invalid_reason)
+            self.event("trial_invalid", health.to_dict())
+        return became_invalid
+
+    def store_now(self, health: RobotHealth) -> None:
+        """Write ``health``'s counts and reason on the trial row (blocking: call it in a thread)."""
+        with self.store.transaction() as session:
+            trials.record_health(session, self.meta.trial_id, decisions=health.decisions, missed=health.missed,
+                                 invalid_reason=health.invalid_reason)
+
+    async def settle(self) -> None:
+        """Wait for the writes under way, then store the health as it is now."""
+        if self._writes:
+            await asyncio.gather(*self._writes, return_exceptions=True)
+        await asyncio.to_thread(self.store_now, self.health)
