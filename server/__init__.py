@@ -1,1 +1,2 @@
-"""The study server: FastAPI app, websocket protocol, game loop, SQL store, settings, and the CLI."""
+"""The study server: FastAPI app, participant flow, websocket protocol, game loop, robot workers, settings, and the
+`steakhouse` command line (which also runs the export and analysis of `analysis/`). The SQL store is `store/`."""
