@@ -88,6 +88,7 @@ class PlannerConfig:
     reuse_rollouts: bool = False
     rollout_budget: int = 0
     shown_value: float = 10.0
+    shown_empty: float = 0.0
     seen_carrying: float = 2.0
     view_detour: int = 4
 
@@ -98,7 +99,7 @@ class PlannerConfig:
     @property
     def values_knowing(self) -> bool:
         """The exploration values the person's knowing (:meth:`planner.rollout.Rollout.knowing`)."""
-        return bool(self.shown_value or self.seen_carrying)
+        return bool(self.shown_value or self.shown_empty or self.seen_carrying)
 
     def omniscient_human(self) -> PlannerConfig:
         return replace(self, human_angle=360.0, human_delay=0)

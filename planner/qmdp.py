@@ -50,9 +50,9 @@ from planner.belief import Belief, update_belief
 from planner.decision import Decision
 from planner.events import Event, EventKind
 from planner.fov import view
-from planner.geometry import DIRECTIONS, Action, Pos, manhattan, move_action
+from planner.geometry import DIRECTIONS, Action, Direction, Pos, manhattan, move_action
 from planner.human import HumanMemory
-from planner.kb import KnowledgeBase, initial_kb, omniscient_kb, update_kb
+from planner.kb import ROBOT_KEY, KnowledgeBase, initial_kb, omniscient_kb, update_kb
 from planner.layout import Layout
 from planner.paths import Pose, best_moves, distance, next_pose
 from planner.planner_config import PlannerConfig
@@ -64,7 +64,7 @@ from planner.standoff import (Standoff, advance, alternatives, arrive, beside, c
                               in_the_way, out_of_the_way, step_aside, take_over, unaided, visit_done, within_reach)
 from planner.objects import DISH
 from planner.subtasks import NOTHING_NEEDED, Subtask, targets
-from planner.view_route import view_route
+from planner.view_route import show_walk, view_route
 
 TICKS_PER_SUBTASK = 6
 
@@ -83,6 +83,7 @@ class QmdpRobot:
         self.current: Subtask | None = None
         self.held_before: str | None = None
         self.pending: tuple[Action, ...] = ()
+        self.pending_person: tuple[Pos, Direction] | None = None
         self.human_still = 0
         self.partner_still = 0
         self.cycle = CycleWatch()
@@ -95,6 +96,7 @@ class QmdpRobot:
         self.followed: dict[tuple[Subtask, Subtask], Trace] = {}
         self.dish_trip: tuple[int, int] | None = None
         self.known: dict[tuple[Subtask, Subtask], float] = {}
+        self.carrying = True
 
     def reset(self, world: WorldState, kb: KnowledgeBase | None = None) -> None:
         """Start on ``world`` (:meth:`planner.decision.Robot.reset`): the model of the person's KB is ``kb``
@@ -176,12 +178,14 @@ class QmdpRobot:
                             q_values={a.value: v for a, v in by_action.items()}, belief=self.belief.as_dict(),
                             explored_kbs=explored, elapsed_ms=(time.perf_counter() - start) * 1000,
                             timed_out=cut)
-        if self.pending and self.kb.robot is not None and self.kb.robot.held != world.robot.held:
+        if self.pending and self.kb.robot is not None and self.kb.robot.held != world.robot.held and (
+                (world.human.pos, world.human.facing) == self.pending_person):
             action, self.pending = self.pending[0], self.pending[1:]
             return Decision(action=action, belief=self.belief.as_dict(),
                             elapsed_ms=(time.perf_counter() - start) * 1000)
         self.pending = ()
         self.known = {}
+        self.carrying = self.trip_detour_left(world) > 0
         self.traces, self.next_traces = self.next_traces, {}
         options = self.tasker.options(world, self.current)
         around = self.around_standoff(world, options)
@@ -192,6 +196,9 @@ class QmdpRobot:
         if world.robot.held is None and options == NOTHING_NEEDED:  # planner.subtasks.beyond_orders
             self.current = None
             action = out_of_the_way(self.layout, world, self.human_targets(world))
+            if action is Action.STAY and self.shows_itself and self.cfg.shown_empty:
+                # Nothing to do: show the person the empty hands their KB does not know of (no tick lost).
+                action = next(iter(self.show_plan(world, ())), Action.STAY)
             return Decision(action=action, belief=self.belief.as_dict(),
                             elapsed_ms=(time.perf_counter() - start) * 1000)
         horizon = self.plan_horizon(world, options, likely)
@@ -353,7 +360,7 @@ class QmdpRobot:
             nearest = min(cells, key=lambda c: distance(self.layout, pose, c))
             for move in best_moves(self.layout, pose, nearest, world.human.pos):
                 candidates.setdefault(move, ())
-        show = self.show_plan(world, subtask)
+        show = self.show_plan(world, cells)
         if show:
             candidates[show[0]] = show[1:]
         plans = [(move, rest, True) for move, rest in candidates.items()]
@@ -375,6 +382,7 @@ class QmdpRobot:
             scored.append((v, move is default and not rest, i))
         move, rest, kept = plans[max(scored, key=lambda t: (t[0], t[1]))[2]]
         self.pending = rest if kept else ()
+        self.pending_person = (world.human.pos, world.human.facing)
         return move, len(scored)
 
     def sampled(self, world: WorldState, human_subtask: Subtask, robot_subtask: Subtask, horizon: int,
@@ -396,11 +404,13 @@ class QmdpRobot:
             # The subtask's value is the progress alone; the same rollouts' knowing is kept for its first move.
             sums = [self.rollout.parts(world, self.kb, HumanMemory(subtask=human_subtask, held=world.human.held),
                                        np.random.default_rng(seed + 7919 * i), robot_subtask, horizon,
-                                       parked_for=self.human_still, knowing=True) for i in range(n)]
+                                       parked_for=self.human_still, knowing=True, carrying=self.carrying)
+                    for i in range(n)]
             self.known[(robot_subtask, human_subtask)] = sum(k for _, k in sums) / n
             return sum(v for v, _ in sums) / n
         return sum(self.rollout.value(world, self.kb, human_subtask, robot_subtask, horizon, seed + 7919 * i,
-                                      prefix=prefix, parked_for=self.human_still, knowing=knowing)
+                                      prefix=prefix, parked_for=self.human_still, knowing=knowing,
+                                      carrying=self.carrying)
                    for i in range(n)) / n
 
     def yield_if_blocking(self, world: WorldState, subtask: Subtask, action: Action) -> Action:
@@ -417,68 +427,53 @@ class QmdpRobot:
                 return move_action(d)
         return action
 
-    def show_plan(self, world: WorldState, subtask: Subtask) -> tuple[Action, ...]:
-        """The cheapest way into the human's current view on the way to ``subtask``, then ``human_delay − 1``
-        stays there, so the human acknowledges what the robot holds (paper §VI-C, "walks alongside the
-        human"). Among floor poses in view, reached by a shortest walk that avoids the human, it minimises
-        the detour ``steps + d(pose, target) − d(robot, target)`` (ties: fewer steps), and keeps it only if
-        the detour is at most ``view_detour``. Empty when the modelled KB already knows what the robot
-        holds, when the robot is in view, or when no view cell is that close to the way."""
+    def show_plan(self, world: WorldState, cells: tuple[Pos, ...]) -> tuple[Action, ...]:
+        """The cheapest walk toward ``cells`` (a subtask's targets; none: anywhere) after which the robot has stood
+        ``human_delay`` consecutive ticks in the person's current view, so the person acknowledges what it holds
+        (paper §VI-C, "walks alongside the human"; :func:`planner.view_route.show_walk`): through the view on the
+        way when it can, else into it and waiting there, at most ``view_detour + human_delay − 1`` ticks longer
+        than the direct way. The ticks it already stands in view (its streak in the modelled KB) count. Empty
+        when the modelled KB already knows what the robot holds or no such walk exists."""
+        held = world.robot.held
+        if self.kb is None or self.kb.robot is None or self.kb.robot.held == held:
+            return ()
         human = world.human
-        if self.kb is None or self.kb.robot is None or self.kb.robot.held == world.robot.held:
-            return ()
         seen = view(self.layout, human.pos, human.facing, self.cfg.human_angle).cells
-        if world.robot.pos in seen:
-            return ()
-        cells = self.tasker.targets(subtask, world)
-        start = (world.robot.pos, world.robot.facing)
+        run = next((n for key, occupant, n in self.kb.streaks if key == ROBOT_KEY and occupant == held), 0) \
+            if world.robot.pos in seen else 0
+        need = self.cfg.human_delay
+        return show_walk(self.layout, (world.robot.pos, world.robot.facing), cells, seen, human.pos, need, run,
+                         self.cfg.view_detour + max(need - 1, 0))
 
-        def to_target(pose) -> int:
-            return min((distance(self.layout, pose, c) for c in cells), default=0)
-
-        base = to_target(start)
-        frontier = [start]
-        first: dict[Pose, tuple[Action, ...]] = {start: ()}
-        best: tuple[int, int, tuple[Action, ...]] | None = None
-        for steps in range(1, base + self.cfg.view_detour + 1):
-            nxt = []
-            for pose in frontier:
-                for d in DIRECTIONS:
-                    after = next_pose(self.layout, pose, d)
-                    if after in first or after[0] == human.pos:
-                        continue
-                    first[after] = first[pose] + (move_action(d),)
-                    nxt.append(after)
-                    if after[0] in seen:
-                        detour = steps + to_target(after) - base
-                        if detour <= self.cfg.view_detour and (best is None or (detour, steps) < best[:2]):
-                            best = (detour, steps, first[after])
-            frontier = nxt
-        if best is None:
-            return ()
-        return best[2] + (Action.STAY,) * max(self.cfg.human_delay - 1, 0)
+    def trip_detour_left(self, world: WorldState) -> int:
+        """The ticks the robot's dish trip may still spend beyond its shortest way (``view_detour`` for the whole
+        trip, docs/domain.md §5, "The person's knowing"): the extra ticks the dish has taken so far (ticks since it
+        was taken less how much shorter the way to the serving counter has become) count against it, so the robot
+        cannot wait in view tick after tick. 0 when it carries no dish or stands at the counter; the first call
+        of a trip starts it."""
+        if world.robot.held != DISH or not self.layout.serves:
+            return 0
+        pose = (world.robot.pos, world.robot.facing)
+        base = min(distance(self.layout, pose, c) for c in self.layout.serves)
+        if base == 0:
+            return 0
+        if self.dish_trip is None:
+            self.dish_trip = (world.tick, base)
+        return self.cfg.view_detour - (world.tick - self.dish_trip[0] - (self.dish_trip[1] - base))
 
     def view_route(self, world: WorldState, subtask: Subtask) -> tuple[Action, ...]:
         """Behaviour 2's plan while the robot carries a dish and ``seen_carrying`` values that (docs/domain.md §5,
         "The person's knowing": a delivery route through their view): :func:`planner.view_route.view_route`
-        with what is left of the trip's ``view_detour``. The detour is for the whole dish trip: the extra ticks
-        the dish has taken so far (ticks since it was taken less how much shorter the way has become) count
-        against it, so the robot cannot wait in view tick after tick. Empty when it carries no dish, is at its
-        station or has no detour left."""
+        with what is left of the trip's detour (:meth:`trip_detour_left`). Empty when it carries no dish, is at
+        its station or has no detour left; while it has none, a dish carried in view is worth nothing either
+        (``self.carrying``)."""
         if world.robot.held != DISH or not self.cfg.seen_carrying:
             return ()
         cells = self.tasker.targets(subtask, world)
-        if not cells:
+        detour = self.trip_detour_left(world)
+        if not cells or detour <= 0:
             return ()
         pose = (world.robot.pos, world.robot.facing)
-        base = min(distance(self.layout, pose, c) for c in cells)
-        if base == 0:
-            return ()
-        if self.dish_trip is None:
-            self.dish_trip = (world.tick, base)
-        detour = self.cfg.view_detour - (world.tick - self.dish_trip[0] - (self.dish_trip[1] - base))
-        if detour <= 0:
-            return ()
         seen = view(self.layout, world.human.pos, world.human.facing, self.cfg.human_angle).cells
         return view_route(self.layout, pose, cells, seen, world.human.pos, detour)
 
