@@ -15,13 +15,15 @@ Each tick the robot
    takes ``r* = argmax Q``;
 4. **exploration** (FOV-aware only, depth ``k``): it rolls out, besides the direct move toward ``r*``
    (whose score is the one already computed for ``Q``), every other first move on a shortest path and,
-   when the modelled KB does not know what the robot holds, a *show plan*: the cheapest walk into the
-   human's current view on the way to ``r*`` (detour at most ``k`` ticks), then ``kb_delay − 1`` stays
-   (it replaces the plain candidate with the same first move; scoring both measured worse); it
-   keeps the one whose effect on the human's KB (the robot and what it holds seen in time) pays most (ties:
-   the direct move). This produces the staircase paths that stay in the FOV and the robot walking alongside
-   the human to show what it carries (paper §VI-C). The no-rollout robot (depth 0) and the baseline take
-   the direct move.
+   when the modelled KB does not know what the robot holds, a *show plan*: the cheapest walk toward ``r*``
+   after which the robot has stood ``kb_delay`` consecutive ticks in the human's current view, through the
+   view on the way when it can, else into it and waiting there (:func:`planner.view_route.show_walk`; it
+   replaces the plain candidate with the same first move, scoring both measured worse; the robot follows it
+   while the human neither moves nor turns), and with a dish, the dish route (:mod:`planner.view_route`); it
+   keeps the one whose value, the rollout's progress plus what the person comes to know (docs/domain.md §5,
+   "The person's knowing"), is highest (ties: the direct move). This produces the staircase paths that stay
+   in the FOV and the robot walking alongside the human to show what it carries (paper §VI-C). The no-rollout
+   robot (depth 0) and the baseline take the direct move.
 
 The lookahead horizon is ``search_depth`` subtasks × 6 ticks (default 7: 42 ticks).
 ``PlannerConfig(lookahead="abstract")`` replaces steps 2–4 by docs/domain.md §5 as the reference planned
@@ -31,8 +33,8 @@ over abstract states). Measured on all kitchens × seeds 0–9 it is far worse (
 per decision, so the rollouts are the default: they keep the human's FOV-limited KB for the whole
 lookahead, where the abstraction drops it after ``k + 1`` ticks. Randomness: each decision draws one
 rollout seed from the ``rng`` it is handed (the trial's stream: same trial seed, same decisions; another
-seed, other rollouts) and every candidate of that tick uses it (common random numbers across candidates). A ``deadline`` (``time.perf_counter()`` value)
-stops the search and returns the best action so far (``timed_out``).
+seed, other rollouts) and every candidate of that tick uses it (common random numbers across candidates). A
+``deadline`` (``time.perf_counter()`` value) stops the search and returns the best action so far (``timed_out``).
 """
 
 from __future__ import annotations
@@ -44,9 +46,8 @@ from dataclasses import replace
 import numpy as np
 
 from planner.alone import solo_rollout, still_for
-from planner.cycle import CycleWatch, broken, watch, without_avoided
-from planner.reference import ReferenceLookahead
 from planner.belief import Belief, update_belief
+from planner.cycle import CycleWatch, broken, watch, without_avoided
 from planner.decision import Decision
 from planner.events import Event, EventKind
 from planner.fov import view
@@ -54,15 +55,31 @@ from planner.geometry import DIRECTIONS, Action, Direction, Pos, manhattan, move
 from planner.human import HumanMemory
 from planner.kb import ROBOT_KEY, KnowledgeBase, initial_kb, omniscient_kb, update_kb
 from planner.layout import Layout
-from planner.paths import Pose, best_moves, distance, next_pose
-from planner.planner_config import PlannerConfig
-from planner.reuse import Trace, follow, traced
-from planner.rollout import Rollout, RobotTasker, potential
-from planner.rules import Rules
-from planner.state import AgentState, WorldState
-from planner.standoff import (Standoff, advance, alternatives, arrive, beside, committed, give_up, hold_aside,
-                              in_the_way, out_of_the_way, step_aside, take_over, unaided, visit_done, within_reach)
 from planner.objects import DISH
+from planner.paths import best_moves, distance
+from planner.planner_config import PlannerConfig
+from planner.reference import ReferenceLookahead
+from planner.reuse import Trace, follow, traced
+from planner.rollout import RobotTasker, Rollout, potential
+from planner.rules import Rules
+from planner.standoff import (
+    Standoff,
+    advance,
+    alternatives,
+    arrive,
+    beside,
+    committed,
+    give_up,
+    hold_aside,
+    in_the_way,
+    out_of_the_way,
+    step_aside,
+    take_over,
+    unaided,
+    visit_done,
+    within_reach,
+)
+from planner.state import AgentState, WorldState
 from planner.subtasks import NOTHING_NEEDED, Subtask, targets
 from planner.view_route import show_walk, view_route
 
@@ -343,8 +360,8 @@ class QmdpRobot:
         self.averages[subtask] = value if before is None else alpha * value + (1.0 - alpha) * before
         return self.averages[subtask]
 
-    def first_move(self, world: WorldState, subtask: Subtask, likely, horizon: int, seed: int,
-                   deadline: float | None, direct_value: float) -> tuple[Action, int]:
+    def first_move(self, world: WorldState, subtask: Subtask, likely: tuple[tuple[Subtask, float], ...], horizon: int,
+                   seed: int, deadline: float | None, direct_value: float) -> tuple[Action, int]:
         """Exploration: the direct first move toward ``subtask`` against the first moves of plans that
         show the robot to the human first (every first move on a shortest path, and the way into the
         human's view held for ``kb_delay`` ticks), each scored by a rollout that tracks the modelled KB.

@@ -34,8 +34,17 @@ from planner.planner_config import PlannerConfig
 from planner.rules import Rules
 from planner.state import WorldState
 from planner.step import step
-from planner.subtasks import (Believed, Subtask, available, beyond_orders, finished, resumable, resumed_targets,
-                              targets, within_orders)
+from planner.subtasks import (
+    Believed,
+    Subtask,
+    available,
+    beyond_orders,
+    finished,
+    resumable,
+    resumed_targets,
+    targets,
+    within_orders,
+)
 
 
 def potential(world: WorldState, cfg: PlannerConfig) -> float:
@@ -111,9 +120,9 @@ def _robot_options(rules: Rules, held: str | None, human_held: str | None, order
             options.append(Subtask.CHOP_ONION)
         if unwashed and Subtask.WASH_PLATE not in options:
             options.append(Subtask.WASH_PLATE)
-    elif held == STEAK_PLATE and not any(v is not None and v >= rules.chop_time for v in boards):
-        if Subtask.DROP_ON_COUNTER not in options:
-            options.append(Subtask.DROP_ON_COUNTER)
+    elif (held == STEAK_PLATE and not any(v is not None and v >= rules.chop_time for v in boards)
+          and Subtask.DROP_ON_COUNTER not in options):
+        options.append(Subtask.DROP_ON_COUNTER)
     coming = ((any(g is not None for g in grills) or human_held == MEAT)
               and (any(v is not None for v in boards) or human_held == ONION))
     if coming and held is None and Subtask.PICKUP_CLEAN_PLATE not in options:
@@ -190,7 +199,8 @@ class Rollout:
               parked_for: int = 0) -> SimState:
         return SimState(world, kb, memory, robot_subtask, parked_for, potential(world, self.cfg))
 
-    def tick(self, sim: SimState, rng: np.random.Generator, robot_action: Action | None = None) -> tuple[SimState, float]:
+    def tick(self, sim: SimState, rng: np.random.Generator,
+             robot_action: Action | None = None) -> tuple[SimState, float]:
         """One tick of the simulated joint system: the next state and the increment of Φ. The robot takes
         ``robot_action`` if given, else its move toward its subtask."""
         world, kb, robot_task, human_still = sim.world, sim.kb, sim.robot_task, sim.human_still

@@ -18,9 +18,9 @@ from planner.geometry import Action, Direction
 from planner.layout import parse_layout
 from planner.objects import DISH, MEAT
 from planner.paths import distance, next_pose
+from planner.perception import FOV_ANGLE, KB_DELAY
 from planner.planner_config import PlannerConfig
 from planner.qmdp import make_qmdp_robot
-from planner.perception import FOV_ANGLE, KB_DELAY
 from planner.robots import make_robot
 from planner.rules import Rules
 from planner.state import AgentState, initial_state
