@@ -232,7 +232,7 @@ class Rollout:
         was made; ``still_showing``: it has held that ever since) ``+shown_value`` for an object and
         ``+shown_empty`` for empty hands (a load put down where the person did not see it), and
         ``+seen_carrying`` while the robot is in their view with a dish (on the way to the serving counter; only
-        while ``carrying``: the robot's dish trip has detour left, :meth:`planner.qmdp.QmdpRobot.trip_detour_left`).
+        while ``carrying``: the robot's dish trip has detour left, :meth:`planner.showing.Showing.trip_detour_left`).
         Zero for a person who sees everything. Only what the robot holds now earns the shown value: a cost for
         every unknown load in the lookahead made the robot avoid and delay work, and one for every tick the KB
         still believes the robot holds what it put down made it keep its load in view (measured,
