@@ -47,11 +47,13 @@ class PlannerConfig:
     default: they cut the decision time but also the FOV-aware robot's effect (docs/domain.md §5).
     The person's knowing (docs/domain.md §5; only the FOV-aware robot's exploration, whose candidate first moves
     are valued with it): ``shown_value`` once, when the modelled person's KB acknowledges what the robot holds
-    now while it still holds it; ``seen_carrying`` per tick while it carries a dish in the person's view.
-    ``view_detour``: the most extra ticks of a plan that shows the robot (walk into view and stay
-    ``human_delay`` ticks) or carries a dish through the view. Tuned on generated
-    kitchens of generator seeds 0–29 only. (With ``reuse_rollouts`` the kept rollouts carry no knowing value,
-    so the direct move is scored without it: not measured.)"""
+    now while it still holds it; ``shown_empty`` the same for empty hands (a put-down the person did not see;
+    also, with nothing to do, the robot then walks into view; off by default: it cost ticks for little less KB
+    gap); ``seen_carrying`` per tick while it carries a dish in the person's view, as long as the dish trip has
+    detour left. ``view_detour``: the most extra ticks of a whole dish trip, and of a showing walk less its
+    ``human_delay − 1`` ticks in view (at most ``view_detour + human_delay − 1``). Tuned on generated kitchens
+    of generator seeds 0–29 only. (With ``reuse_rollouts`` the kept rollouts carry no knowing value, so the
+    direct move is scored without it: not measured.)"""
 
     human_angle: float = FOV_ANGLE
     human_delay: int = KB_DELAY
@@ -87,6 +89,7 @@ class PlannerConfig:
     reuse_rollouts: bool = False
     rollout_budget: int = 0
     shown_value: float = 10.0
+    shown_empty: float = 0.0
     seen_carrying: float = 2.0
     view_detour: int = 4
 
@@ -97,7 +100,7 @@ class PlannerConfig:
     @property
     def values_knowing(self) -> bool:
         """The exploration values the person's knowing (:meth:`planner.rollout.Rollout.knowing`)."""
-        return bool(self.shown_value or self.seen_carrying)
+        return bool(self.shown_value or self.shown_empty or self.seen_carrying)
 
     def omniscient_human(self) -> PlannerConfig:
         return replace(self, human_angle=360.0, human_delay=0)

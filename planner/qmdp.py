@@ -15,24 +15,26 @@ Each tick the robot
    takes ``r* = argmax Q``;
 4. **exploration** (FOV-aware only, depth ``k``): it rolls out, besides the direct move toward ``r*``
    (whose score is the one already computed for ``Q``), every other first move on a shortest path and,
-   when the modelled KB does not know what the robot holds, a *show plan*: the cheapest walk into the
-   human's current view on the way to ``r*`` (detour at most ``k`` ticks), then ``kb_delay − 1`` stays
-   (it replaces the plain candidate with the same first move; scoring both measured worse); it
-   keeps the one whose effect on the human's KB (the robot and what it holds seen in time) pays most (ties:
-   the direct move). This produces the staircase paths that stay in the FOV and the robot walking alongside
-   the human to show what it carries (paper §VI-C). The no-rollout robot (depth 0) and the baseline take
-   the direct move.
+   when the modelled KB does not know what the robot holds, a *show plan*: the cheapest walk toward ``r*``
+   after which the robot has stood ``kb_delay`` consecutive ticks in the human's current view, through the
+   view on the way when it can, else into it and waiting there (:func:`planner.view_route.show_walk`; it
+   replaces the plain candidate with the same first move, scoring both measured worse; the robot follows it
+   while the human neither moves nor turns), and with a dish, the dish route (:mod:`planner.view_route`); it
+   keeps the one whose value, the rollout's progress plus what the person comes to know (docs/domain.md §5,
+   "The person's knowing"), is highest (ties: the direct move). This produces the staircase paths that stay
+   in the FOV and the robot walking alongside the human to show what it carries (paper §VI-C). The no-rollout
+   robot (depth 0) and the baseline take the direct move.
 
 The lookahead horizon is ``search_depth`` subtasks × 6 ticks (default 7: 42 ticks).
 ``PlannerConfig(lookahead="abstract")`` replaces steps 2–4 by docs/domain.md §5 as the reference planned
-(:mod:`planner.reference`: Q per low-level action from motion-sequence exploration and a heuristic search over abstract
-states). Measured on all kitchens × seeds 0–9 it is far worse (FOV-aware 146.8 ticks, 8 of 100 trials unfinished;
-baseline 135.4, 3 unfinished; no significant difference) and needs up to ~300 ms per decision, so the rollouts are the
-default: they keep the human's FOV-limited KB for the whole lookahead, where the abstraction drops it after ``k + 1``
-ticks. Randomness: each decision draws one rollout seed from the ``rng`` it is handed (the trial's stream: same trial
-seed, same decisions; another seed, other rollouts) and every candidate of that tick uses it (common random numbers
-across candidates). A ``deadline`` (``time.perf_counter()`` value) stops the search and returns the best action so far
-(``timed_out``).
+(:mod:`planner.reference`: Q per low-level action from motion-sequence exploration and a heuristic search
+over abstract states). Measured on all kitchens × seeds 0–9 it is far worse (FOV-aware 146.8 ticks, 8 of
+100 trials unfinished; baseline 135.4, 3 unfinished; no significant difference) and needs up to ~300 ms
+per decision, so the rollouts are the default: they keep the human's FOV-limited KB for the whole
+lookahead, where the abstraction drops it after ``k + 1`` ticks. Randomness: each decision draws one
+rollout seed from the ``rng`` it is handed (the trial's stream: same trial seed, same decisions; another
+seed, other rollouts) and every candidate of that tick uses it (common random numbers across candidates). A
+``deadline`` (``time.perf_counter()`` value) stops the search and returns the best action so far (``timed_out``).
 """
 
 from __future__ import annotations
@@ -43,23 +45,24 @@ from dataclasses import replace
 
 import numpy as np
 
-from planner.alone import solo_rollout, still_for
-from planner.belief import Belief, update_belief
+from planner.alone import solo_rollout
+from planner.belief import Belief
 from planner.cycle import CycleWatch, broken, watch, without_avoided
 from planner.decision import Decision
 from planner.events import Event, EventKind
-from planner.fov import view
 from planner.geometry import DIRECTIONS, Action, Pos, manhattan, move_action
 from planner.human import HumanMemory
-from planner.kb import KnowledgeBase, initial_kb, omniscient_kb, update_kb
+from planner.kb import KnowledgeBase, omniscient_kb
 from planner.layout import Layout
-from planner.objects import DISH
-from planner.paths import Pose, best_moves, distance, next_pose
+from planner.paths import best_moves, distance
+from planner.person_model import PersonModel
 from planner.planner_config import PlannerConfig
 from planner.reference import ReferenceLookahead
 from planner.reuse import Trace, follow, traced
 from planner.rollout import RobotTasker, Rollout, potential
 from planner.rules import Rules
+from planner.showing import Showing
+from planner.smoothing import ValueAverages
 from planner.standoff import (
     Standoff,
     advance,
@@ -79,79 +82,75 @@ from planner.standoff import (
 )
 from planner.state import AgentState, WorldState
 from planner.subtasks import NOTHING_NEEDED, Subtask, targets
-from planner.view_route import view_route
 
 TICKS_PER_SUBTASK = 6
 
 
 class QmdpRobot:
+    """One robot of the module docstring. Its parts, one job each: ``person`` (:class:`planner.person_model.
+    PersonModel`: the modelled KB, the belief over the person's subtask, how long the person has stood still),
+    ``showing`` (:class:`planner.showing.Showing`: the show plan being followed, the dish trip, this decision's
+    value of the person's knowing), ``values`` (:class:`planner.smoothing.ValueAverages`: the running averages of
+    the subtask values), the rollouts (``team_rollout``, ``solo_rollout`` beside a person who has stopped, the kept
+    ``traces`` of :mod:`planner.reuse`), and the robot's own progress (``current`` subtask, ``standoff``,
+    ``cycle``). The robot itself makes the choice: :meth:`decide`."""
+
     def __init__(self, layout: Layout, rules: Rules, config: PlannerConfig, explore: bool) -> None:
         self.layout, self.rules, self.cfg, self.explore = layout, rules, config, explore
         self.rollout = self.team_rollout = Rollout(layout, rules, config)
         self.solo_rollout = solo_rollout(layout, rules, config)
         self.reference = ReferenceLookahead(layout, rules, config) if config.lookahead == "abstract" else None
         self.tasker = RobotTasker(layout, rules)
-        self.kb: KnowledgeBase | None = None
-        self.kb_tick: int | None = None
-        self.belief: Belief | None = None
-        self.last_human: AgentState | None = None
+        self.person = PersonModel(layout, rules, config)
+        self.showing = Showing(layout, config)
+        self.values = ValueAverages(config.value_smoothing)
         self.current: Subtask | None = None
         self.held_before: str | None = None
-        self.pending: tuple[Action, ...] = ()
-        self.human_still = 0
-        self.partner_still = 0
         self.cycle = CycleWatch()
-        self.averages: dict[Subtask, float] = {}
-        self.averages_key: tuple[str | None, int] | None = None
         self.standoff = Standoff()
         self.robot_before: AgentState | None = None
         self.traces: dict[tuple[Subtask, Subtask], Trace] = {}
         self.next_traces: dict[tuple[Subtask, Subtask], Trace] = {}
         self.followed: dict[tuple[Subtask, Subtask], Trace] = {}
-        self.dish_trip: tuple[int, int] | None = None
-        self.known: dict[tuple[Subtask, Subtask], float] = {}
 
     def reset(self, world: WorldState, kb: KnowledgeBase | None = None) -> None:
         """Start on ``world`` (:meth:`planner.decision.Robot.reset`): the model of the person's KB is ``kb``
         (a resumed trial's restored KB) or, at a trial's start or for a model that sees everything at once
         (the baseline's: its KB is the world), :func:`initial_kb`."""
-        self.kb = kb if kb is not None and not self.cfg.human_sees_everything else initial_kb(world)
-        self.kb_tick = world.tick
-        self.belief = None
-        self.last_human = None
+        self.person.reset(world, kb)
+        self.showing.reset()
+        self.values.reset()
         self.current = None
         self.held_before = world.robot.held
-        self.pending = ()
-        self.human_still = 0
-        self.partner_still = 0
         self.cycle = CycleWatch()
-        self.averages = {}
-        self.averages_key = None
         self.standoff = Standoff()
         self.robot_before = None
         self.traces, self.next_traces = {}, {}
-        self.dish_trip = None
+
+    @property
+    def kb(self) -> KnowledgeBase | None:
+        """The person's KB as the robot models it (:class:`planner.person_model.PersonModel`)."""
+        return self.person.kb
+
+    @property
+    def belief(self) -> Belief | None:
+        """The robot's belief over the person's subtask (:class:`planner.person_model.PersonModel`)."""
+        return self.person.belief
+
+    @property
+    def human_still(self) -> int:
+        """Ticks the person has stood in one cell (:class:`planner.person_model.PersonModel`)."""
+        return self.person.human_still
+
+    @property
+    def pending(self) -> tuple[Action, ...]:
+        """The rest of the show plan the robot follows (:class:`planner.showing.Showing`)."""
+        return self.showing.pending
 
     def observe(self, world: WorldState, events: Sequence[Event]) -> None:
-        if self.kb is None:
+        if self.person.kb is None:
             self.reset(world)
-        assert self.kb is not None
-        human_events = [e for e in events if e.agent == "human"]
-        if world.tick != self.kb_tick:
-            # The person's KB takes each world once, after it steps (planner.play, server.game.engine): the
-            # world the robot was reset with is already in ``initial_kb``, and seeing it again is no new tick.
-            self.kb = update_kb(self.kb, self.layout, world, angle=self.cfg.human_angle,
-                                kb_delay=self.cfg.human_delay, own_events=human_events)
-            self.kb_tick = world.tick
-        action = _infer_action(self.last_human, world.human, bool(human_events))
-        partner_held = self.kb.robot.held if self.kb.robot is not None else None
-        self.belief = update_belief(self.belief, self.layout, self.rules, self.kb, self.last_human, world.human,
-                                    action, partner_held, world.orders_left, weight=self.cfg.progress_weight,
-                                    floor=self.cfg.belief_floor)
-        moved = self.last_human is not None and self.last_human.pos != world.human.pos
-        self.human_still = 0 if moved else self.human_still + 1
-        self.partner_still = still_for(self.partner_still, self.last_human, world.human, human_events)
-        self.last_human = world.human
+        moved = self.person.observe(world, events)
         target = self.tasker.targets(self.current, world) if self.current is not None else ()
         phi = potential(world, self.cfg)
         self.standoff = advance(self.standoff, self.layout, self.robot_before, world, target, moved, phi)
@@ -164,17 +163,14 @@ class QmdpRobot:
                                          or self.current not in self.tasker.options(judged, self.current)):
             self.current = None
         self.held_before = world.robot.held
-        if world.robot.held != DISH:
-            self.dish_trip = None
+        self.showing.observe(world)
 
     def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,
                deadline: float | None = None) -> Decision:
         start = time.perf_counter()
         self.observe(world, events)
         assert self.kb is not None and self.belief is not None
-        key = (world.robot.held, world.orders_left)
-        if key != self.averages_key:
-            self.averages, self.averages_key = {}, key
+        self.values.restart_on((world.robot.held, world.orders_left))
         likely = self.belief.likely(self.cfg.belief_threshold, self.cfg.max_subtasks)
         seed = int(rng.integers(2**31))
         cycles = self.cycle.broken
@@ -191,12 +187,11 @@ class QmdpRobot:
                             q_values={a.value: v for a, v in by_action.items()}, belief=self.belief.as_dict(),
                             explored_kbs=explored, elapsed_ms=(time.perf_counter() - start) * 1000,
                             timed_out=cut)
-        if self.pending and self.kb.robot is not None and self.kb.robot.held != world.robot.held:
-            action, self.pending = self.pending[0], self.pending[1:]
-            return Decision(action=action, belief=self.belief.as_dict(),
+        followed = self.showing.follow(world, self.kb)
+        if followed is not None:
+            return Decision(action=followed, belief=self.belief.as_dict(),
                             elapsed_ms=(time.perf_counter() - start) * 1000)
-        self.pending = ()
-        self.known = {}
+        self.showing.start(world)
         self.traces, self.next_traces = self.next_traces, {}
         options = self.tasker.options(world, self.current)
         around = self.around_standoff(world, options)
@@ -207,6 +202,9 @@ class QmdpRobot:
         if world.robot.held is None and options == NOTHING_NEEDED:  # planner.subtasks.beyond_orders
             self.current = None
             action = out_of_the_way(self.layout, world, self.human_targets(world))
+            if action is Action.STAY and self.shows_itself and self.cfg.shown_empty:
+                # Nothing to do: show the person the empty hands their KB does not know of (no tick lost).
+                action = next(iter(self.showing.show_plan(world, self.kb, ())), Action.STAY)
             return Decision(action=action, belief=self.belief.as_dict(),
                             elapsed_ms=(time.perf_counter() - start) * 1000)
         horizon = self.plan_horizon(world, options, likely)
@@ -218,7 +216,7 @@ class QmdpRobot:
                 timed_out = True
                 break
             values[r] = sum(p * self.sampled(world, s, r, horizon, seed) for s, p in likely)
-            q[r] = self.cfg.gamma * self.averaged(r, values[r]) + (
+            q[r] = self.cfg.gamma * self.values.fold(r, values[r]) + (
                 self.cfg.commitment_bonus if r is self.current else 0.0)
         best = max(q, key=lambda r: (q[r], r is self.current, -options.index(r)))
         self.current = best
@@ -231,7 +229,7 @@ class QmdpRobot:
     @property
     def alone(self) -> bool:
         """Whether the person has stopped (:mod:`planner.alone`): the robot plans as if it were alone."""
-        return self.partner_still >= self.cfg.alone_ticks
+        return self.person.alone
 
     @property
     def shows_itself(self) -> bool:
@@ -254,7 +252,8 @@ class QmdpRobot:
         assert self.belief is not None
         human_cells = self.human_targets(world)
         self.cycle = broken(self.cycle, self.current, world.tick, self.cfg.cycle_hold)
-        self.current, self.pending = None, ()
+        self.current = None
+        self.showing.pending = ()
         return step_aside(self.layout, world, human_cells)
 
     def plan_horizon(self, world: WorldState, options: tuple[Subtask, ...],
@@ -344,15 +343,8 @@ class QmdpRobot:
             return None
         return move
 
-    def averaged(self, subtask: Subtask, value: float) -> float:
-        """``value`` folded into the running average of ``subtask``'s rollout value (``value_smoothing``)."""
-        before = self.averages.get(subtask)
-        alpha = self.cfg.value_smoothing
-        self.averages[subtask] = value if before is None else alpha * value + (1.0 - alpha) * before
-        return self.averages[subtask]
-
-    def first_move(self, world: WorldState, subtask: Subtask, likely: tuple[tuple[Subtask, float], ...],
-                   horizon: int, seed: int, deadline: float | None, direct_value: float) -> tuple[Action, int]:
+    def first_move(self, world: WorldState, subtask: Subtask, likely: tuple[tuple[Subtask, float], ...], horizon: int,
+                   seed: int, deadline: float | None, direct_value: float) -> tuple[Action, int]:
         """Exploration: the direct first move toward ``subtask`` against the first moves of plans that
         show the robot to the human first (every first move on a shortest path, and the way into the
         human's view held for ``kb_delay`` ticks), each scored by a rollout that tracks the modelled KB.
@@ -368,7 +360,7 @@ class QmdpRobot:
             nearest = min(cells, key=lambda c: distance(self.layout, pose, c))
             for move in best_moves(self.layout, pose, nearest, world.human.pos):
                 candidates.setdefault(move, ())
-        show = self.show_plan(world, subtask)
+        show = self.showing.show_plan(world, self.kb, cells)
         if show:
             candidates[show[0]] = show[1:]
         plans = [(move, rest, True) for move, rest in candidates.items()]
@@ -382,14 +374,14 @@ class QmdpRobot:
             if deadline is not None and scored and time.perf_counter() > deadline:
                 break
             if move is default and not rest:
-                v = direct_value + sum(p * self.known.get((subtask, s), 0.0) for s, p in likely)
+                v = direct_value + sum(p * self.showing.known.get((subtask, s), 0.0) for s, p in likely)
             else:
                 plan = (move,) + rest
                 v = sum(p * self.sampled(world, s, subtask, horizon, seed, plan, self.cfg.values_knowing)
                         for s, p in likely)
             scored.append((v, move is default and not rest, i))
         move, rest, kept = plans[max(scored, key=lambda t: (t[0], t[1]))[2]]
-        self.pending = rest if kept else ()
+        self.showing.keep(rest if kept else (), world)
         return move, len(scored)
 
     def sampled(self, world: WorldState, human_subtask: Subtask, robot_subtask: Subtask, horizon: int,
@@ -411,11 +403,13 @@ class QmdpRobot:
             # The subtask's value is the progress alone; the same rollouts' knowing is kept for its first move.
             sums = [self.rollout.parts(world, self.kb, HumanMemory(subtask=human_subtask, held=world.human.held),
                                        np.random.default_rng(seed + 7919 * i), robot_subtask, horizon,
-                                       parked_for=self.human_still, knowing=True) for i in range(n)]
-            self.known[(robot_subtask, human_subtask)] = sum(k for _, k in sums) / n
+                                       parked_for=self.human_still, knowing=True, carrying=self.showing.carrying)
+                    for i in range(n)]
+            self.showing.known[(robot_subtask, human_subtask)] = sum(k for _, k in sums) / n
             return sum(v for v, _ in sums) / n
         return sum(self.rollout.value(world, self.kb, human_subtask, robot_subtask, horizon, seed + 7919 * i,
-                                      prefix=prefix, parked_for=self.human_still, knowing=knowing)
+                                      prefix=prefix, parked_for=self.human_still, knowing=knowing,
+                                      carrying=self.showing.carrying)
                    for i in range(n)) / n
 
     def yield_if_blocking(self, world: WorldState, subtask: Subtask, action: Action) -> Action:
@@ -432,80 +426,9 @@ class QmdpRobot:
                 return move_action(d)
         return action
 
-    def show_plan(self, world: WorldState, subtask: Subtask) -> tuple[Action, ...]:
-        """The cheapest way into the human's current view on the way to ``subtask``, then ``human_delay − 1``
-        stays there, so the human acknowledges what the robot holds (paper §VI-C, "walks alongside the
-        human"). Among floor poses in view, reached by a shortest walk that avoids the human, it minimises
-        the detour ``steps + d(pose, target) − d(robot, target)`` (ties: fewer steps), and keeps it only if
-        the detour is at most ``view_detour``. Empty when the modelled KB already knows what the robot
-        holds, when the robot is in view, or when no view cell is that close to the way."""
-        human = world.human
-        if self.kb is None or self.kb.robot is None or self.kb.robot.held == world.robot.held:
-            return ()
-        seen = view(self.layout, human.pos, human.facing, self.cfg.human_angle).cells
-        if world.robot.pos in seen:
-            return ()
-        cells = self.tasker.targets(subtask, world)
-        start = (world.robot.pos, world.robot.facing)
-
-        def to_target(pose: Pose) -> int:
-            return min((distance(self.layout, pose, c) for c in cells), default=0)
-
-        base = to_target(start)
-        frontier = [start]
-        first: dict[Pose, tuple[Action, ...]] = {start: ()}
-        best: tuple[int, int, tuple[Action, ...]] | None = None
-        for steps in range(1, base + self.cfg.view_detour + 1):
-            nxt = []
-            for pose in frontier:
-                for d in DIRECTIONS:
-                    after = next_pose(self.layout, pose, d)
-                    if after in first or after[0] == human.pos:
-                        continue
-                    first[after] = first[pose] + (move_action(d),)
-                    nxt.append(after)
-                    if after[0] in seen:
-                        detour = steps + to_target(after) - base
-                        if detour <= self.cfg.view_detour and (best is None or (detour, steps) < best[:2]):
-                            best = (detour, steps, first[after])
-            frontier = nxt
-        if best is None:
-            return ()
-        return best[2] + (Action.STAY,) * max(self.cfg.human_delay - 1, 0)
-
     def view_route(self, world: WorldState, subtask: Subtask) -> tuple[Action, ...]:
-        """Behaviour 2's plan while the robot carries a dish and ``seen_carrying`` values that (docs/domain.md §5,
-        "The person's knowing": a delivery route through their view): :func:`planner.view_route.view_route`
-        with what is left of the trip's ``view_detour``. The detour is for the whole dish trip: the extra ticks
-        the dish has taken so far (ticks since it was taken less how much shorter the way has become) count
-        against it, so the robot cannot wait in view tick after tick. Empty when it carries no dish, is at its
-        station or has no detour left."""
-        if world.robot.held != DISH or not self.cfg.seen_carrying:
-            return ()
-        cells = self.tasker.targets(subtask, world)
-        if not cells:
-            return ()
-        pose = (world.robot.pos, world.robot.facing)
-        base = min(distance(self.layout, pose, c) for c in cells)
-        if base == 0:
-            return ()
-        if self.dish_trip is None:
-            self.dish_trip = (world.tick, base)
-        detour = self.cfg.view_detour - (world.tick - self.dish_trip[0] - (self.dish_trip[1] - base))
-        if detour <= 0:
-            return ()
-        seen = view(self.layout, world.human.pos, world.human.facing, self.cfg.human_angle).cells
-        return view_route(self.layout, pose, cells, seen, world.human.pos, detour)
-
-
-def _infer_action(before: AgentState | None, now: AgentState, interacted: bool) -> Action | None:
-    if before is None:
-        return None
-    if interacted:
-        return Action.INTERACT
-    if before.pos != now.pos or before.facing != now.facing:
-        return Action(now.facing.value)
-    return Action.STAY
+        """Behaviour 2's dish route toward ``subtask``'s targets (:meth:`planner.showing.Showing.view_route`)."""
+        return self.showing.view_route(world, self.tasker.targets(subtask, world))
 
 
 def make_qmdp_robot(name: str, layout: Layout, rules: Rules, config: PlannerConfig | None = None) -> QmdpRobot:

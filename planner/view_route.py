@@ -10,9 +10,11 @@ the target cells. Ties keep the shorter walk. Pure: the caller gives the cells i
 
 from __future__ import annotations
 
-from planner.geometry import DIRECTIONS, Action, Pos, move_action
+from functools import lru_cache
+
+from planner.geometry import DIRECTIONS, MOVES, Action, Pos, move_action
 from planner.layout import Layout
-from planner.paths import Pose, distance, next_pose
+from planner.paths import UNREACHABLE, Pose, distance, distances_to, next_pose
 
 
 def view_route(layout: Layout, start: Pose, cells: tuple[Pos, ...], seen: frozenset[Pos], person: Pos,
@@ -43,3 +45,67 @@ def view_route(layout: Layout, start: Pose, cells: tuple[Pos, ...], seen: frozen
                 best = (count, actions)
         layer = nxt
     return best[1] if best is not None and best[0] > 0 else ()
+
+
+def show_walk(layout: Layout, start: Pose, cells: tuple[Pos, ...], seen: frozenset[Pos], person: Pos, need: int,
+              run: int, detour: int) -> tuple[Action, ...]:
+    """The cheapest walk after which the robot has stood ``need`` consecutive ticks in ``seen`` (the person's
+    current view), so the person can acknowledge what it holds (docs/domain.md §5, "The person's knowing").
+
+    ``run``: the ticks it has already stood in view (its streak in the person's KB). A tick of the walk is a move
+    or a stay; a walk that keeps moving toward ``cells`` through the view costs nothing, one that must wait in
+    view costs its stays. Among walks whose extra ticks (``steps + d(end, cells) − d(start, cells)``; no cells:
+    the steps) are at most ``detour``, the one with the fewest extra ticks, then the fewest steps. It avoids the
+    person's cell. Empty when there is none, or when no tick is needed."""
+    if run >= need:
+        return ()
+    nearest = _nearest(layout, cells)
+    far = UNREACHABLE if cells else 0
+
+    def to_target(pose: Pose) -> int:
+        return nearest.get(pose, far)
+
+    base = to_target(start)
+    layer: list[tuple[Pose, int, tuple[Action, ...]]] = [(start, run, ())]
+    reached = {(start, run)}
+    best: tuple[int, int, tuple[Action, ...]] | None = None
+    steps = 0
+    while layer and steps < base + (detour if best is None else best[0] - 1):  # a longer walk could still win
+        steps += 1
+        nxt = []
+        for pose, streak, actions in layer:
+            for action, after in _ticks(layout)[pose]:
+                cell = after[0]
+                if cell == person:
+                    continue
+                state = (after, min(streak + 1, need) if cell in seen else 0)
+                if state in reached:
+                    continue
+                extra = steps + to_target(after) - base
+                if extra > detour:
+                    continue
+                reached.add(state)
+                walk = actions + (action,)
+                nxt.append((after, state[1], walk))
+                if state[1] >= need and (best is None or (extra, steps) < best[:2]):
+                    best = (extra, steps, walk)
+        layer = nxt
+    return best[2] if best is not None else ()
+
+
+@lru_cache(maxsize=64)
+def _ticks(layout: Layout) -> dict[Pose, tuple[tuple[Action, Pose], ...]]:
+    """Per floor pose, each tick of a showing walk and the pose it leads to: a stay first, so that among equally
+    cheap walks a stay wins over a move that would only turn the robot."""
+    return {(cell, facing): ((Action.STAY, (cell, facing)),
+                             *((move, next_pose(layout, (cell, facing), move.direction)) for move in MOVES
+                               if move.direction is not None))
+            for cell in layout.floor for facing in DIRECTIONS}
+
+
+@lru_cache(maxsize=1024)
+def _nearest(layout: Layout, cells: tuple[Pos, ...]) -> dict[Pose, int]:
+    """Per pose, the distance to the nearest of ``cells`` (absent: unreachable)."""
+    tables = [distances_to(layout, c) for c in cells]
+    keys = set().union(*tables) if tables else set()
+    return {pose: min(t.get(pose, UNREACHABLE) for t in tables) for pose in keys}

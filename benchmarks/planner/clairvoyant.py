@@ -68,12 +68,13 @@ class ClairvoyantRobot(QmdpRobot):
         self.snapshot = (kb, memory, rng)
 
     def sampled(self, world: WorldState, human_subtask: Subtask, robot_subtask: Subtask, horizon: int,
-                seed: int, prefix: tuple[Action, ...] = ()) -> float:
-        """One rollout from the true human state (``human_subtask`` and ``seed`` are ignored)."""
+                seed: int, prefix: tuple[Action, ...] = (), knowing: bool = False) -> float:
+        """One rollout from the true human state (``human_subtask`` and ``seed`` are ignored); ``knowing`` as
+        :meth:`planner.qmdp.QmdpRobot.sampled`."""
         assert self.snapshot is not None, "see_human() must be called before decide()"
         kb, memory, human_rng = self.snapshot
         return self.rollout.run(world, kb, memory, copy.deepcopy(human_rng), robot_subtask, horizon, prefix,
-                                parked_for=self.human_still)
+                                parked_for=self.human_still, knowing=knowing, carrying=self.showing.carrying)
 
 
 def clairvoyant_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings()) -> WorldState:
@@ -145,16 +146,15 @@ def main(argv: Sequence[str] | None = None) -> int:
         with ProcessPoolExecutor(max_workers=args.jobs) as pool:
             rows = list(pool.map(run_one, jobs, chunksize=1))
     if args.json:
+        trials = [{k: r[k] for k in ("layout", "robot", "seed", "ticks", "finished")} for r in rows]
         print(json.dumps({"seeds": [seeds.start, seeds.stop - 1], "layouts": names, "comparisons": comparisons(rows),
-                          "trials": [{k: r[k] for k in ("layout", "robot", "seed", "ticks", "finished")}
-                                     for r in rows]},
-                         indent=2))
+                          "trials": trials}, indent=2))
         return 0
     print(f"{len(names)} kitchen(s) x seeds {seeds.start}-{seeds.stop - 1}, robots: {', '.join(ROBOTS)}")
     # planner.experiment's table; its own last line (fov_aware vs baseline only) is replaced by ours below
     print("\n".join(line for line in summarize_trials(rows).splitlines() if not line.startswith("fov_aware vs ")))
-    print("unfinished trials: " + ", ".join(
-        f"{robot} {sum(1 for r in rows if r['robot'] == robot and not r['finished'])}" for robot in ROBOTS))
+    unfinished = {robot: sum(1 for r in rows if r["robot"] == robot and not r["finished"]) for robot in ROBOTS}
+    print("unfinished trials: " + ", ".join(f"{robot} {n}" for robot, n in unfinished.items()))
     print("paired % change of ticks against the reference = 100 * (mean robot - mean reference) / mean reference "
           "over the same (kitchen, seed) trials (ratio of means, not mean of per-pair %):")
     for c in comparisons(rows):

@@ -1,0 +1,115 @@
+"""What the FOV-aware robot keeps between ticks for showing itself (docs/domain.md §5, "The person's knowing").
+
+The plans that show the robot to the person and their state: the show plan (:func:`planner.view_route.show_walk`)
+and the rest of it the robot is following (``pending``, kept while the person neither moves nor turns), the dish
+trip and its detour budget (behaviour 2's dish route, :func:`planner.view_route.view_route`), and this decision's
+value of the person's knowing per (robot subtask, person's subtask), kept from the rollouts that valued the
+subtasks for the direct move (``known``). Which plan the robot takes is the robot's choice
+(:meth:`planner.qmdp.QmdpRobot.first_move`), not this module's.
+"""
+
+from __future__ import annotations
+
+from planner.fov import view
+from planner.geometry import Action, Direction, Pos
+from planner.kb import ROBOT_KEY, KnowledgeBase
+from planner.layout import Layout
+from planner.objects import DISH
+from planner.paths import distance
+from planner.planner_config import PlannerConfig
+from planner.state import WorldState
+from planner.subtasks import Subtask
+from planner.view_route import show_walk, view_route
+
+
+class Showing:
+    """The showing state of one robot in one trial."""
+
+    def __init__(self, layout: Layout, config: PlannerConfig) -> None:
+        self.layout, self.cfg = layout, config
+        self.pending: tuple[Action, ...] = ()
+        self.pending_person: tuple[Pos, Direction] | None = None
+        self.dish_trip: tuple[int, int] | None = None
+        self.known: dict[tuple[Subtask, Subtask], float] = {}
+        self.carrying = True
+
+    def reset(self) -> None:
+        """A trial starts or resumes: nothing pending, no dish trip."""
+        self.pending = ()
+        self.dish_trip = None
+
+    def observe(self, world: WorldState) -> None:
+        """A dish trip ends when the robot no longer carries a dish."""
+        if world.robot.held != DISH:
+            self.dish_trip = None
+
+    def follow(self, world: WorldState, kb: KnowledgeBase) -> Action | None:
+        """The next action of the show plan being followed, while the modelled KB still does not know what the
+        robot holds and the person has neither moved nor turned since it was made; ``None`` when there is none
+        to follow (the robot decides anew)."""
+        if self.pending and kb.robot is not None and kb.robot.held != world.robot.held and (
+                (world.human.pos, world.human.facing) == self.pending_person):
+            action, self.pending = self.pending[0], self.pending[1:]
+            return action
+        return None
+
+    def start(self, world: WorldState) -> None:
+        """A new decision: nothing pending, no knowing value yet, and whether a dish carried in view is still
+        worth anything on this trip (:meth:`trip_detour_left`)."""
+        self.pending = ()
+        self.known = {}
+        self.carrying = self.trip_detour_left(world) > 0
+
+    def keep(self, rest: tuple[Action, ...], world: WorldState) -> None:
+        """Follow ``rest`` from the next tick while the person stays as they are in ``world``."""
+        self.pending = rest
+        self.pending_person = (world.human.pos, world.human.facing)
+
+    def show_plan(self, world: WorldState, kb: KnowledgeBase | None, cells: tuple[Pos, ...]) -> tuple[Action, ...]:
+        """The cheapest walk toward ``cells`` (a subtask's targets; none: anywhere) after which the robot has stood
+        ``human_delay`` consecutive ticks in the person's current view, so the person acknowledges what it holds
+        (paper §VI-C, "walks alongside the human"; :func:`planner.view_route.show_walk`): through the view on the
+        way when it can, else into it and waiting there, at most ``view_detour + human_delay − 1`` ticks longer
+        than the direct way. The ticks it already stands in view (its streak in the modelled KB ``kb``) count.
+        Empty when the modelled KB already knows what the robot holds or no such walk exists."""
+        held = world.robot.held
+        if kb is None or kb.robot is None or kb.robot.held == held:
+            return ()
+        human = world.human
+        seen = view(self.layout, human.pos, human.facing, self.cfg.human_angle).cells
+        run = next((n for key, occupant, n in kb.streaks if key == ROBOT_KEY and occupant == held), 0) \
+            if world.robot.pos in seen else 0
+        need = self.cfg.human_delay
+        return show_walk(self.layout, (world.robot.pos, world.robot.facing), cells, seen, human.pos, need, run,
+                         self.cfg.view_detour + max(need - 1, 0))
+
+    def trip_detour_left(self, world: WorldState) -> int:
+        """The ticks the robot's dish trip may still spend beyond its shortest way (``view_detour`` for the whole
+        trip, docs/domain.md §5, "The person's knowing"): the extra ticks the dish has taken so far (ticks since it
+        was taken less how much shorter the way to the serving counter has become) count against it, so the robot
+        cannot wait in view tick after tick. 0 when it carries no dish or stands at the counter; the first call
+        of a trip starts it."""
+        if world.robot.held != DISH or not self.layout.serves:
+            return 0
+        pose = (world.robot.pos, world.robot.facing)
+        base = min(distance(self.layout, pose, c) for c in self.layout.serves)
+        if base == 0:
+            return 0
+        if self.dish_trip is None:
+            self.dish_trip = (world.tick, base)
+        return self.cfg.view_detour - (world.tick - self.dish_trip[0] - (self.dish_trip[1] - base))
+
+    def view_route(self, world: WorldState, cells: tuple[Pos, ...]) -> tuple[Action, ...]:
+        """Behaviour 2's plan while the robot carries a dish and ``seen_carrying`` values that (docs/domain.md §5,
+        "The person's knowing": a delivery route through their view) to ``cells`` (the serving counters):
+        :func:`planner.view_route.view_route` with what is left of the trip's detour (:meth:`trip_detour_left`).
+        Empty when it carries no dish, is at its station or has no detour left; while it has none, a dish carried
+        in view is worth nothing either (``carrying``)."""
+        if world.robot.held != DISH or not self.cfg.seen_carrying:
+            return ()
+        detour = self.trip_detour_left(world)
+        if not cells or detour <= 0:
+            return ()
+        pose = (world.robot.pos, world.robot.facing)
+        seen = view(self.layout, world.human.pos, world.human.facing, self.cfg.human_angle).cells
+        return view_route(self.layout, pose, cells, seen, world.human.pos, detour)
