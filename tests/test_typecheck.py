@@ -13,6 +13,7 @@ import pytest
 REPO = Path(__file__).resolve().parents[1]
 
 
+@pytest.mark.slow  # mypy over every package: over a minute without a cache (a fresh clone)
 @pytest.mark.timeout(600)
 def test_mypy_reports_no_errors() -> None:
     done = subprocess.run([sys.executable, "-m", "mypy", "--no-error-summary"], cwd=REPO, capture_output=True,
