@@ -183,6 +183,18 @@ def _pages(browser: Any) -> Iterator[Callable[..., tuple[Any, PageProblems]]]:
     assert failures == [], failures
 
 
+@pytest.fixture(scope="module")
+def pure_module_page(study_server: StudyServer, browser: Any) -> Iterator[Any]:
+    """``module_page`` shared by the tests of one module, for tests that only call the client's pure functions
+    (nothing they do changes what the next test reads): one page load for all of them. Console errors fail the
+    module's last test, as ``new_page``'s fail their test."""
+    pages = _pages(browser)
+    page, _ = next(pages)()
+    page.goto(f"{study_server.url}/data/example_view.json")
+    yield page
+    next(pages, None)  # closes the context and asserts that the page logged no error
+
+
 @pytest.fixture
 def module_page(study_server: StudyServer, new_page: Callable[..., tuple[Any, PageProblems]]) -> Any:
     """A page on the study server (a static file, no study page) for importing the client's modules one by one."""
