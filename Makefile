@@ -1,8 +1,8 @@
 # Steakhouse Study: `make run` sets up and starts the platform; `make test` sets up and runs every test.
 VENV ?= .venv
 # Tests run in one worker process per CPU (pytest-xdist); PYTEST_WORKERS=0 runs them in this process. Work stealing
-# gives each worker a contiguous half (module-scoped fixtures set up once) and lets an idle one take the other's
-# tail; tests/conftest.py puts the slow modules first, so both finish together (docs/testing.md).
+# gives each worker a contiguous half and lets an idle one take the tail of the other's queue; tests/conftest.py
+# puts the slow modules first, so both finish together (docs/testing.md).
 PYTEST_WORKERS ?= auto
 PYTEST_DIST ?= worksteal
 PY := $(VENV)/bin/python

@@ -44,8 +44,7 @@ def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
 
     With ``--dist worksteal`` (the Makefile) each worker starts on one contiguous half of this order and an idle
     worker takes the tail of the other's queue, so the long tests start early and the last ones to run are short:
-    both workers finish together. (In collection order the mypy check ran last, alone, for over a minute.) Keeping
-    a module together also keeps its module-scoped fixtures (stored studies, servers, browsers) on one worker."""
+    both workers finish together. (In collection order the mypy check ran last, alone, for over a minute.)"""
     def module_of(item: pytest.Item) -> str:
         return item.nodeid.split("::", 1)[0]
 
