@@ -13,8 +13,8 @@ from store.migrate import current_revision
 from store.tables import Base
 
 
-def test_migrations_match_the_models(db_url):
-    store = Store(db_url)
+def test_migrations_match_the_models(empty_db_url):
+    store = Store(empty_db_url)
     try:
         store.migrate()
         assert current_revision(store.engine) == "0008"
@@ -29,14 +29,14 @@ def test_migrations_match_the_models(db_url):
         store.dispose()
 
 
-def test_migrating_again_and_concurrently_is_harmless(db_url):
-    stores = [Store(db_url) for _ in range(6)]
+def test_migrating_again_and_concurrently_is_harmless(empty_db_url):
+    stores = [Store(empty_db_url) for _ in range(6)]
     errors: list[BaseException] = []
 
     def run(store: Store) -> None:
         try:
             store.migrate()
-        except BaseException as exc:  # noqa: BLE001 - collected for the assertion
+        except BaseException as exc:
             errors.append(exc)
 
     try:
@@ -73,12 +73,12 @@ def test_revision_0008_gives_older_trials_their_studys_angle_where_the_config_is
     configuration is the one they were played with (same hash); a trial of an older configuration stays unknown."""
     from alembic import command
 
-    from study_config.catalog import load_one
     from server.flow import service
     from store import trials
     from store.migrate import alembic_config
     from store.studies import sync_study
     from store.tables import TrialRow
+    from study_config.catalog import load_one
 
     loaded = load_one(study_file(world={"fov_angle": 100}))
     store = Store(db_url)
