@@ -1,7 +1,10 @@
 # Steakhouse Study: `make run` sets up and starts the platform; `make test` sets up and runs every test.
 VENV ?= .venv
-# Tests run in one worker process per CPU (pytest-xdist); PYTEST_WORKERS=0 runs them in this process.
+# Tests run in one worker process per CPU (pytest-xdist); PYTEST_WORKERS=0 runs them in this process. Work stealing
+# gives each worker a contiguous half and lets an idle one take the tail of the other's queue; tests/conftest.py
+# puts the slow modules first, so both finish together (docs/testing.md).
 PYTEST_WORKERS ?= auto
+PYTEST_DIST ?= worksteal
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed-$(shell cat pyproject.toml | cksum | cut -d' ' -f1)
 
@@ -32,4 +35,4 @@ lint: setup
 
 test: setup lint browser postgres
 	@bash tests/tools/ensure_nginx.sh
-	$(PY) -m pytest -n $(PYTEST_WORKERS) $(PYTEST_ARGS)
+	$(PY) -m pytest -n $(PYTEST_WORKERS) --dist $(PYTEST_DIST) $(PYTEST_ARGS)

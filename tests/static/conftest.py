@@ -33,8 +33,7 @@ WEBGL_ARGS = ["--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader", "--en
 sys.path.insert(0, str(REPO / "tests" / "server"))
 sys.path.insert(0, str(HERE))
 
-from steakhouse_browser import RECRUIT_SITE, screenshot  # noqa: E402  (re-exported for old imports)
-
+from steakhouse_browser import RECRUIT_SITE, screenshot  # noqa: E402, F401  (screenshot re-exported for old imports)
 from steakhouse_testing import ThreadServer  # noqa: E402
 
 
@@ -48,27 +47,36 @@ def chromium_or_skip() -> str:
     return path
 
 
-def _launch(args: list[str]) -> Iterator[Any]:
-    path = chromium_or_skip()
+@pytest.fixture(scope="session")
+def playwright_driver() -> Iterator[Any]:
+    """One Playwright driver per test process (each pytest-xdist worker), shared by its browsers."""
+    chromium_or_skip()
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as playwright:
-        launched = playwright.chromium.launch(executable_path=path, headless=True, args=args)
-        try:
-            yield launched
-        finally:
-            launched.close()
+        yield playwright
 
 
-@pytest.fixture(scope="module")
-def browser() -> Iterator[Any]:
-    yield from _launch(CHROMIUM_ARGS)
+def _launch(playwright: Any, args: list[str]) -> Iterator[Any]:
+    launched = playwright.chromium.launch(executable_path=chromium_or_skip(), headless=True, args=args)
+    try:
+        yield launched
+    finally:
+        launched.close()
 
 
-@pytest.fixture(scope="module")
-def gl_browser() -> Iterator[Any]:
+# One browser per worker for the whole session: every page the tests open is in a fresh context (``new_page``,
+# ``admin_page``: its own cookies, storage and cache, closed after the test), so nothing carries over between
+# tests, and Chromium starts once per worker instead of once per module.
+@pytest.fixture(scope="session")
+def browser(playwright_driver: Any) -> Iterator[Any]:
+    yield from _launch(playwright_driver, CHROMIUM_ARGS)
+
+
+@pytest.fixture(scope="session")
+def gl_browser(playwright_driver: Any) -> Iterator[Any]:
     """Chromium with software WebGL (``WEBGL_ARGS``)."""
-    yield from _launch(WEBGL_ARGS)
+    yield from _launch(playwright_driver, WEBGL_ARGS)
 
 
 class StudyServer:
@@ -173,6 +181,18 @@ def _pages(browser: Any) -> Iterator[Callable[..., tuple[Any, PageProblems]]]:
     for context, _ in contexts:
         context.close()
     assert failures == [], failures
+
+
+@pytest.fixture(scope="module")
+def pure_module_page(study_server: StudyServer, browser: Any) -> Iterator[Any]:
+    """``module_page`` shared by the tests of one module, for tests that only call the client's pure functions
+    (nothing they do changes what the next test reads): one page load for all of them. Console errors fail the
+    module's last test, as ``new_page``'s fail their test."""
+    pages = _pages(browser)
+    page, _ = next(pages)()
+    page.goto(f"{study_server.url}/data/example_view.json")
+    yield page
+    next(pages, None)  # closes the context and asserts that the page logged no error
 
 
 @pytest.fixture

@@ -13,8 +13,8 @@ from store.migrate import current_revision
 from store.tables import Base
 
 
-def test_migrations_match_the_models(db_url):
-    store = Store(db_url)
+def test_migrations_match_the_models(empty_db_url):
+    store = Store(empty_db_url)
     try:
         store.migrate()
         assert current_revision(store.engine) == "0008"
@@ -29,8 +29,8 @@ def test_migrations_match_the_models(db_url):
         store.dispose()
 
 
-def test_migrating_again_and_concurrently_is_harmless(db_url):
-    stores = [Store(db_url) for _ in range(6)]
+def test_migrating_again_and_concurrently_is_harmless(empty_db_url):
+    stores = [Store(empty_db_url) for _ in range(6)]
     errors: list[BaseException] = []
 
     def run(store: Store) -> None:
