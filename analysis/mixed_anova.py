@@ -82,19 +82,36 @@ def mixed_ges_bootstrap(values: np.ndarray, groups: Sequence[int], n_groups: int
                         within: Sequence[str], rng: np.random.Generator,
                         resamples: int = BOOTSTRAP_RESAMPLES) -> list[tuple[float, float]]:
     """Percentile intervals of each effect's η²G (rows in :func:`mixed_anova_table` order): participants drawn with
-    replacement within their group, so every resample keeps the groups' sizes."""
+    replacement within their group, so every resample keeps the groups' sizes. The groups' sizes being fixed, every
+    resample has the same design, so the sums of squares of all resamples are computed at once (the same sums as
+    :func:`_sums`, one resample per row)."""
     labels = np.asarray(groups)
     members = [np.flatnonzero(labels == g) for g in range(n_groups)]
     picks = np.concatenate([m[rng.integers(0, len(m), size=(resamples, len(m)))] for m in members], axis=1)
-    resampled = np.concatenate([np.full(len(m), g) for g, m in enumerate(members)]).tolist()
-    samples = []
-    for pick in picks:
-        (ss_b, ss_sb), parts = _sums(values[pick], resampled, n_groups, levels, within)
-        error_total = ss_sb + sum(part[4] for part in parts)
-        ss = [ss_b, *(x for part in parts for x in (part[2], part[3]))]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            samples.append(np.asarray(ss) / (np.asarray(ss) + error_total))
-    return [percentile_interval(column) for column in np.asarray(samples).T]
+    x = group_codes(np.concatenate([np.full(len(m), g) for g, m in enumerate(members)]).tolist(), n_groups)
+    stack = values[picks]  # resamples × participants × cells
+    intercept, codes = np.eye(n_groups)[:1], np.eye(n_groups)[1:]
+    ss_b, ss_sb = _stacked_ss(x, stack @ effect_contrasts(levels, ()), codes)
+    ss, error_total = [ss_b], ss_sb
+    for effect in effects_of(within):
+        z = stack @ effect_contrasts(levels, effect)
+        ss_w, ss_err = _stacked_ss(x, z, intercept)
+        ss += [ss_w, _stacked_ss(x, z, codes)[0]]
+        error_total = error_total + ss_err
+    hypothesis = np.stack(ss, axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ges = hypothesis / (hypothesis + error_total[:, None])
+    return [percentile_interval(column) for column in ges.T]
+
+
+def _stacked_ss(x: np.ndarray, z: np.ndarray, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`hypothesis_ss`'s ``(tr H, tr E)`` for a stack of responses ``z`` (resamples × N × d) on one design."""
+    xtx_inv = np.linalg.pinv(x.T @ x)
+    fit = xtx_inv @ x.T
+    kb = (rows @ fit) @ z
+    middle = np.linalg.pinv(rows @ xtx_inv @ rows.T)
+    residual = z - x @ (fit @ z)
+    return np.einsum("rqd,qp,rpd->r", kb, middle, kb), (residual ** 2).sum(axis=(1, 2))
 
 
 def _sums(values: np.ndarray, groups: Sequence[int], n_groups: int, levels: Sequence[int], within: Sequence[str]
