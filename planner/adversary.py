@@ -1,4 +1,4 @@
-"""An adversarial participant: a partner model that tests whether a robot ever stalls (issue 18 part 1).
+"""An adversarial participant: a partner model that tests whether a robot ever stalls.
 
 It plays the human's avatar with the participant's own means (docs/domain.md §4: choosing subtasks, or
 interrupt actions) but against the team, in phases drawn from the generator passed in:

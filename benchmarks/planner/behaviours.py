@@ -1,4 +1,4 @@
-"""The paper's two robot behaviours on our robots (issue 26; docs/domain.md §6, "Behaviours").
+"""The paper's two robot behaviours on our robots (docs/domain.md §6, "Behaviours").
 
 For each robot × kitchen × seed, one simulated trial with the FOV-limited simulated human (the same human random
 stream per seed for every robot, so trials are paired): behaviour 1 (a pickup shown to the person for

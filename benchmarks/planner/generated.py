@@ -1,4 +1,4 @@
-"""The FOV effect on kitchens nobody tuned on (issue 18 part 3; docs/domain.md §5).
+"""The FOV effect on kitchens nobody tuned on (docs/domain.md §5).
 
 Kitchens come from :mod:`planner.layout_gen` (``steakhouse layout generate``): generator seeds 0–99 are
 the *tuning* set (the generator's own choices, e.g. the doorway width, were made looking at them only);

@@ -1,4 +1,4 @@
-"""The paper's two robot behaviours on the paper's own robots, read from the reference's VR study logs (issue 26).
+"""The paper's two robot behaviours on the paper's own robots, read from the reference's VR study logs.
 
 The reference repository (SophieHsu/FOV-aware-planner, MIT licence) publishes, under
 ``overcooked_ai_py/data/logs/vr_study_logs/<participant>/<participant>_<kitchen>_<aware|unaware>.json``, one JSON

@@ -1,5 +1,5 @@
 """Whether a participant still counts, and whether they took part: the one home of both rules
-(docs/operations.md, "Engagement"; issue 25).
+(docs/operations.md, "Engagement").
 
 **Counting toward a condition order** (:mod:`store.assignment`): a participant counts only while every
 main round of theirs can still become an analysable cell. They stop counting (``participants.uncounted_reason``,

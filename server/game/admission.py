@@ -1,5 +1,5 @@
 """Admission control: this server process never runs more live trials than it can hold on time
-(issue 13 part 4; docs/operations.md, "Admission control").
+(docs/operations.md, "Admission control").
 
 A trial needs a **slot** before it starts (or resumes from the store). There are ``capacity`` slots; a
 participant who reaches a round while all are taken gets a :class:`Ticket` in a first-come, first-served

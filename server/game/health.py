@@ -1,5 +1,5 @@
 """Robot health of one trial: the share of robot decisions that missed their deadline, and when that makes
-the trial invalid (issue 13 part 3; docs/operations.md, "Robot health").
+the trial invalid (docs/operations.md, "Robot health").
 
 A missed decision makes the robot stand still for that tick (``server.robots.choice``), so a trial with many
 of them did not test the robot its condition names. The study's ``validity.max_missed_decisions_pct`` (P)

@@ -20,7 +20,7 @@ from pydantic import Field
 from study_config.study.base import StudyModel
 
 DEFAULT_MAX_MISSED_DECISIONS_PCT = 5.0
-"""A trial whose robot missed more than this share of its decision deadlines is invalid (issue 13, part 3)."""
+"""A trial whose robot missed more than this share of its decision deadlines is invalid."""
 DEFAULT_MAX_IDLE_PCT = 95.0
 """A main trial in which the cook had nothing to do for more than this share of its tick periods is
 low-engagement. Chosen from the real-time pilots of docs/pilot.md §4 (28 simulated participants per clock who

@@ -1,5 +1,5 @@
 """``steakhouse analyze --study`` on studies stored through the server's own store and flow functions (SQLite and
-PostgreSQL): a measure that does not vary no longer stops the analysis (issue 15's ``KeyError: 'F'``), a
+PostgreSQL): a measure that does not vary no longer stops the analysis (the old ``KeyError: 'F'``), a
 one-factor study with three robots is analysed in the study's order with sphericity and pairwise comparisons, a
 robot × kitchen × view study gets its three-factor ANOVA, a study with the view (or the field of view's angle)
 between participants gets the mixed ANOVA, and the report opens with data quality."""

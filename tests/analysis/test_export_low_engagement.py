@@ -1,4 +1,4 @@
-"""A main trial the server marked low-engagement (played without the participant taking part, issue 25) is left
+"""A main trial the server marked low-engagement (played without the participant taking part) is left
 out of cells.csv and listed in excluded.csv with its reason, its status is in trials.csv and answers.csv, the
 report says how many there were, and --include-invalid keeps it."""
 

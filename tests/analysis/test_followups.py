@@ -38,7 +38,7 @@ def test_three_factors_give_each_factor_in_each_cell_of_the_others() -> None:
 
 
 def test_a_slice_without_variance_is_not_testable_and_holm_skips_it() -> None:
-    # The crash of issue 15: pingouin dropped the F column of a slice where every value is the same.
+    # A crash once seen: pingouin dropped the F column of a slice where every value is the same.
     df = pg.read_dataset("rm_anova2")
     df.loc[df["Metric"] == "Action", "Performance"] = 0
     table = simple_effects(df, "Performance", ["Time", "Metric"], "Subject")

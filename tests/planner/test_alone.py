@@ -1,4 +1,4 @@
-"""Working alone (planner.alone, issue 27 part 3): when the partner stops, the robot plans as if it were alone
+"""Working alone (planner.alone): when the partner stops, the robot plans as if it were alone
 and finishes every trial one agent can finish with the person standing where they stand."""
 
 from __future__ import annotations

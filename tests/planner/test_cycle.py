@@ -1,4 +1,4 @@
-"""Joint cycles (planner.cycle, issue 27 part 1): a robot and a person who step back and forth in step for
+"""Joint cycles (planner.cycle): a robot and a person who step back and forth in step for
 ever are seen to cycle, and the robot yields so both get through. The cycling pair is also played with the
 rule switched off (``cycle_returns`` out of reach), to show it would otherwise cycle to the horizon."""
 

@@ -1,4 +1,4 @@
-"""No livelock with any partner (issue 27 part 1): over generated kitchens × seeds × robots × partners (the
+"""No livelock with any partner: over generated kitchens × seeds × robots × partners (the
 simulated person, the adversary, a person who never moves), every trial that can be finished finishes.
 
 With the simulated person and the adversary (whose disruption ends after its budget) every trial can be

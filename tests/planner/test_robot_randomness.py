@@ -1,4 +1,4 @@
-"""The robot's randomness is the trial's: its rollouts draw from the generator it is handed (issue 13)."""
+"""The robot's randomness is the trial's: its rollouts draw from the generator it is handed."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Standoffs (planner.standoff, issue 18 part 1): a person who blocks the robot's target and does not move,
+"""Standoffs (planner.standoff): a person who blocks the robot's target and does not move,
 or who stalls the team without blocking anyone, no longer freezes the robot. Each scenario is also played
 with the rule switched off (``standoff_ticks`` / ``stall_ticks`` / ``visit_ticks`` out of reach, or the branch
 taken away), to show the robot would otherwise wait for the rest of the trial."""

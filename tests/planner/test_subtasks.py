@@ -1,4 +1,4 @@
-"""Never more than the orders need (planner.subtasks.beyond_orders, issue 27 part 2): the robot starts no step
+"""Never more than the orders need (planner.subtasks.beyond_orders): the robot starts no step
 of a dish the orders left do not need, counting what anyone has in progress."""
 
 from __future__ import annotations

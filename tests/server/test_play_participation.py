@@ -1,4 +1,4 @@
-"""No completion without taking part (issue 25): participants who stay idle or leave their rounds, through the
+"""No completion without taking part: participants who stay idle or leave their rounds, through the
 REST flow and the websocket in each clock, get the screen-out outcome with a reason, are listed with it, and stop
 counting for assignment; one who plays is unaffected. The wait-for-participant clock's wall-clock limit is driven
 by a clock the test moves by hand, never by sleeping."""

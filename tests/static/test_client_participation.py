@@ -1,4 +1,4 @@
-"""A participant who does not take part, in real Chromium (issue 25): under the paper's clock an idle cook is
+"""A participant who does not take part, in real Chromium: under the paper's clock an idle cook is
 nudged ("Choose your next task"), the round ends at its wall-clock limit and says so, and the end page shows the
 screen-out code with a plain reason, never the completion code. The round's wall clock is moved by hand."""
 

@@ -1,5 +1,5 @@
 """Participation: per-trial activity of the participant, low engagement, why a participant stopped counting for
-assignment and why they were screened out (issue 25; docs/operations.md, "Engagement").
+assignment and why they were screened out (docs/operations.md, "Engagement").
 
 Revision ID: 0007
 Revises: 0006

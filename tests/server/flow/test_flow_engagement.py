@@ -1,4 +1,4 @@
-"""Engagement and standing rules (issue 25): a round without the participant's actions, or with the cook idle
+"""Engagement and standing rules: a round without the participant's actions, or with the cook idle
 past the study's share, is low-engagement; abandoned and low-engagement rounds beyond the allowance screen out,
 robot-invalid ones never do; a refused device stops a participant counting until an accepted one."""
 

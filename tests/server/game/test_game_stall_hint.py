@@ -1,4 +1,4 @@
-"""Stall hints (server.game.stall_hint, issue 27 part 4): after ``stall_hint_seconds`` without team progress
+"""Stall hints (server.game.stall_hint): after ``stall_hint_seconds`` without team progress
 the participant gets one hint, phrased from what they know, never naming the robot's planner or condition."""
 
 from __future__ import annotations

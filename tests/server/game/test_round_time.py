@@ -1,4 +1,4 @@
-"""The round's wall clock (issue 25): connected time toward the limit, one nudge per idle stretch."""
+"""The round's wall clock: connected time toward the limit, one nudge per idle stretch."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The robot models the person the study shows (issue 13): the study's FOV angle and KB delay reach the
+"""The robot models the person the study shows: the study's FOV angle and KB delay reach the
 planner, in-process and in worker processes, and its model of the participant's KB is the one the server
 logs for the participant, tick by tick, also after the trial resumes from the store."""
 
