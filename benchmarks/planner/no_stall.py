@@ -1,5 +1,5 @@
-"""No stall, with any partner (issues 18 and 27): unfinished trials, extra steaks and joint cycles broken per
-robot planner and partner model.
+"""No stall, with any partner (docs/domain.md §5, "Joint cycles"): unfinished trials, extra steaks and joint cycles
+broken per robot planner and partner model.
 
 Every planner (``fov_aware``, ``baseline``, ``no_rollout``) plays the shipped kitchens and generated ones
 (:mod:`planner.layout_gen`, generator seeds ``--generator-seeds``) with three partners in the human's place:
