@@ -364,7 +364,7 @@ class QmdpRobot:
         if show:
             candidates[show[0]] = show[1:]
         plans = [(move, rest, True) for move, rest in candidates.items()]
-        route = self.view_route(world, subtask)
+        route = self.showing.view_route(world, cells)
         if route and route[1:] != candidates.get(route[0]):
             plans.append((route[0], route[1:], False))
         if len(plans) < 2:

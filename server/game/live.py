@@ -304,11 +304,6 @@ class LiveGame:
             self.link.connection.send(Nudge())
             self.event("nudge", {})
 
-    def decision_budget(self) -> float:
-        """Seconds the robot has for a decision: a share of the tick period, or ``PILOT_DECISION_S`` for a
-        ``fast`` pilot trial."""
-        return self.robot.budget_s
-
     async def _await_answer(self, period: float) -> None:
         """A ``fast`` pilot trial: wait (at most ``period``) for the participant's answer to the last state."""
         answered = self.link.answered
