@@ -14,16 +14,17 @@ from functools import lru_cache
 
 from planner.geometry import DIRECTIONS, MOVES, Action, Pos, move_action
 from planner.layout import Layout
-from planner.paths import UNREACHABLE, Pose, distance, distances_to, next_pose
+from planner.paths import UNREACHABLE, Pose, distances_to, next_pose
 
 
 def view_route(layout: Layout, start: Pose, cells: tuple[Pos, ...], seen: frozenset[Pos], person: Pos,
                detour: int) -> tuple[Action, ...]:
     """The moves of the walk (module docstring); empty when no such walk passes a cell in ``seen`` or the
     robot is already at its station."""
+    nearest = _nearest(layout, cells)
 
     def to_target(pose: Pose) -> int:
-        return min(distance(layout, pose, c) for c in cells)
+        return nearest.get(pose, UNREACHABLE)
 
     base = to_target(start)
     if base == 0 or detour < 0:
