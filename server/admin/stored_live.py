@@ -56,11 +56,11 @@ def _extras(session: Session, row: TrialRow, catalog: Catalog) -> dict[str, Any]
                               .order_by(EventRow.id.desc()).limit(1))
 
     link, start = last_event("connect", "disconnect"), last_event("trial_start", "resume")
-    def count(kind: str) -> int:
-        return session.scalar(select(func.count()).select_from(EventRow).where(
-            EventRow.trial_id == row.id, EventRow.kind == kind)) or 0
-
-    misses, hints = count("deadline_miss"), count("stall_hint")
+    counts: dict[str, int] = dict(session.execute(
+        select(EventRow.kind, func.count()).where(EventRow.trial_id == row.id,
+                                                  EventRow.kind.in_(("deadline_miss", "stall_hint")))
+        .group_by(EventRow.kind)).all())
+    misses, hints = counts.get("deadline_miss", 0), counts.get("stall_hint", 0)
     lateness = list(session.scalars(select(TickRow.lateness_ms).where(TickRow.trial_id == row.id)
                                     .order_by(TickRow.tick.desc()).limit(LATENESS_TICKS)))[::-1]
     loaded = catalog.get(row.study_id)

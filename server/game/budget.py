@@ -57,6 +57,6 @@ class EventBudget:
         if not force and self._summary_at is not None and now - self._summary_at < SUMMARY_EVERY_S:
             return None
         self._summary_at = now
-        payload = {"dropped": sum(self.dropped.values()), "by_kind": dict(sorted(self.dropped.items()))}
+        payload = {"dropped": self.dropped.total(), "by_kind": dict(sorted(self.dropped.items()))}
         self.dropped.clear()
         return payload

@@ -25,6 +25,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
+from planner.adversary import access_cells
 from planner.events import Event, EventKind
 from planner.geometry import DIRECTIONS, Pos
 from planner.kb import KnowledgeBase
@@ -101,8 +102,9 @@ def hint_for(layout: Layout, rules: Rules, world: WorldState, kb: KnowledgeBase,
              loaded_by_you: frozenset[Pos] = frozenset()) -> Hint:
     """The hint for the participant now (the module's list, first that applies)."""
     you = world.human
+    beside = [d.ahead(you.pos) for d in DIRECTIONS]
     for kind, name in STATION_NAMES.items():
-        if any(_only_access(layout, cell) == you.pos for cell in _around(layout, you.pos, kind)):
+        if any(layout.terrain(cell) is kind and access_cells(layout, cell) == (you.pos,) for cell in beside):
             return Hint("standing_at_station", f"You are standing where the {name} is used.")
     for cell, count in zip(layout.boards, kb.boards, strict=False):
         if count is not None and count < rules.chop_time:
@@ -116,12 +118,3 @@ def hint_for(layout: Layout, rules: Rules, world: WorldState, kb: KnowledgeBase,
         return Hint("holding", f"You are still holding the {OBJECT_NAMES.get(you.held, you.held)}.")
     return Hint("look_around", "Nothing has moved on for a while: look around for what is needed next.")
 
-
-def _around(layout: Layout, pos: Pos, kind: Terrain) -> tuple[Pos, ...]:
-    return tuple(d.ahead(pos) for d in DIRECTIONS if layout.terrain(d.ahead(pos)) is kind)
-
-
-def _only_access(layout: Layout, station: Pos) -> Pos | None:
-    """The one floor cell next to ``station``, or ``None`` when it has several."""
-    cells = [d.ahead(station) for d in DIRECTIONS if d.ahead(station) in layout.floor]
-    return cells[0] if len(cells) == 1 else None
