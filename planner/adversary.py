@@ -27,10 +27,10 @@ from enum import Enum
 
 import numpy as np
 
-from planner.geometry import ACTIONS, DIRECTIONS, Action, Pos
+from planner.geometry import ACTIONS, Action, Pos
 from planner.human import HumanMemory, HumanModel
 from planner.kb import KnowledgeBase
-from planner.layout import STATIONS, Layout
+from planner.layout import STATIONS, Layout, access_cells
 from planner.paths import Pose
 from planner.planner_config import PlannerConfig
 from planner.rollout import potential
@@ -128,13 +128,6 @@ class AdversarialHuman:
         elif self.mode is Mode.BLOCK:
             narrow = narrowest_stations(self.layout)
             self.station = narrow[int(rng.integers(len(narrow)))]
-
-
-def access_cells(layout: Layout, station: Pos) -> tuple[Pos, ...]:
-    """The floor cells from which ``station`` can be used (next to it)."""
-    x, y = station
-    return tuple((x + d.vector[0], y + d.vector[1]) for d in DIRECTIONS
-                 if (x + d.vector[0], y + d.vector[1]) in layout.floor)
 
 
 def narrowest_stations(layout: Layout) -> tuple[Pos, ...]:

@@ -97,6 +97,13 @@ class Layout:
         return "\n".join("".join(row) for row in grid) + "\n"
 
 
+def access_cells(layout: Layout, station: Pos) -> tuple[Pos, ...]:
+    """The floor cells from which ``station`` can be used (next to it)."""
+    x, y = station
+    return tuple((x + d.vector[0], y + d.vector[1]) for d in DIRECTIONS
+                 if (x + d.vector[0], y + d.vector[1]) in layout.floor)
+
+
 def parse_layout(text: str, name: str = "layout", source: str | None = None) -> Layout:
     """Parse and validate a grid. Raises :class:`LayoutError` listing every problem, each with its line,
     column and reason, so a researcher fixing a kitchen file sees them all at once.

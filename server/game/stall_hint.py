@@ -25,11 +25,10 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
-from planner.adversary import access_cells
 from planner.events import Event, EventKind
 from planner.geometry import DIRECTIONS, Pos
 from planner.kb import KnowledgeBase
-from planner.layout import Layout, Terrain
+from planner.layout import Layout, Terrain, access_cells
 from planner.planner_config import PlannerConfig
 from planner.rollout import potential
 from planner.rules import Rules

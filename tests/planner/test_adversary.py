@@ -10,10 +10,10 @@ from planner.adversary import (
     AdversarialHuman,
     AdversaryConfig,
     Mode,
-    access_cells,
     last_progress_tick,
     narrowest_stations,
 )
+from planner.layout import access_cells
 from planner.layout_gen import generate_named
 from planner.planner_config import PlannerConfig
 from planner.play import run_trial
