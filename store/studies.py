@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 
-from sqlalchemy import select
 from sqlalchemy.orm import Session
 
 from store.tables import StudyRow
@@ -30,7 +29,3 @@ def sync_study(session: Session, study: Study) -> StudyRow:
             study.title, study.config_hash(), config, orders, now)
     session.flush()
     return row
-
-
-def list_studies(session: Session) -> list[StudyRow]:
-    return list(session.scalars(select(StudyRow).order_by(StudyRow.id)))
