@@ -82,10 +82,6 @@ class ExportDesign:
                  if f in fields and fields.index(f) < len(first)}
         return tuple(c for c in self.conditions if all(c[i] == level for i, level in group.items()))
 
-    @property
-    def view_is_factor(self) -> bool:
-        return "view" in self.fields
-
     def cell_of(self, robot: str, kitchen: str, view: str, fov_angle: float | None = None) -> tuple[str, ...]:
         """The cell (a member of ``conditions``) a trial with these levels belongs to."""
         levels = {"robot": robot, "kitchen": kitchen, "view": view,

@@ -41,23 +41,25 @@ def analyze_measure(df: pd.DataFrame, measure: str, within: Sequence[str], subje
     n_used = int(clean[subject].nunique())
     notes = [censoring_note(censoring, measure)] if censoring is not None else []
     base = {"measure": measure, "within": within, "subject": subject, "info": info, "n_used": n_used,
-                "n_total": int(df[subject].nunique()), "excluded": excluded}
+            "n_total": int(df[subject].nunique()), "excluded": excluded}
     constant = clean[measure].nunique() == 1
-    if n_used < MIN_SUBJECTS or constant or any(len(factor_levels(clean, f)) < 2 for f in within):
+    levels = levels_of(clean, within)
+    one_level = any(n < 2 for n in levels)
+    if n_used < MIN_SUBJECTS or constant or one_level:
         reason = (f"not testable: every value is {clean[measure].iloc[0]:g}, nothing varies" if constant and
                   n_used >= MIN_SUBJECTS else
                   f"not testable: {n_used} participant(s) have a value in every cell of {' × '.join(within)}; "
                   f"at least {MIN_SUBJECTS} are needed")
-        empty = MeasureResult(**base, anova=untestable_rows(within, levels_of(df, within), n_used, reason),
-            simple_effects=_empty(
-            SIMPLE_EFFECT_COLUMNS), pairwise=_empty(PAIRWISE_COLUMNS), rank_tests=_empty(RANK_TEST_COLUMNS),
-            descriptives=cell_descriptives(clean, measure, within, subject) if n_used >= MIN_SUBJECTS and not any(
-                len(factor_levels(clean, f)) < 2 for f in within) else _empty([*within, *DESCRIPTIVE_STATS]),
+        empty = MeasureResult(
+            **base, anova=untestable_rows(within, levels_of(df, within), n_used, reason),
+            simple_effects=_empty(SIMPLE_EFFECT_COLUMNS), pairwise=_empty(PAIRWISE_COLUMNS),
+            rank_tests=_empty(RANK_TEST_COLUMNS),
+            descriptives=cell_descriptives(clean, measure, within, subject) if n_used >= MIN_SUBJECTS and not one_level
+            else _empty([*within, *DESCRIPTIVE_STATS]),
             normality=Normality(0, note=reason),
             order=OrderCheck(measure, n_used, 0, note=reason), notes=(reason, *filter(None, notes)), tested=False)
         return empty, clean
     values, _ = wide_matrix(clean, measure, within, subject)
-    levels = [len(factor_levels(clean, f)) for f in within]
     anova = anova_table(values, levels, within)
     rng = np.random.default_rng([options.seed, zlib.crc32(measure.encode())])
     intervals = ges_bootstrap(values, levels, within, rng)

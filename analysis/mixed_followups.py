@@ -21,7 +21,7 @@ import numpy as np
 import pandas as pd
 from scipy import stats
 
-from analysis.cells import cell_label, design_cells, factor_levels, slices
+from analysis.cells import factor_levels, slices
 from analysis.descriptives import DESCRIPTIVE_STATS, cell_descriptives
 from analysis.followups import SIMPLE_EFFECT_COLUMNS, holm, holm_family, slice_effect
 from analysis.pairwise import PAIRWISE_COLUMNS, pairwise_comparisons
@@ -30,7 +30,8 @@ from analysis.pairwise import PAIRWISE_COLUMNS, pairwise_comparisons
 def mixed_simple_effects(df: pd.DataFrame, dv: str, within: Sequence[str], between: str, subject: str
                          ) -> pd.DataFrame:
     within = list(within)
-    blocks = [holm_family([between_effect(part, dv, between, label) for label, part in cell_slices(df, within)])]
+    # slices() over the factors other than the between one: every within cell, in design order
+    blocks = [holm_family([between_effect(part, dv, between, label) for label, part in slices(df, within, between)])]
     for factor in within:
         family = []
         for group in factor_levels(df, between):
@@ -41,15 +42,6 @@ def mixed_simple_effects(df: pd.DataFrame, dv: str, within: Sequence[str], betwe
                        for label, piece in pieces]
         blocks.append(holm_family(family))
     return pd.concat(blocks, ignore_index=True)[SIMPLE_EFFECT_COLUMNS]
-
-
-def cell_slices(df: pd.DataFrame, within: Sequence[str]) -> list[tuple[str, pd.DataFrame]]:
-    """``(label, rows)`` of every within cell, in design order."""
-    out = []
-    for cell in design_cells(df, within):
-        mask = np.logical_and.reduce([df[f] == level for f, level in zip(within, cell, strict=True)])
-        out.append((cell_label(within, cell), df[mask]))
-    return out
 
 
 def between_effect(part: pd.DataFrame, dv: str, between: str, label: str) -> pd.DataFrame:

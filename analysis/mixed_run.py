@@ -19,7 +19,7 @@ from analysis.censoring import censoring_note
 from analysis.descriptives import DESCRIPTIVE_STATS
 from analysis.followups import SIMPLE_EFFECT_COLUMNS
 from analysis.measure_info import MeasureInfo
-from analysis.measure_run import ANOVA_RESULT_COLUMNS, MIN_SUBJECTS, untestable_rows
+from analysis.measure_run import ANOVA_RESULT_COLUMNS, MIN_SUBJECTS, levels_of, untestable_rows
 from analysis.mixed_anova import mixed_anova_table, mixed_ges_bootstrap
 from analysis.mixed_followups import mixed_descriptives, mixed_pairwise, mixed_simple_effects
 from analysis.nonparametric import RANK_TEST_COLUMNS
@@ -44,7 +44,7 @@ def analyze_mixed_measure(df: pd.DataFrame, measure: str, within: Sequence[str],
     factors = (between, *within)
     notes = [censoring_note(censoring, measure)] if censoring is not None else []
     base = {"measure": measure, "within": factors, "subject": subject, "info": info, "n_used": n_used,
-                "n_total": int(df[subject].nunique()), "excluded": excluded}
+            "n_total": int(df[subject].nunique()), "excluded": excluded}
     reason = ""
     if n_used <= len(groups) or len(groups) < 2:
         reason = (f"not testable: {n_used} participant(s) in {len(groups)} group(s) of {between} have a value in "
@@ -53,10 +53,8 @@ def analyze_mixed_measure(df: pd.DataFrame, measure: str, within: Sequence[str],
     elif clean[measure].nunique() == 1:
         reason = f"not testable: every value is {clean[measure].iloc[0]:g}, nothing varies"
     if reason:
-        levels = [len(factor_levels(df, f)) for f in factors]
-        empty = pd.DataFrame(columns=ANOVA_RESULT_COLUMNS)
         return MeasureResult(
-            **base, anova=untestable_rows(factors, levels, n_used, reason) if levels else empty,
+            **base, anova=untestable_rows(factors, levels_of(df, factors), n_used, reason),
             simple_effects=pd.DataFrame(columns=SIMPLE_EFFECT_COLUMNS), pairwise=pd.DataFrame(columns=PAIRWISE_COLUMNS),
             rank_tests=pd.DataFrame(columns=RANK_TEST_COLUMNS),
             descriptives=pd.DataFrame(columns=[*factors, *DESCRIPTIVE_STATS]), normality=Normality(0, note=reason),
@@ -65,7 +63,7 @@ def analyze_mixed_measure(df: pd.DataFrame, measure: str, within: Sequence[str],
     values, subjects = wide_matrix(clean, measure, within, subject)
     group_of = clean.drop_duplicates(subject).set_index(subject)[between]
     index = [groups.index(group_of[s]) for s in subjects]
-    levels = [len(factor_levels(clean, f)) for f in within]
+    levels = levels_of(clean, within)
     anova = mixed_anova_table(values, index, len(groups), levels, within, between)
     rng = np.random.default_rng([options.seed, zlib.crc32(measure.encode())])
     intervals = mixed_ges_bootstrap(values, index, len(groups), levels, within, rng)

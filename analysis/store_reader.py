@@ -17,14 +17,12 @@ from dataclasses import dataclass
 from datetime import datetime
 from typing import Any
 
-from alembic.runtime.migration import MigrationContext
-from alembic.script import ScriptDirectory
 from sqlalchemy import Connection, Engine, inspect, select
 from sqlalchemy.exc import SQLAlchemyError
 
 from analysis.errors import AnalysisInputError
 from store.engine import NoStoreError, snapshot_engine
-from store.migrate import alembic_config
+from store.migrate import current_revision, head_revision
 from store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, StudyRow, TickRow, TrialRow
 
 
@@ -201,8 +199,7 @@ def read_study(conn: Connection, study_id: str, include_pilot: bool = False) -> 
 def _check_schema(conn: Connection) -> None:
     """Reading never migrates: a store written by an older (or newer) version of the platform is refused with
     what to do, rather than failing on a missing column."""
-    stored = MigrationContext.configure(conn).get_current_revision()
-    head = ScriptDirectory.from_config(alembic_config()).get_current_head()
+    stored, head = current_revision(conn), head_revision()
     if stored != head:
         raise StoreReadError(
             f"the store's schema is at revision {stored}, this version of the platform reads revision {head}: "

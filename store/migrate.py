@@ -46,12 +46,22 @@ def upgrade(engine: Engine, revision: str = "head") -> None:
         command.upgrade(config, revision)
 
 
-def current_revision(engine: Engine) -> str | None:
-    """The revision the database is at (``None`` before the first migration)."""
+def current_revision(bind: Engine | Connection) -> str | None:
+    """The revision the database is at (``None`` before the first migration); on a connection, read in its
+    transaction (the analysis reads a whole export on one snapshot)."""
     from alembic.runtime.migration import MigrationContext
 
-    with engine.connect() as conn:
-        return MigrationContext.configure(conn).get_current_revision()
+    if isinstance(bind, Engine):
+        with bind.connect() as conn:
+            return current_revision(conn)
+    return MigrationContext.configure(bind).get_current_revision()
+
+
+def head_revision() -> str | None:
+    """The newest revision of this version's migrations: the schema it writes and reads."""
+    from alembic.script import ScriptDirectory
+
+    return ScriptDirectory.from_config(alembic_config()).get_current_head()
 
 
 def _revision(message: str) -> None:

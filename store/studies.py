@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 
-from sqlalchemy import select
 from sqlalchemy.orm import Session
 
 from store.tables import StudyRow
@@ -19,18 +18,15 @@ def sync_study(session: Session, study: Study) -> StudyRow:
     """
     row = session.get(StudyRow, study.id)
     config = json.loads(study.canonical_json())
+    config_hash = study.config_hash()
     orders = [list(order) for order in study.condition_orders()]
     now = utcnow()
     if row is None:
-        row = StudyRow(id=study.id, title=study.title, config_hash=study.config_hash(), config=config,
+        row = StudyRow(id=study.id, title=study.title, config_hash=config_hash, config=config,
                        orders=orders, created_at=now, updated_at=now)
         session.add(row)
-    elif row.config_hash != study.config_hash() or row.title != study.title:
+    elif row.config_hash != config_hash or row.title != study.title:
         row.title, row.config_hash, row.config, row.orders, row.updated_at = (
-            study.title, study.config_hash(), config, orders, now)
+            study.title, config_hash, config, orders, now)
     session.flush()
     return row
-
-
-def list_studies(session: Session) -> list[StudyRow]:
-    return list(session.scalars(select(StudyRow).order_by(StudyRow.id)))

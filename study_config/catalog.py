@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
 
 from planner.layout import Layout
@@ -32,9 +33,10 @@ class LoadedStudy:
     def layout(self, kitchen: str) -> Layout:
         return self.layouts[kitchen]
 
-    @property
+    @cached_property
     def order_groups(self) -> tuple[int, ...]:
-        """The between-participants group of each of ``orders`` (``study_config/study/groups.py``)."""
+        """The between-participants group of each of ``orders`` (``study_config/study/groups.py``); computed once,
+        like ``orders`` (read at every assignment; the study is immutable after start-up)."""
         return tuple(self.study.order_groups())
 
     def planner_config(self, angle: float) -> PlannerConfig:
