@@ -125,8 +125,7 @@ def holm_matrix(p: np.ndarray) -> np.ndarray:
     return np.where(missing, np.nan, out)
 
 
-def sample_pvalues(values: np.ndarray, levels: Sequence[int], within: Sequence[str],
-                   tests: Sequence[PlannedTest]) -> np.ndarray:
+def sample_pvalues(values: np.ndarray, tests: Sequence[PlannedTest]) -> np.ndarray:
     """p (as ``analyze`` reads it) of every test on every sample: ``values`` is simulations × n × cells;
     the answer simulations × tests."""
     sims = values.shape[0]
@@ -199,14 +198,13 @@ def measure_power(data: MeasureData, ns: Sequence[int], simulations: int, alpha:
 def _scenario_rows(data: MeasureData, values: np.ndarray, tests: Sequence[PlannedTest], scenario: str,
                    ns: Sequence[int], simulations: int, alpha: float, rng: np.random.Generator,
                    on_step: Callable[[], None]) -> list[dict[str, object]]:
-    counts = [len(lv) for lv in data.levels]
     pilot_n = values.shape[0]
-    pilot_p = sample_pvalues(values[None], counts, data.within, tests)[0]
+    pilot_p = sample_pvalues(values[None], tests)[0]
     pilot_stats = [_pilot_stats(values, t) for t in tests]
     rows: list[dict[str, object]] = []
     for n in ns:
         idx = rng.integers(pilot_n, size=(simulations, n))
-        p = sample_pvalues(values[idx], counts, data.within, tests)
+        p = sample_pvalues(values[idx], tests)
         for t, test in enumerate(tests):
             hits = int(np.sum(np.nan_to_num(p[:, t], nan=1.0) < alpha))
             low, high = wilson(hits, simulations)

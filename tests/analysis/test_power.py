@@ -33,7 +33,7 @@ def test_each_planned_test_gives_the_p_the_analysis_reads(levels) -> None:
     counts = [len(lv) for lv in levels]
     values = rng.normal(size=(14, math.prod(counts))) + rng.normal(size=(14, 1)) + np.arange(math.prod(counts)) * 0.3
     tests = planned_tests(within, levels)
-    p = sample_pvalues(values[None], counts, within, tests)[0]
+    p = sample_pvalues(values[None], tests)[0]
     omnibus = anova_table(values, counts, within).set_index("effect")["p_read"]
     simple = simple_effects(long_table(values, within, levels), "y", within, "participant")
     expected = {**omnibus.to_dict(), **{f"{r.factor} at {r.at}": r.p_holm for r in simple.itertuples()}}
@@ -89,7 +89,7 @@ def test_the_vectorised_tests_equal_the_analysis_on_every_resample() -> None:
     samples = pilot[rng.integers(10, size=(40, 10))]
     samples[0] = 5.0
     tests = planned_tests(within, levels)
-    p = sample_pvalues(samples, counts, within, tests)
+    p = sample_pvalues(samples, tests)
     readings = set()
     for sample, row in zip(samples, p, strict=True):
         table = anova_table(sample, counts, within).set_index("effect")
