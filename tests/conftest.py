@@ -12,6 +12,7 @@ fresh schema migrated by the test: measured over ``tests/store`` and ``tests/ser
 
 from __future__ import annotations
 
+import asyncio
 import contextlib
 import os
 import shutil
@@ -55,6 +56,24 @@ def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
 
     slow = {module_of(item) for item in items if item.get_closest_marker("slow") is not None}
     items.sort(key=lambda item: module_of(item) not in slow)  # stable: the order within each group is kept
+
+
+@pytest.fixture(autouse=True)
+def _playwright_loop_set_aside(request: pytest.FixtureRequest) -> Iterator[None]:
+    """Playwright's sync driver lives for the whole session on a worker (``tests/static/conftest.py``), and between
+    browser calls its event loop stays marked as running in the worker's thread: a later test on that worker that
+    calls ``asyncio.run()`` would fail with "cannot be called from a running event loop", depending only on which
+    tests the worker happened to run before. A test that does not use the browser runs with that loop set aside,
+    and gets it back afterwards for the next browser test."""
+    loop = asyncio._get_running_loop()
+    if loop is None or "playwright_driver" in request.fixturenames:
+        yield
+        return
+    asyncio._set_running_loop(None)
+    try:
+        yield
+    finally:
+        asyncio._set_running_loop(loop)
 
 
 @pytest.fixture(scope="session")
