@@ -1,9 +1,10 @@
 # Steakhouse Study: `make run` sets up and starts the platform; `make test` sets up and runs every test.
 VENV ?= .venv
-# Tests run in one worker process per CPU (pytest-xdist); PYTEST_WORKERS=0 runs them in this process. Work stealing
-# gives each worker a contiguous half and lets an idle one take the tail of the other's queue; tests/conftest.py
-# puts the slow modules first, so both finish together (docs/testing.md).
-PYTEST_WORKERS ?= auto
+# Tests run in two worker processes per CPU (pytest-xdist): much of a test's time is spent waiting on a server, a
+# browser or a trial's clock, and two per CPU keep the CPUs busy (docs/testing.md measures it); PYTEST_WORKERS=0
+# runs them in this process. Work stealing gives each worker a contiguous share and lets an idle one take the tail
+# of another's queue; tests/conftest.py puts the slow modules first, so the workers finish together.
+PYTEST_WORKERS ?= $(shell echo $$((2 * $$(nproc))))
 PYTEST_DIST ?= worksteal
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed-$(shell cat pyproject.toml | cksum | cut -d' ' -f1)
