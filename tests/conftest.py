@@ -48,9 +48,9 @@ XXXXXXXXX
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
     """Modules with a test marked ``slow`` run first, each module's tests kept together and in pytest's order.
 
-    With ``--dist worksteal`` (the Makefile) each worker starts on one contiguous half of this order and an idle
-    worker takes the tail of the other's queue, so the long tests start early and the last ones to run are short:
-    both workers finish together. (In collection order the mypy check ran last, alone, for over a minute.)"""
+    With ``--dist worksteal`` (the Makefile) each worker starts on one contiguous share of this order and an idle
+    worker takes the tail of another's queue, so the long tests start early and the last ones to run are short:
+    the workers finish together. (In collection order the mypy check ran last, alone, for over a minute.)"""
     def module_of(item: pytest.Item) -> str:
         return item.nodeid.split("::", 1)[0]
 
