@@ -272,7 +272,9 @@ def _answer_rows(data: Any, people: dict[int, StoredParticipant], design: Export
             "after_trial": a.after_trial, "trial_status": trial_status(trial) if trial else None,
             "condition": trial.condition if trial else condition,
             "robot": robot_kitchen[0] if robot_kitchen else None,
-            "kitchen": robot_kitchen[1] if robot_kitchen else None, "trial_id": a.trial_id,
+            "kitchen": robot_kitchen[1] if robot_kitchen else None,
+            "view": trial.view if trial else None, "fov_angle": angle_value(trial.fov_angle) if trial else None,
+            "trial_id": a.trial_id,
             "answered_at": iso_time(a.created_at), "test_run": int(p.test_run), "excluded": int(p.excluded),
         })
     return rows

@@ -190,7 +190,7 @@ ANSWER_COLUMNS: tuple[Column, ...] = (
     Column("trial_status", TEXT, "status of that trial (analysis.participation): finished, low_engagement, "
                                  "robot_invalid, or abandoned for answers stored before the questionnaire after "
                                  "an abandoned round was skipped"),
-    Column("condition", TEXT, "condition of that trial"), _ROBOT, _KITCHEN,
+    Column("condition", TEXT, "condition of that trial"), _ROBOT, _KITCHEN, _VIEW, _FOV_ANGLE,
     _TRIAL_ID,
     Column("answered_at", TIME, "when the answer was submitted"),
     Column("test_run", FLAG, "1 when the participant is flagged as a test run"),

@@ -169,6 +169,10 @@ def test_wide_has_one_row_per_participant_and_a_column_per_measure_and_condition
     first = answers[(answers["participant"] == ids["full0"]) & (answers["questionnaire"] == "q")]
     assert len(first) == 8 and first["condition"].nunique() == 4
     assert (first["condition"] == first["robot"] + "@" + first["kitchen"]).all()
+    # each answer carries the view and field of view of the trial it followed, as that trial's cell does
+    mine = cells[cells["participant"] == ids["full0"]].set_index("condition")
+    for column in ("view", "fov_angle"):
+        assert (first[column] == first["condition"].map(mine[column])).all()
 
 
 def test_unknown_study_and_missing_database_are_usage_errors(store, loaded_2x2, tmp_path, capsys) -> None:
