@@ -52,7 +52,8 @@ class Step:
 def build_plan(study: Study, order: Sequence[str]) -> tuple[Step, ...]:
     """The steps for a participant assigned ``order`` (condition ids) in ``study``."""
     conditions = {c.id: c for c in study.conditions}
-    practice = [(p.kitchen.name, p.robot, study.practice_view(p)) for p in study.practice for _ in range(p.count)]
+    practice = [(p.kitchen.name, p.robot, study.practice_view(p, order))
+                for p in study.practice for _ in range(p.count)]
     practice_angle = study.practice_angle(order)
     total = len(practice) + len(order)
     steps: list[Step] = [Step("consent"), Step("instructions")]

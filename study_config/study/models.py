@@ -260,9 +260,15 @@ class Study(StudyModel):
     def _groups(self) -> list[list[str]]:
         return self._crossing.groups()
 
-    def practice_view(self, practice: Practice) -> ViewName:
-        """The view of a practice round: its own ``view``, else the study's first view level."""
-        return practice.view or self.view_levels[0]
+    def practice_view(self, practice: Practice, order: Sequence[str]) -> ViewName:
+        """The view of a practice round of a participant assigned ``order`` (condition ids): its own ``view``;
+        else their group's view when ``view`` is between participants (they practise in the view they will play);
+        else the study's first view level."""
+        if practice.view is not None:
+            return practice.view
+        if "view" in self.between and order:
+            return next(c.view for c in self.conditions if c.id == order[0])
+        return self.view_levels[0]
 
     def practice_angle(self, order: Sequence[str]) -> float:
         """The field of view of the practice rounds of a participant assigned ``order`` (condition ids): their

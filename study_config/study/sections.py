@@ -133,7 +133,8 @@ class Practice(StudyModel):
     count: int = Field(default=1, ge=1)
     """How many practice trials of this kind."""
     view: ViewName | None = None
-    """How the participant sees this practice round; default: the study's first view (``views[0]``)."""
+    """How the participant sees this practice round; default: their group's view when ``view`` is between
+    participants, else the study's first view (``views[0]``)."""
 
 
 class Recruiting(StudyModel):

@@ -51,3 +51,19 @@ def test_designs_that_cannot_balance_are_refused_with_field_and_reason(tmp_path,
         path = write(tmp_path, body)
     problems = [str(p) for p in validate_study_file(path)]
     assert any(f": {field}: {reason}" in p for p in problems), problems
+
+
+def test_a_between_view_group_practises_in_the_view_it_will_play(tmp_path) -> None:
+    from server.flow.plan import build_plan
+
+    study = load_study(write(tmp_path, "views: [top_down, first_person]\nbetween: [view]\n"
+                                       "practice: [{kitchen: practice, robot: stay}, "
+                                       "{kitchen: practice, robot: stay, view: top_down}]\n"))
+    orders, groups = study.condition_orders(), study.order_groups()
+    assert set(groups) == {0, 1}
+    for order, group in zip(orders, groups, strict=True):
+        view = ("top_down", "first_person")[group]
+        trials = [s for s in build_plan(study, order) if s.kind == "trial"]
+        assert {s.view for s in trials if s.trial_kind == "main"} == {view}
+        # the practice round without a view of its own is in the group's view; the one that names a view keeps it
+        assert [s.view for s in trials if s.trial_kind == "practice"] == [view, "top_down"]
