@@ -96,11 +96,7 @@ def order_check(df: pd.DataFrame, dv: str, within: Sequence[str], subject: str, 
             slope, se = float(base.params["pos"]), float(base.bse["pos"])
             lr = _carryover(data, conditions, list(names.values()))
     except (ValueError, ArithmeticError, IndexError, KeyError) as exc:
-        singular = "singular" in str(exc).lower()
-        return OrderCheck(dv, n, positions, note=(
-            "position is confounded with the conditions (it is a linear combination of them), so an order effect "
-            "cannot be told apart from the condition effects" if singular else
-            f"the model could not be fitted ({exc})"))
+        return OrderCheck(dv, n, positions, note=f"the model could not be fitted ({exc})")
     if not (math.isfinite(slope) and math.isfinite(se) and se > 0):
         return OrderCheck(dv, n, positions, note="the model could not estimate the position effect")
     z = slope / se
@@ -110,7 +106,9 @@ def order_check(df: pd.DataFrame, dv: str, within: Sequence[str], subject: str, 
 
 def _confounding(data: pd.DataFrame, within: Sequence[str], position: str) -> str:
     """Why position cannot be separated from condition, or empty: when every condition was always played at one
-    position (all participants in one order), position is a function of condition."""
+    position (all participants in one order), position is a function of condition. This is exactly when position
+    is a linear combination of the conditions' full-factorial columns (they span the cell indicators), so the
+    models below are never fitted on a design whose position column is redundant."""
     per_condition = data.groupby(list(within), observed=True)[position].nunique()
     if (per_condition <= 1).all():
         return ("position is confounded with condition: every condition was played at the same position by every "
