@@ -92,6 +92,7 @@ class PlannerConfig:
     shown_empty: float = 0.0
     seen_carrying: float = 2.0
     view_detour: int = 4
+    wrong_hands: float = 0.0
 
     def __post_init__(self) -> None:
         if self.lookahead not in LOOKAHEADS:
@@ -100,7 +101,7 @@ class PlannerConfig:
     @property
     def values_knowing(self) -> bool:
         """The exploration values the person's knowing (:meth:`planner.rollout.Rollout.knowing`)."""
-        return bool(self.shown_value or self.shown_empty or self.seen_carrying)
+        return bool(self.shown_value or self.shown_empty or self.seen_carrying or self.wrong_hands)
 
     def omniscient_human(self) -> PlannerConfig:
         return replace(self, human_angle=360.0, human_delay=0)

@@ -242,6 +242,8 @@ class Rollout:
         if still_showing and held == showing and kb.robot is not None and kb.robot.held == held and (
                 before.kb.robot is None or before.kb.robot.held != held):
             value += self.cfg.shown_value if held is not None else self.cfg.shown_empty
+        if self.cfg.wrong_hands and (kb.robot is None or kb.robot.held != held):
+            value -= self.cfg.wrong_hands
         if carrying and held == DISH and self.cfg.seen_carrying:
             human = world.human
             if world.robot.pos in view(self.layout, human.pos, human.facing, self.cfg.human_angle).cells:
