@@ -50,9 +50,10 @@ class PlannerConfig:
     now while it still holds it; ``shown_empty`` the same for empty hands (a put-down the person did not see;
     also, with nothing to do, the robot then walks into view; off by default: it cost ticks for little less KB
     gap); ``seen_carrying`` per tick while it carries a dish in the person's view, as long as the dish trip has
-    detour left. ``view_detour``: the most extra ticks of a whole dish trip, and of a showing walk less its
-    ``human_delay − 1`` ticks in view (at most ``view_detour + human_delay − 1``). Tuned on generated kitchens
-    of generator seeds 0–29 only. (With ``reuse_rollouts`` the kept rollouts carry no knowing value, so the
+    detour left; ``wrong_hands`` (off by default: it cost ticks) is lost per tick the modelled KB is wrong about
+    what the robot holds (stale or unknown), in the exploration only. ``view_detour``: the most extra ticks of a
+    whole dish trip, and of a showing walk less its ``human_delay − 1`` ticks in view (at most
+    ``view_detour + human_delay − 1``). Tuned on generated kitchens of generator seeds 0–29 only. (With ``reuse_rollouts`` the kept rollouts carry no knowing value, so the
     direct move is scored without it: not measured.)"""
 
     human_angle: float = FOV_ANGLE

@@ -54,7 +54,6 @@ from planner.geometry import DIRECTIONS, Action, Pos, manhattan, move_action
 from planner.human import HumanMemory
 from planner.kb import KnowledgeBase, omniscient_kb
 from planner.layout import Layout
-from planner.objects import STEAK_PLATE
 from planner.paths import best_moves, distance
 from planner.person_model import PersonModel
 from planner.planner_config import PlannerConfig
@@ -192,7 +191,7 @@ class QmdpRobot:
         if followed is not None:
             return Decision(action=followed, belief=self.belief.as_dict(),
                             elapsed_ms=(time.perf_counter() - start) * 1000)
-        self.showing.start(world, self.at_ready_garnish(world))
+        self.showing.start(world)
         self.traces, self.next_traces = self.next_traces, {}
         options = self.tasker.options(world, self.current)
         around = self.around_standoff(world, options)
@@ -351,29 +350,23 @@ class QmdpRobot:
         human's view held for ``kb_delay`` ticks), each scored by a rollout that tracks the modelled KB.
         ``direct_value`` is the direct move's score, already computed for ``Q`` (same rollouts, same seeds)."""
         default = self.rollout.robot_move(world, subtask, self.human_still >= 2)
-        if not self.shows_itself:
-            return default, 0
-        garnish = default is Action.INTERACT and subtask is Subtask.PICKUP_GARNISH and self.at_ready_garnish(world)
-        if default is Action.INTERACT and not garnish:
+        if not self.shows_itself or default is Action.INTERACT:
             return default, 0
         assert self.kb is not None
         candidates: dict[Action, tuple[Action, ...]] = {default: ()}
         cells = self.tasker.targets(subtask, world)
         pose = (world.robot.pos, world.robot.facing)
-        if cells and not garnish:
+        if cells:
             nearest = min(cells, key=lambda c: distance(self.layout, pose, c))
             for move in best_moves(self.layout, pose, nearest, world.human.pos):
                 candidates.setdefault(move, ())
-        show = () if garnish else self.showing.show_plan(world, self.kb, cells)
+        show = self.showing.show_plan(world, self.kb, cells)
         if show:
             candidates[show[0]] = show[1:]
         plans = [(move, rest, True) for move, rest in candidates.items()]
         route = self.showing.view_route(world, cells)
         if route and route[1:] != candidates.get(route[0]):
             plans.append((route[0], route[1:], False))
-        if default is not Action.STAY:  # waits for the person to turn (planner.showing.Showing.waits)
-            plans += [(Action.STAY, (Action.STAY,) * (k - 1), False)
-                      for k in range(1, self.showing.waits(world, garnish) + 1)]
         if len(plans) < 2:
             return default, 0
         scored: list[tuple[float, bool, int]] = []
@@ -432,14 +425,6 @@ class QmdpRobot:
             if target in self.layout.floor and target != world.human.pos:
                 return move_action(d)
         return action
-
-    def at_ready_garnish(self, world: WorldState) -> bool:
-        """The robot holds a plated steak and faces a board with a chopped garnish: an interact makes the dish."""
-        if world.robot.held != STEAK_PLATE:
-            return False
-        faced = world.robot.facing.ahead(world.robot.pos)
-        return any(cell == faced and status is not None and status >= self.rules.chop_time
-                   for cell, status in zip(self.layout.boards, world.boards, strict=True))
 
     def view_route(self, world: WorldState, subtask: Subtask) -> tuple[Action, ...]:
         """Behaviour 2's dish route toward ``subtask``'s targets (:meth:`planner.showing.Showing.view_route`)."""

@@ -236,7 +236,8 @@ class Rollout:
         Zero for a person who sees everything. Only what the robot holds now earns the shown value: a cost for
         every unknown load in the lookahead made the robot avoid and delay work, and one for every tick the KB
         still believes the robot holds what it put down made it keep its load in view (measured,
-        docs/domain.md §5)."""
+        docs/domain.md §5). ``−wrong_hands`` (off by default) at every tick their KB is wrong about what the robot
+        holds, now that the exploration's candidates are bounded walks (the show plan, the dish route)."""
         held = world.robot.held
         value = 0.0
         if still_showing and held == showing and kb.robot is not None and kb.robot.held == held and (
