@@ -53,8 +53,11 @@ class PlannerConfig:
     detour left; ``wrong_hands`` (off by default: it cost ticks) is lost per tick the modelled KB is wrong about
     what the robot holds (stale or unknown), in the exploration only. ``view_detour``: the most extra ticks of a
     whole dish trip, and of a showing walk less its ``human_delay − 1`` ticks in view (at most
-    ``view_detour + human_delay − 1``). Tuned on generated kitchens of generator seeds 0–29 only. (With ``reuse_rollouts`` the kept rollouts carry no knowing value, so the
-    direct move is scored without it: not measured.)"""
+    ``view_detour + human_delay − 1``). ``wait_price``: the ticks in the person's view a tick of waiting with
+    a dish (or at a ready garnish) must be expected to add to the dish trip before the robot waits for the
+    person to turn (:meth:`planner.qmdp.QmdpRobot.wait_for_view`, within the trip's detour). Tuned on generated
+    kitchens of generator seeds 0–29 only. (With ``reuse_rollouts`` the kept rollouts carry no knowing value,
+    so the direct move is scored without it: not measured.)"""
 
     human_angle: float = FOV_ANGLE
     human_delay: int = KB_DELAY
@@ -93,7 +96,8 @@ class PlannerConfig:
     shown_empty: float = 0.0
     seen_carrying: float = 2.0
     view_detour: int = 4
-    wrong_hands: float = 0.0
+    wrong_hands: float = 0.5
+    wait_price: float = 0.2
 
     def __post_init__(self) -> None:
         if self.lookahead not in LOOKAHEADS:
