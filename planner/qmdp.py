@@ -451,7 +451,8 @@ class QmdpRobot:
         of ``k`` ticks (at most what is left of the trip's detour, :meth:`planner.showing.Showing.waits`) keeps
         the robot where it stands for ``k`` ticks and then takes the same way ``k`` ticks later, the person's
         poses unchanged. It waits when some ``k`` > 0 is expected to bring at least ``wait_price`` more ticks of
-        the dish trip into the person's view per tick waited than going on now."""
+        that walk into the person's view per tick waited than going on now (the ticks waited count for nothing,
+        seen or not: a wait is for the walk to be seen, not for standing in view)."""
         budget = self.showing.waits(world, garnish)
         if budget <= 0 or not self.cfg.wait_price or not self.layout.serves:
             return False
@@ -472,8 +473,8 @@ class QmdpRobot:
             end = trip[-1] + 1
             for k in range(budget + 1):
                 seen = 0
-                for t in range(1, end + k):
-                    pos, held = robot[max(t - k, 0)] if t > k else robot[0]
+                for t in range(k + 1, end + k):  # the walk after the wait: waiting in view is no gain
+                    pos, held = robot[t - k]
                     if held == DISH and pos in people[min(t, len(people)) - 1]:
                         seen += 1
                 gains[k] += p * (seen - self.cfg.wait_price * k)
