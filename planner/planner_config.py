@@ -96,7 +96,7 @@ class PlannerConfig:
     shown_empty: float = 0.0
     seen_carrying: float = 2.0
     view_detour: int = 4
-    wrong_hands: float = 0.5
+    wrong_hands: float = 0.0
     wait_price: float = 0.2
 
     def __post_init__(self) -> None:

@@ -12,10 +12,10 @@ call: with the showing walk of docs/domain.md §5 (through the view on the way, 
 mostly goes round the east end and along the top row to stand beside the human (a cell the human's view always
 holds), as long a way as round the west end (where the human looks; the planner before 2026-12-03 afternoon
 mostly went there); on one seed of five it takes the short way unseen. Asserted: a longer way, and the onion
-acknowledged before it is put down, on most seeds, for the showing alone (``wrong_hands`` 0). With the default
-``wrong_hands`` the robot also weighs that this person, standing still facing west, will not see the onion put
-down, so that showing it leaves their KB wrong afterwards (docs/domain.md §5, "The person's knowing"): it then
-shows the onion on 3 of the 5 seeds and takes the short way unseen on the others.
+acknowledged before it is put down, on most seeds. With the ``wrong_hands`` option (0.5; off by default) the
+robot also weighs that this person, standing still facing west, will not see the onion put down, so that showing
+it leaves their KB wrong afterwards (docs/domain.md §5, "The person's knowing"): it then shows the onion on 3 of
+the 5 seeds and takes the short way unseen on the others.
 
 The human's KB here is the test's own, updated with the FOV rules (120°, delay 3) as the simulated human's is.
 """
@@ -53,7 +53,7 @@ def situation():
     return before, now
 
 
-SHOWING_ALONE = PlannerConfig(wrong_hands=0.0)
+WEIGHING_PUT_DOWN = PlannerConfig(wrong_hands=0.5)
 
 
 def play_until_the_onion_is_on_the_board(name: str, seed: int, max_ticks: int = 25,
@@ -102,12 +102,11 @@ def shown_on(config: PlannerConfig | None) -> int:
 
 
 def test_fov_aware_robot_mostly_goes_a_longer_way_to_be_seen():
-    assert shown_on(SHOWING_ALONE) >= len(SEEDS) - 1
+    assert shown_on(None) >= len(SEEDS) - 1
 
 
 def test_weighing_the_unseen_put_down_the_fov_aware_robot_shows_the_onion_less_often():
-    assert PlannerConfig().wrong_hands > 0
-    assert 1 <= shown_on(None) < shown_on(SHOWING_ALONE)
+    assert 1 <= shown_on(WEIGHING_PUT_DOWN) < shown_on(None)
 
 
 @pytest.mark.parametrize("seed", SEEDS)

@@ -152,10 +152,10 @@ def test_the_robot_takes_the_nearest_subtask_the_person_is_not_doing(kitchen):
 
 
 def test_the_wrong_hands_option_costs_every_tick_the_person_is_wrong_about_the_robots_hands(kitchen):
-    """``wrong_hands`` (docs/domain.md §5, "The person's knowing"): the knowing value loses it at
+    """``wrong_hands`` (off by default; docs/domain.md §5, "The person's knowing"): the knowing value loses it at
     every tick the modelled KB believes the robot holds something else than it does, stale or unknown alike."""
     config = replace(CFG, wrong_hands=1.5, seen_carrying=0.0, shown_value=0.0)
-    assert config.values_knowing
+    assert config.values_knowing and CFG.wrong_hands == 0.0
     rollout = Rollout(kitchen, RULES, config)
     start = initial_state(kitchen, RULES)
     kb = initial_kb(start)  # believes the robot's hands are empty
