@@ -22,8 +22,10 @@ Each tick the robot
    while the human neither moves nor turns), and with a dish, the dish route (:mod:`planner.view_route`); it
    keeps the one whose value, the rollout's progress plus what the person comes to know (docs/domain.md §5,
    "The person's knowing"), is highest (ties: the direct move). This produces the staircase paths that stay
-   in the FOV and the robot walking alongside the human to show what it carries (paper §VI-C). The no-rollout
-   robot (depth 0) and the baseline take the direct move.
+   in the FOV and the robot walking alongside the human to show what it carries (paper §VI-C). With a dish and
+   no dish route, or with a plated steak at a ready garnish, it first asks whether to wait for the person to
+   turn its way (:meth:`QmdpRobot.wait_for_view`, on the person's predicted poses). The no-rollout robot
+   (depth 0) and the baseline take the direct move.
 
 The lookahead horizon is ``search_depth`` subtasks × 6 ticks (default 7: 42 ticks).
 ``PlannerConfig(lookahead="abstract")`` replaces steps 2–4 by docs/domain.md §5 as the reference planned
