@@ -50,10 +50,14 @@ class PlannerConfig:
     now while it still holds it; ``shown_empty`` the same for empty hands (a put-down the person did not see;
     also, with nothing to do, the robot then walks into view; off by default: it cost ticks for little less KB
     gap); ``seen_carrying`` per tick while it carries a dish in the person's view, as long as the dish trip has
-    detour left. ``view_detour``: the most extra ticks of a whole dish trip, and of a showing walk less its
-    ``human_delay − 1`` ticks in view (at most ``view_detour + human_delay − 1``). Tuned on generated kitchens
-    of generator seeds 0–29 only. (With ``reuse_rollouts`` the kept rollouts carry no knowing value, so the
-    direct move is scored without it: not measured.)"""
+    detour left; ``wrong_hands`` (off by default: it cost ticks) is lost per tick the modelled KB is wrong about
+    what the robot holds (stale or unknown), in the exploration only. ``view_detour``: the most extra ticks of a
+    whole dish trip, and of a showing walk less its ``human_delay − 1`` ticks in view (at most
+    ``view_detour + human_delay − 1``). ``wait_price``: the ticks in the person's view a tick of waiting with
+    a dish (or at a ready garnish) must be expected to add to the dish trip before the robot waits for the
+    person to turn (:meth:`planner.qmdp.QmdpRobot.wait_for_view`, within the trip's detour). Tuned on generated
+    kitchens of generator seeds 0–29 only. (With ``reuse_rollouts`` the kept rollouts carry no knowing value,
+    so the direct move is scored without it: not measured.)"""
 
     human_angle: float = FOV_ANGLE
     human_delay: int = KB_DELAY
@@ -92,6 +96,8 @@ class PlannerConfig:
     shown_empty: float = 0.0
     seen_carrying: float = 2.0
     view_detour: int = 4
+    wrong_hands: float = 0.0
+    wait_price: float = 0.2
 
     def __post_init__(self) -> None:
         if self.lookahead not in LOOKAHEADS:
@@ -100,7 +106,7 @@ class PlannerConfig:
     @property
     def values_knowing(self) -> bool:
         """The exploration values the person's knowing (:meth:`planner.rollout.Rollout.knowing`)."""
-        return bool(self.shown_value or self.shown_empty or self.seen_carrying)
+        return bool(self.shown_value or self.shown_empty or self.seen_carrying or self.wrong_hands)
 
     def omniscient_human(self) -> PlannerConfig:
         return replace(self, human_angle=360.0, human_delay=0)

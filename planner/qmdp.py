@@ -22,8 +22,10 @@ Each tick the robot
    while the human neither moves nor turns), and with a dish, the dish route (:mod:`planner.view_route`); it
    keeps the one whose value, the rollout's progress plus what the person comes to know (docs/domain.md §5,
    "The person's knowing"), is highest (ties: the direct move). This produces the staircase paths that stay
-   in the FOV and the robot walking alongside the human to show what it carries (paper §VI-C). The no-rollout
-   robot (depth 0) and the baseline take the direct move.
+   in the FOV and the robot walking alongside the human to show what it carries (paper §VI-C). With a dish and
+   no dish route, or with a plated steak at a ready garnish, it first asks whether to wait for the person to
+   turn its way (:meth:`QmdpRobot.wait_for_view`, on the person's predicted poses). The no-rollout robot
+   (depth 0) and the baseline take the direct move.
 
 The lookahead horizon is ``search_depth`` subtasks × 6 ticks (default 7: 42 ticks).
 ``PlannerConfig(lookahead="abstract")`` replaces steps 2–4 by docs/domain.md §5 as the reference planned
@@ -50,10 +52,12 @@ from planner.belief import Belief
 from planner.cycle import CycleWatch, broken, watch, without_avoided
 from planner.decision import Decision
 from planner.events import Event, EventKind
+from planner.fov import view
 from planner.geometry import DIRECTIONS, Action, Pos, manhattan, move_action
 from planner.human import HumanMemory
 from planner.kb import KnowledgeBase, omniscient_kb
 from planner.layout import Layout
+from planner.objects import DISH, STEAK_PLATE
 from planner.paths import best_moves, distance
 from planner.person_model import PersonModel
 from planner.planner_config import PlannerConfig
@@ -191,7 +195,7 @@ class QmdpRobot:
         if followed is not None:
             return Decision(action=followed, belief=self.belief.as_dict(),
                             elapsed_ms=(time.perf_counter() - start) * 1000)
-        self.showing.start(world)
+        self.showing.start(world, self.at_ready_garnish(world))
         self.traces, self.next_traces = self.next_traces, {}
         options = self.tasker.options(world, self.current)
         around = self.around_standoff(world, options)
@@ -350,11 +354,17 @@ class QmdpRobot:
         human's view held for ``kb_delay`` ticks), each scored by a rollout that tracks the modelled KB.
         ``direct_value`` is the direct move's score, already computed for ``Q`` (same rollouts, same seeds)."""
         default = self.rollout.robot_move(world, subtask, self.human_still >= 2)
-        if not self.shows_itself or default is Action.INTERACT:
+        if not self.shows_itself:
+            return default, 0
+        cells = self.tasker.targets(subtask, world)
+        garnish = default is Action.INTERACT and subtask is Subtask.PICKUP_GARNISH and self.at_ready_garnish(world)
+        dish = world.robot.held == DISH and default is not Action.STAY and not self.showing.view_route(world, cells)
+        if (garnish or dish) and self.wait_for_view(world, subtask, likely, seed, garnish):
+            return Action.STAY, len(likely)
+        if default is Action.INTERACT:
             return default, 0
         assert self.kb is not None
         candidates: dict[Action, tuple[Action, ...]] = {default: ()}
-        cells = self.tasker.targets(subtask, world)
         pose = (world.robot.pos, world.robot.facing)
         if cells:
             nearest = min(cells, key=lambda c: distance(self.layout, pose, c))
@@ -425,6 +435,53 @@ class QmdpRobot:
             if target in self.layout.floor and target != world.human.pos:
                 return move_action(d)
         return action
+
+    def at_ready_garnish(self, world: WorldState) -> bool:
+        """The robot holds a plated steak and faces a board with a chopped garnish: an interact makes the dish."""
+        if world.robot.held != STEAK_PLATE:
+            return False
+        faced = world.robot.facing.ahead(world.robot.pos)
+        return any(cell == faced and status is not None and status >= self.rules.chop_time
+                   for cell, status in zip(self.layout.boards, world.boards, strict=True))
+
+    def wait_for_view(self, world: WorldState, subtask: Subtask, likely: tuple[tuple[Subtask, float], ...],
+                      seed: int, garnish: bool) -> bool:
+        """Behaviour 2's wait (docs/domain.md §5, "The person's knowing"): whether the robot with a dish (or,
+        ``garnish``, about to take a ready garnish onto its plated steak) should wait this tick for the person to
+        turn its way. The person's poses are predicted tick by tick (:meth:`planner.rollout.Rollout.poses`, one
+        rollout per likely subtask, the robot going on with ``subtask``), and the robot's way with them; a wait
+        of ``k`` ticks (at most what is left of the trip's detour, :meth:`planner.showing.Showing.waits`) keeps
+        the robot where it stands for ``k`` ticks and then takes the same way ``k`` ticks later, the person's
+        poses unchanged. It waits when some ``k`` > 0 is expected to bring at least ``wait_price`` more ticks of
+        that walk into the person's view per tick waited than going on now (the ticks waited count for nothing,
+        seen or not: a wait is for the walk to be seen, not for standing in view)."""
+        budget = self.showing.waits(world, garnish)
+        if budget <= 0 or not self.cfg.wait_price or not self.layout.serves:
+            return False
+        assert self.kb is not None
+        pose = (world.robot.pos, world.robot.facing)
+        ticks = min(distance(self.layout, pose, c) for c in self.layout.serves) + 2 * budget + 2
+        gains = [0.0] * (budget + 1)
+        for s, p in likely:
+            worlds = self.rollout.poses(world, self.kb, HumanMemory(subtask=s, held=world.human.held),
+                                        np.random.default_rng(seed), subtask, ticks, self.human_still)
+            if not worlds:
+                return False
+            robot = [(world.robot.pos, world.robot.held)] + [(w.robot.pos, w.robot.held) for w in worlds]
+            people = [view(self.layout, w.human.pos, w.human.facing, self.cfg.human_angle).cells for w in worlds]
+            trip = [t for t in range(1, len(robot)) if robot[t][1] == DISH]
+            if not trip or (garnish and robot[1][1] != DISH):
+                return False
+            end = trip[-1] + 1
+            for k in range(budget + 1):
+                seen = 0
+                for t in range(k + 1, end + k):  # the walk after the wait: waiting in view is no gain
+                    pos, held = robot[t - k]
+                    if held == DISH and pos in people[min(t, len(people)) - 1]:
+                        seen += 1
+                gains[k] += p * (seen - self.cfg.wait_price * k)
+        best = max(range(budget + 1), key=lambda k: (gains[k], -k))
+        return best > 0
 
     def view_route(self, world: WorldState, subtask: Subtask) -> tuple[Action, ...]:
         """Behaviour 2's dish route toward ``subtask``'s targets (:meth:`planner.showing.Showing.view_route`)."""

@@ -195,6 +195,19 @@ class Rollout:
                 break
         return total, known
 
+    def poses(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory, rng: np.random.Generator,
+              robot_subtask: Subtask, ticks: int, parked_for: int = 0) -> list[WorldState]:
+        """The simulated world after each of the next ``ticks`` ticks (the robot on its subtask, the person
+        predicted as in :meth:`run`; ``rng`` is consumed), until all orders are done."""
+        sim = self.start(world, kb, memory, robot_subtask, parked_for)
+        out = []
+        for _ in range(ticks):
+            sim, _ = self.tick(sim, rng)
+            out.append(sim.world)
+            if sim.world.orders_left == 0:
+                break
+        return out
+
     def start(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory, robot_subtask: Subtask,
               parked_for: int = 0) -> SimState:
         return SimState(world, kb, memory, robot_subtask, parked_for, potential(world, self.cfg))
@@ -236,12 +249,15 @@ class Rollout:
         Zero for a person who sees everything. Only what the robot holds now earns the shown value: a cost for
         every unknown load in the lookahead made the robot avoid and delay work, and one for every tick the KB
         still believes the robot holds what it put down made it keep its load in view (measured,
-        docs/domain.md §5)."""
+        docs/domain.md §5). ``−wrong_hands`` (off by default) at every tick their KB is wrong about what the robot
+        holds, now that the exploration's candidates are bounded walks (the show plan, the dish route)."""
         held = world.robot.held
         value = 0.0
         if still_showing and held == showing and kb.robot is not None and kb.robot.held == held and (
                 before.kb.robot is None or before.kb.robot.held != held):
             value += self.cfg.shown_value if held is not None else self.cfg.shown_empty
+        if self.cfg.wrong_hands and (kb.robot is None or kb.robot.held != held):
+            value -= self.cfg.wrong_hands
         if carrying and held == DISH and self.cfg.seen_carrying:
             human = world.human
             if world.robot.pos in view(self.layout, human.pos, human.facing, self.cfg.human_angle).cells:

@@ -14,7 +14,7 @@ from planner.fov import view
 from planner.geometry import Action, Direction, Pos
 from planner.kb import ROBOT_KEY, KnowledgeBase
 from planner.layout import Layout
-from planner.objects import DISH
+from planner.objects import DISH, STEAK_PLATE
 from planner.paths import distance
 from planner.planner_config import PlannerConfig
 from planner.state import WorldState
@@ -39,8 +39,9 @@ class Showing:
         self.dish_trip = None
 
     def observe(self, world: WorldState) -> None:
-        """A dish trip ends when the robot no longer carries a dish."""
-        if world.robot.held != DISH:
+        """A dish trip ends when the robot no longer carries a dish (or the plated steak it waits with at a ready
+        garnish, :meth:`trip_detour_left`)."""
+        if world.robot.held not in (DISH, STEAK_PLATE):
             self.dish_trip = None
 
     def follow(self, world: WorldState, kb: KnowledgeBase) -> Action | None:
@@ -53,12 +54,13 @@ class Showing:
             return action
         return None
 
-    def start(self, world: WorldState) -> None:
+    def start(self, world: WorldState, garnish: bool = False) -> None:
         """A new decision: nothing pending, no knowing value yet, and whether a dish carried in view is still
-        worth anything on this trip (:meth:`trip_detour_left`)."""
+        worth anything on this trip (:meth:`trip_detour_left`; ``garnish``: the robot is about to take a ready
+        garnish)."""
         self.pending = ()
         self.known = {}
-        self.carrying = self.trip_detour_left(world) > 0
+        self.carrying = self.trip_detour_left(world, garnish) > 0
 
     def keep(self, rest: tuple[Action, ...], world: WorldState) -> None:
         """Follow ``rest`` from the next tick while the person stays as they are in ``world``."""
@@ -83,21 +85,24 @@ class Showing:
         return show_walk(self.layout, (world.robot.pos, world.robot.facing), cells, seen, human.pos, need, run,
                          self.cfg.view_detour + max(need - 1, 0))
 
-    def trip_detour_left(self, world: WorldState) -> int:
+    def trip_detour_left(self, world: WorldState, garnish: bool = False) -> int:
         """The ticks the robot's dish trip may still spend beyond its shortest way (``view_detour`` for the whole
         trip, docs/domain.md §5, "The person's knowing"): the extra ticks the dish has taken so far (ticks since it
         was taken less how much shorter the way to the serving counter has become) count against it, so the robot
-        cannot wait in view tick after tick. 0 when it carries no dish or stands at the counter; the first call
-        of a trip starts it."""
-        if world.robot.held != DISH or not self.layout.serves:
+        cannot wait in view tick after tick. ``garnish``: the robot holds a plated steak and is about to take a
+        ready garnish; the trip starts there, so the ticks it waits before taking it count too. 0 when it carries
+        no dish (nor stands at a ready garnish) or stands at the counter; the first call of a trip starts it."""
+        held = world.robot.held
+        if not (held == DISH or (garnish and held == STEAK_PLATE)) or not self.layout.serves:
             return 0
         pose = (world.robot.pos, world.robot.facing)
         base = min(distance(self.layout, pose, c) for c in self.layout.serves)
         if base == 0:
             return 0
-        if self.dish_trip is None:
-            self.dish_trip = (world.tick, base)
-        return self.cfg.view_detour - (world.tick - self.dish_trip[0] - (self.dish_trip[1] - base))
+        if self.dish_trip is None:  # at a garnish the dish is held from the next tick on
+            self.dish_trip = (world.tick + (held == STEAK_PLATE), base)
+        return min(self.cfg.view_detour,
+                   self.cfg.view_detour - (world.tick - self.dish_trip[0] - (self.dish_trip[1] - base)))
 
     def view_route(self, world: WorldState, cells: tuple[Pos, ...]) -> tuple[Action, ...]:
         """Behaviour 2's plan while the robot carries a dish and ``seen_carrying`` values that (docs/domain.md §5,
@@ -113,3 +118,12 @@ class Showing:
         pose = (world.robot.pos, world.robot.facing)
         seen = view(self.layout, world.human.pos, world.human.facing, self.cfg.human_angle).cells
         return view_route(self.layout, pose, cells, seen, world.human.pos, detour)
+
+    def waits(self, world: WorldState, garnish: bool = False) -> int:
+        """How many ticks the robot may wait before going on with its dish (or, ``garnish``, before taking a ready
+        garnish onto its plated steak) for the person to turn its way (docs/domain.md §5, "The person's knowing":
+        which wait, if any, the rollouts' predicted person makes worth it): what is left of the trip's detour
+        (:meth:`trip_detour_left`); 0 when ``seen_carrying`` values nothing."""
+        if not self.cfg.seen_carrying:
+            return 0
+        return max(self.trip_detour_left(world, garnish), 0)

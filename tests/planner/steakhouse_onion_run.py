@@ -29,10 +29,10 @@ class OnionRun:
 
 
 def carry_onion_to_board(layout: Layout, rules: Rules, name: str, seed: int, before: WorldState,
-                         now: WorldState, max_ticks: int) -> OnionRun:
-    """Robot ``name`` (reset on ``before``) plays from ``now`` until a board is loaded; fails the test if it
-    takes more than ``max_ticks``."""
-    robot = make_robot(name, layout, rules, PlannerConfig())
+                         now: WorldState, max_ticks: int, config: PlannerConfig | None = None) -> OnionRun:
+    """Robot ``name`` (reset on ``before``; ``config``: the planner's, default :class:`PlannerConfig`) plays from
+    ``now`` until a board is loaded; fails the test if it takes more than ``max_ticks``."""
+    robot = make_robot(name, layout, rules, config or PlannerConfig())
     robot.reset(before)
     kb = initial_kb(before)
     rng = np.random.default_rng(seed)

@@ -121,7 +121,7 @@ def test_the_shown_value_is_earned_once_when_the_persons_kb_takes_in_the_load(ki
 
 
 def test_carrying_a_dish_in_the_persons_view_is_worth_something_every_tick(kitchen):
-    rollout = Rollout(kitchen, RULES, CFG)
+    rollout = Rollout(kitchen, RULES, replace(CFG, wrong_hands=0.0))  # the KB here does not know the dish
     start = initial_state(kitchen, RULES)  # the person at (7, 3) facing south
     kb = initial_kb(start)
     in_view = replace(start, robot=AgentState((6, 4), Direction.EAST, DISH))
@@ -149,3 +149,18 @@ def test_the_robot_takes_the_nearest_subtask_the_person_is_not_doing(kitchen):
     assert set(options) >= {Subtask.PICKUP_MEAT, Subtask.PICKUP_ONION, Subtask.PICKUP_PLATE}
     assert tasker.nearest(world, options, avoid=None) is Subtask.PICKUP_ONION
     assert tasker.nearest(world, options, avoid=Subtask.PICKUP_ONION) is Subtask.PICKUP_MEAT
+
+
+def test_the_wrong_hands_option_costs_every_tick_the_person_is_wrong_about_the_robots_hands(kitchen):
+    """``wrong_hands`` (off by default; docs/domain.md §5, "The person's knowing"): the knowing value loses it at
+    every tick the modelled KB believes the robot holds something else than it does, stale or unknown alike."""
+    config = replace(CFG, wrong_hands=1.5, seen_carrying=0.0, shown_value=0.0)
+    assert config.values_knowing and CFG.wrong_hands == 0.0
+    rollout = Rollout(kitchen, RULES, config)
+    start = initial_state(kitchen, RULES)
+    kb = initial_kb(start)  # believes the robot's hands are empty
+    sim = rollout.start(start, kb, HumanMemory(), Subtask.PICKUP_MEAT)
+    holding = replace(start, robot=replace(start.robot, held=MEAT))
+    assert rollout.knowing(sim, holding, kb, showing=MEAT) == -1.5
+    assert rollout.knowing(sim, start, kb, showing=None) == 0.0
+    assert rollout.knowing(sim, start, initial_kb(holding), showing=None) == -1.5  # a put-down it did not see
