@@ -55,7 +55,9 @@ class PlannerConfig:
     whole dish trip, and of a showing walk less its ``human_delay − 1`` ticks in view (at most
     ``view_detour + human_delay − 1``). ``wait_price``: the ticks in the person's view a tick of waiting with
     a dish (or at a ready garnish) must be expected to add to the dish trip before the robot waits for the
-    person to turn (:meth:`planner.qmdp.QmdpRobot.wait_for_view`, within the trip's detour). Tuned on generated
+    person to turn (:meth:`planner.qmdp.QmdpRobot.wait_for_view`, within the trip's detour); 0, the default,
+    never waits: at 0.2 it raised behaviour 2 but made the team 3.5 % slower over the shipped kitchens
+    (docs/domain.md §5, §6). Tuned on generated
     kitchens of generator seeds 0–29 only. (With ``reuse_rollouts`` the kept rollouts carry no knowing value,
     so the direct move is scored without it: not measured.)"""
 
@@ -97,7 +99,7 @@ class PlannerConfig:
     seen_carrying: float = 2.0
     view_detour: int = 4
     wrong_hands: float = 0.0
-    wait_price: float = 0.2
+    wait_price: float = 0.0
 
     def __post_init__(self) -> None:
         if self.lookahead not in LOOKAHEADS:

@@ -4,7 +4,7 @@ top row, while the person stands at (4, 5) facing the counter below them, so no 
 passes their view. The person's predicted poses are scripted (the rollout's person replaced tick by tick): when
 the person is predicted to turn north four ticks from now, waiting three ticks brings the whole walk into their
 view, and the FOV-aware robot waits; when the person never turns, or already faces north, it goes at once, and the
-baseline always goes."""
+baseline always goes. The wait is an option, off by default (``wait_price`` 0); these tests set its price."""
 
 from __future__ import annotations
 
@@ -35,6 +35,8 @@ LAYOUT = parse_layout("\n".join([
 ]), name="wait_test")
 PERSON = AgentState((4, 5), Direction.SOUTH)
 LIKELY = ((Subtask.PICKUP_MEAT, 1.0),)
+WAITING = PlannerConfig(wait_price=0.2)
+"""The wait is an option (off by default): the price it was measured with."""
 
 
 def with_dish():
@@ -55,7 +57,7 @@ def scripted(robot: QmdpRobot, turn_at: int | None) -> None:
 
 
 def test_the_way_to_the_counter_is_out_of_the_persons_view_so_there_is_no_route_through_it():
-    robot = make_qmdp_robot("fov_aware", LAYOUT, RULES)
+    robot = make_qmdp_robot("fov_aware", LAYOUT, RULES, WAITING)
     world = with_dish()
     robot.reset(world)
     assert robot.view_route(world, Subtask.DELIVER_DISH) == ()
@@ -66,7 +68,7 @@ def test_the_robot_waits_only_for_a_person_predicted_to_turn_its_way(turn_at, wa
     """Turning north at tick 4, the person sees the whole top row: going now, the robot is seen from (5, 2) on (4
     of its 7 ticks); after three ticks of waiting, its whole walk (7). Never turning, or facing north from the
     next tick on, a wait adds nothing to what the walk shows."""
-    robot = make_qmdp_robot("fov_aware", LAYOUT, RULES)
+    robot = make_qmdp_robot("fov_aware", LAYOUT, RULES, WAITING)
     world = with_dish()
     robot.reset(world)
     scripted(robot, turn_at)
@@ -74,14 +76,14 @@ def test_the_robot_waits_only_for_a_person_predicted_to_turn_its_way(turn_at, wa
 
 
 def test_no_wait_once_the_trips_detour_is_spent_or_without_a_price():
-    robot = make_qmdp_robot("fov_aware", LAYOUT, RULES)
+    robot = make_qmdp_robot("fov_aware", LAYOUT, RULES, WAITING)
     world = with_dish()
     robot.reset(world)
     scripted(robot, 4)
     robot.showing.trip_detour_left(world)  # the trip starts at tick 0
     late = replace(world, tick=PlannerConfig().view_detour)  # as many ticks waited as the detour allows
     assert not robot.wait_for_view(late, Subtask.DELIVER_DISH, LIKELY, 0, garnish=False)
-    free = make_qmdp_robot("fov_aware", LAYOUT, RULES, replace(PlannerConfig(), wait_price=0.0))
+    free = make_qmdp_robot("fov_aware", LAYOUT, RULES)  # the default: no price, no wait
     free.reset(world)
     scripted(free, 4)
     assert not free.wait_for_view(world, Subtask.DELIVER_DISH, LIKELY, 0, garnish=False)
@@ -89,12 +91,12 @@ def test_no_wait_once_the_trips_detour_is_spent_or_without_a_price():
 
 @pytest.mark.parametrize("seed", range(3))
 def test_the_fov_aware_robot_stays_for_the_turn_and_the_baseline_goes(seed):
-    aware = make_qmdp_robot("fov_aware", LAYOUT, RULES)
+    aware = make_qmdp_robot("fov_aware", LAYOUT, RULES, WAITING)
     world = with_dish()
     aware.reset(world)
     scripted(aware, 4)
     assert aware.decide(world, (), np.random.default_rng(seed)).action is Action.STAY
-    unturned = make_qmdp_robot("fov_aware", LAYOUT, RULES)
+    unturned = make_qmdp_robot("fov_aware", LAYOUT, RULES, WAITING)
     unturned.reset(world)
     scripted(unturned, None)
     assert unturned.decide(world, (), np.random.default_rng(seed)).action is Action.EAST
@@ -106,7 +108,7 @@ def test_the_fov_aware_robot_stays_for_the_turn_and_the_baseline_goes(seed):
 def test_at_a_ready_garnish_the_wait_counts_against_the_dish_trip():
     """A plated steak before a chopped garnish (the board (3, 6), faced from (3, 5)) starts the dish trip: the
     ticks waited there come off the trip's detour."""
-    robot = make_qmdp_robot("fov_aware", LAYOUT, RULES)
+    robot = make_qmdp_robot("fov_aware", LAYOUT, RULES, WAITING)
     world = replace(initial_state(LAYOUT, RULES), human=AgentState((6, 2), Direction.NORTH),
                     robot=AgentState((3, 5), Direction.SOUTH, STEAK_PLATE), boards=(RULES.chop_time,))
     robot.reset(world)
