@@ -65,10 +65,9 @@ def between_effect(part: pd.DataFrame, dv: str, between: str, label: str) -> pd.
         "F": f, "p": p, "ges": ss_b / (ss_b + ss_w) if ss_b + ss_w > 0 else math.nan, "eps_gg": math.nan,
         "eps_hf": math.nan, "correction": "none", "df1_read": df1, "df2_read": df2, "p_read": p, "note": note}
     if k == 2 and not note:
-        result = stats.ttest_ind(groups[0], groups[1])
-        ci = result.confidence_interval(0.95)
+        _, _, _, low, high = student_t(groups[0], groups[1])
         row.update(level_1=levels[0], level_2=levels[1], mean_diff=float(groups[0].mean() - groups[1].mean()),
-                   ci95_low=float(ci.low), ci95_high=float(ci.high))
+                   ci95_low=low, ci95_high=high)
     return pd.DataFrame([row]).reindex(columns=SIMPLE_EFFECT_COLUMNS)
 
 
@@ -94,13 +93,33 @@ def mixed_pairwise(df: pd.DataFrame, dv: str, within: Sequence[str], between: st
 
 def _independent(between: str, means: pd.Series, a: object, b: object) -> dict[str, object]:
     x, y = means.loc[a].to_numpy(dtype=float), means.loc[b].to_numpy(dtype=float)
-    result = stats.ttest_ind(x, y)
-    ci = result.confidence_interval(0.95)
+    t, df, p, low, high = student_t(x, y)
+    note = "independent groups (Student's t on the participants' means over all cells)"
+    if math.isnan(t):
+        note += "; not testable: " + ("too few participants" if df < 1 else "no variance within the groups")
     return {"factor": between, "at": "", "level_1": a, "level_2": b, "n": len(x) + len(y),
             "mean_1": float(x.mean()), "mean_2": float(y.mean()), "mean_diff": float(x.mean() - y.mean()),
-            "ci95_low": float(ci.low), "ci95_high": float(ci.high), "t": float(result.statistic),
-            "df": len(x) + len(y) - 2, "p": float(result.pvalue),
-            "note": "independent groups (Student's t on the participants' means over all cells)"}
+            "ci95_low": low, "ci95_high": high, "t": t, "df": df, "p": p, "note": note}
+
+
+def student_t(x: np.ndarray, y: np.ndarray) -> tuple[float, int, float, float, float]:
+    """Student's two-sample t with pooled variance: ``(t, df, two-sided p, CI low, CI high)``, the 95 % CI of
+    mean(x) − mean(y); NaN (but df) when a group is empty, df < 1 or neither group varies. Computed here rather than
+    with scipy's ``ttest_ind``, which warns of precision loss whenever a group's values are all equal (a variance of
+    exactly 0: nothing is lost) and so failed a study whose group happened to agree."""
+    nx, ny = len(x), len(y)
+    df = nx + ny - 2
+    nan = math.nan
+    if nx < 1 or ny < 1 or df < 1:
+        return nan, max(df, 0), nan, nan, nan
+    diff = float(x.mean() - y.mean())
+    pooled = float(((x - x.mean()) ** 2).sum() + ((y - y.mean()) ** 2).sum()) / df
+    se = math.sqrt(pooled * (1 / nx + 1 / ny))
+    if not se > 0:
+        return nan, df, nan, nan, nan
+    t = diff / se
+    half = float(stats.t.ppf(0.975, df)) * se
+    return t, df, float(2 * stats.t.sf(abs(t), df)), diff - half, diff + half
 
 
 def mixed_descriptives(df: pd.DataFrame, dv: str, within: Sequence[str], between: str, subject: str
