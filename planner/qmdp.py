@@ -357,10 +357,13 @@ class QmdpRobot:
         if not self.shows_itself:
             return default, 0
         cells = self.tasker.targets(subtask, world)
-        garnish = default is Action.INTERACT and subtask is Subtask.PICKUP_GARNISH and self.at_ready_garnish(world)
-        dish = world.robot.held == DISH and default is not Action.STAY and not self.showing.view_route(world, cells)
-        if (garnish or dish) and self.wait_for_view(world, subtask, likely, seed, garnish):
-            return Action.STAY, len(likely)
+        route = self.showing.view_route(world, cells)
+        if self.cfg.wait_price:
+            garnish = (default is Action.INTERACT and subtask is Subtask.PICKUP_GARNISH
+                       and self.at_ready_garnish(world))
+            dish = world.robot.held == DISH and default is not Action.STAY and not route
+            if (garnish or dish) and self.wait_for_view(world, subtask, likely, seed, garnish):
+                return Action.STAY, len(likely)
         if default is Action.INTERACT:
             return default, 0
         assert self.kb is not None
@@ -374,7 +377,6 @@ class QmdpRobot:
         if show:
             candidates[show[0]] = show[1:]
         plans = [(move, rest, True) for move, rest in candidates.items()]
-        route = self.showing.view_route(world, cells)
         if route and route[1:] != candidates.get(route[0]):
             plans.append((route[0], route[1:], False))
         if len(plans) < 2:

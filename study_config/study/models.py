@@ -267,7 +267,7 @@ class Study(StudyModel):
         if practice.view is not None:
             return practice.view
         if "view" in self.between and order:
-            return next(c.view for c in self.conditions if c.id == order[0])
+            return self._condition(order[0]).view
         return self.view_levels[0]
 
     def practice_angle(self, order: Sequence[str]) -> float:
@@ -275,8 +275,11 @@ class Study(StudyModel):
         group's angle when ``fov_angle`` is between participants (they practise with the view they will play),
         else the first angle level."""
         if "fov_angle" in self.between and order:
-            return next(c.fov_angle for c in self.conditions if c.id == order[0])
+            return self._condition(order[0]).fov_angle
         return self.fov_angle_levels[0]
+
+    def _condition(self, condition_id: str) -> Condition:
+        return next(c for c in self.conditions if c.id == condition_id)
 
     def trial_angle(self, stored: float | None) -> float:
         """The field of view of a stored trial: its own ``fov_angle``, else (stored before trials recorded it,
