@@ -450,7 +450,7 @@ class QmdpRobot:
                       seed: int, garnish: bool) -> bool:
         """Behaviour 2's wait (docs/domain.md §5, "The person's knowing"): whether the robot with a dish (or,
         ``garnish``, about to take a ready garnish onto its plated steak) should wait this tick for the person to
-        turn its way. The person's poses are predicted tick by tick (:meth:`planner.rollout.Rollout.poses`, one
+        turn its way. The person's poses are predicted tick by tick (:meth:`predicted_worlds`, one
         rollout per likely subtask, the robot going on with ``subtask``), and the robot's way with them; a wait
         of ``k`` ticks (at most what is left of the trip's detour, :meth:`planner.showing.Showing.waits`) keeps
         the robot where it stands for ``k`` ticks and then takes the same way ``k`` ticks later, the person's
@@ -465,8 +465,7 @@ class QmdpRobot:
         ticks = min(distance(self.layout, pose, c) for c in self.layout.serves) + 2 * budget + 2
         gains = [0.0] * (budget + 1)
         for s, p in likely:
-            worlds = self.rollout.poses(world, self.kb, HumanMemory(subtask=s, held=world.human.held),
-                                        np.random.default_rng(seed), subtask, ticks, self.human_still)
+            worlds = self.predicted_worlds(world, s, subtask, ticks, seed)
             if not worlds:
                 return False
             robot = [(world.robot.pos, world.robot.held)] + [(w.robot.pos, w.robot.held) for w in worlds]
@@ -484,6 +483,14 @@ class QmdpRobot:
                 gains[k] += p * (seen - self.cfg.wait_price * k)
         best = max(range(budget + 1), key=lambda k: (gains[k], -k))
         return best > 0
+
+    def predicted_worlds(self, world: WorldState, human_subtask: Subtask, robot_subtask: Subtask, ticks: int,
+                         seed: int) -> list[WorldState]:
+        """The world after each of the next ``ticks`` ticks of the rollout of the hypothesis (the same rollout as
+        :meth:`sampled`'s with ``seed``), until the orders are done."""
+        assert self.kb is not None
+        trace = traced(self.rollout, world, self.kb, human_subtask, robot_subtask, ticks, seed, self.human_still)
+        return [state.world for state in trace.states[1:]] + [trace.end.world]
 
     def view_route(self, world: WorldState, subtask: Subtask) -> tuple[Action, ...]:
         """Behaviour 2's dish route toward ``subtask``'s targets (:meth:`planner.showing.Showing.view_route`)."""

@@ -195,19 +195,6 @@ class Rollout:
                 break
         return total, known
 
-    def poses(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory, rng: np.random.Generator,
-              robot_subtask: Subtask, ticks: int, parked_for: int = 0) -> list[WorldState]:
-        """The simulated world after each of the next ``ticks`` ticks (the robot on its subtask, the person
-        predicted as in :meth:`run`; ``rng`` is consumed), until all orders are done."""
-        sim = self.start(world, kb, memory, robot_subtask, parked_for)
-        out = []
-        for _ in range(ticks):
-            sim, _ = self.tick(sim, rng)
-            out.append(sim.world)
-            if sim.world.orders_left == 0:
-                break
-        return out
-
     def start(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory, robot_subtask: Subtask,
               parked_for: int = 0) -> SimState:
         return SimState(world, kb, memory, robot_subtask, parked_for, potential(world, self.cfg))

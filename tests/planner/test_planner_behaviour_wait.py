@@ -46,14 +46,14 @@ def with_dish():
 
 def scripted(robot: QmdpRobot, turn_at: int | None) -> None:
     """The rollout's predicted person: at (4, 5) facing south, and north from tick ``turn_at`` on (never: None)."""
-    original = robot.rollout.poses
+    original = robot.predicted_worlds
 
-    def poses(*args, **kwargs):  # type: ignore[no-untyped-def]
+    def predicted(*args, **kwargs):  # type: ignore[no-untyped-def]
         worlds = original(*args, **kwargs)
         return [replace(w, human=replace(PERSON, facing=Direction.NORTH if turn_at is not None and t >= turn_at
                                          else Direction.SOUTH))
                 for t, w in enumerate(worlds, 1)]
-    robot.rollout.poses = poses  # type: ignore[method-assign]
+    robot.predicted_worlds = predicted  # type: ignore[method-assign]
 
 
 def test_the_way_to_the_counter_is_out_of_the_persons_view_so_there_is_no_route_through_it():
