@@ -30,7 +30,7 @@ from server.game.health import RobotHealth
 from server.game.live import GameDeps, LiveGame
 from server.game.lobby import Lobby
 from server.game.restore import trial_engine, trial_meta
-from server.game.resume import Prepared, abandon_stale, prepare_trial
+from server.game.resume import Prepared, StepPassed, abandon_stale, prepare_trial
 from server.protocol.server import Error
 from store import trials
 from store.tables import ParticipantRow
@@ -142,7 +142,10 @@ class GameRegistry:
                 self._cancel_timer(game)
                 game.attach(conn)
                 return game
-            prepared = await asyncio.to_thread(prepare_trial, self.deps.store, loaded, participant.id, step)
+            try:
+                prepared = await asyncio.to_thread(prepare_trial, self.deps.store, loaded, participant.id, step)
+            except StepPassed as passed:  # the trial ended after the participant's row was read
+                raise NoTrial(passed.progress.phase) from None
             if prepared.outcome == "abandoned":
                 raise TrialAbandoned(prepared)
             game = self._build(loaded, participant, prepared)

@@ -8,6 +8,10 @@
 - Inactive for longer, per ``reconnect.after_grace``: ``resume`` as above; ``restart`` marks the attempt
   abandoned (reason ``restarted``) and starts a new attempt at tick 0; ``abandon`` marks it abandoned
   (reason ``grace_expired``) and moves the participant to their next step.
+
+The step is checked against the participant's progress in the same transaction (their row locked where the
+database can): a caller that read it just before the trial ended (a reconnection racing the trial's last tick)
+gets :class:`StepPassed`, not a second attempt of a trial already played.
 """
 
 from __future__ import annotations
@@ -26,7 +30,7 @@ from server.flow.progress import Progress
 from server.flow.rounds import on_return
 from store import trials
 from store.engine import Store
-from store.tables import TickRow, TrialRow
+from store.tables import ParticipantRow, TickRow, TrialRow
 from store.types import utcnow
 from study_config.catalog import LoadedStudy
 from study_config.study.views import DEFAULT_VIEW
@@ -46,11 +50,25 @@ class Prepared:
     """Robot decisions made and missed so far (from the stored ticks of a resumed trial)."""
 
 
+class StepPassed(Exception):
+    """The participant is no longer at the step asked for: its trial ended after the caller read the step."""
+
+    def __init__(self, progress: Progress) -> None:
+        super().__init__(f"the participant has moved on to {progress.phase.value}")
+        self.progress = progress
+
+
 def prepare_trial(store: Store, loaded: LoadedStudy, participant_id: int, step: Step) -> Prepared:
     if step.kind != "trial" or step.trial_kind is None or step.index is None:
         raise ValueError("the participant's current step is not a trial")
     study = loaded.study
     with store.transaction() as session:
+        participant = session.get(ParticipantRow, participant_id, with_for_update=True, populate_existing=True)
+        if participant is None:
+            raise ValueError(f"no participant {participant_id}")
+        progress = service.progress_of(participant)
+        if progress.current != step:
+            raise StepPassed(progress)
         row = trials.latest_attempt(session, participant_id, step.trial_kind, step.index)
         if row is None or row.status != trials.RUNNING:
             return Prepared("new", _create(session, loaded, participant_id, step))
@@ -61,9 +79,9 @@ def prepare_trial(store: Store, loaded: LoadedStudy, participant_id: int, step: 
         if outcome == "restart":
             trials.end(session, row.id, status=trials.ABANDONED, reason="restarted")
             return Prepared("new", _create(session, loaded, participant_id, step))
-        progress = service.end_trial_in(session, participant_id, row.id, step.trial_kind, step.index,
-                                        status=trials.ABANDONED, reason="grace_expired", study=study)
-        return Prepared("abandoned", row, progress=progress)
+        moved = service.end_trial_in(session, participant_id, row.id, step.trial_kind, step.index,
+                                     status=trials.ABANDONED, reason="grace_expired", study=study)
+        return Prepared("abandoned", row, progress=moved)
 
 
 def _create(session: Session, loaded: LoadedStudy, participant_id: int, step: Step) -> TrialRow:
