@@ -63,13 +63,15 @@ def serve(study_file: Path, database_url: str, workers: int | None = None,
 
 def _wait_ready(url: str, process: subprocess.Popen[bytes]) -> None:
     deadline = time.monotonic() + START_TIMEOUT_S
-    while time.monotonic() < deadline:
-        if process.poll() is not None:
-            raise RuntimeError(f"the server stopped at start (exit code {process.returncode}); see its log")
-        try:
-            if httpx.get(url + "/healthz", timeout=2).status_code == 200:
-                return
-        except httpx.HTTPError:
-            pass
-        time.sleep(0.2)
+    # One client for the polls: httpx.get() builds a client, and loads a TLS context, for each one.
+    with httpx.Client(timeout=2) as http:
+        while time.monotonic() < deadline:
+            if process.poll() is not None:
+                raise RuntimeError(f"the server stopped at start (exit code {process.returncode}); see its log")
+            try:
+                if http.get(url + "/healthz").status_code == 200:
+                    return
+            except httpx.HTTPError:
+                pass
+            time.sleep(0.2)
     raise RuntimeError(f"the server did not answer within {START_TIMEOUT_S:.0f} s")

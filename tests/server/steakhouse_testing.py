@@ -13,6 +13,7 @@ import json
 import os
 import signal
 import socket
+import ssl
 import subprocess
 import sys
 import threading
@@ -29,6 +30,8 @@ from websockets.exceptions import ConnectionClosedOK
 
 REPO = Path(__file__).resolve().parents[2]
 RECV_TIMEOUT = 10.0
+# One TLS context for every test client: httpx otherwise loads the certificate bundle for each new client.
+TLS = ssl.create_default_context()
 
 
 def _merge(base: dict[str, Any], extra: dict[str, Any]) -> dict[str, Any]:
@@ -157,15 +160,17 @@ class ProcessServer:
     def wait_ready(self) -> ProcessServer:
         assert self.process is not None
         deadline = time.monotonic() + 60
-        while time.monotonic() < deadline:
-            if self.process.poll() is not None:
-                raise RuntimeError(f"server exited with {self.process.returncode}")
-            try:
-                if httpx.get(self.url + "/healthz", timeout=1).status_code == 200:
-                    return self
-            except httpx.HTTPError:
-                pass
-            time.sleep(0.05)
+        # One client for the polls: httpx.get() would build a new client, TLS context included, for each.
+        with httpx.Client(timeout=1, verify=TLS) as http:
+            while time.monotonic() < deadline:
+                if self.process.poll() is not None:
+                    raise RuntimeError(f"server exited with {self.process.returncode}")
+                try:
+                    if http.get(self.url + "/healthz").status_code == 200:
+                        return self
+                except httpx.HTTPError:
+                    pass
+                time.sleep(0.05)
         raise RuntimeError("server did not become healthy")
 
     def kill(self) -> None:
@@ -208,7 +213,7 @@ class Player:
 
     def __init__(self, base_url: str) -> None:
         self.base = base_url
-        self.http = httpx.AsyncClient(base_url=base_url, timeout=30)
+        self.http = httpx.AsyncClient(base_url=base_url, timeout=30, verify=TLS)
         self.token = ""
 
     async def close(self) -> None:

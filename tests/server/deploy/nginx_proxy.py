@@ -93,13 +93,14 @@ class NginxProxy:
                                          "-c", str(conf), "-g", "daemon off;"],
                                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         deadline = time.monotonic() + 20
-        while time.monotonic() < deadline:
-            if self.process.poll() is not None:
-                raise RuntimeError(f"nginx exited with {self.process.returncode}: {self.error_log()}")
-            with contextlib.suppress(httpx.HTTPError):
-                httpx.get(f"http://127.0.0.1:{self.http_port}/", timeout=1)
-                return self
-            time.sleep(0.05)
+        with httpx.Client(timeout=1, verify=client_tls()) as http:
+            while time.monotonic() < deadline:
+                if self.process.poll() is not None:
+                    raise RuntimeError(f"nginx exited with {self.process.returncode}: {self.error_log()}")
+                with contextlib.suppress(httpx.HTTPError):
+                    http.get(f"http://127.0.0.1:{self.http_port}/")
+                    return self
+                time.sleep(0.05)
         raise RuntimeError("nginx did not start listening")
 
     def error_log(self) -> str:

@@ -123,7 +123,8 @@ def test_using_a_resume_link_closes_the_old_browsers_game_socket_at_once(live_se
         await old.ready(PROLIFIC_PID="switcher")
         joined = await old.session()
         sock = await old.socket()
-        await sock.until(lambda m: m["type"] == "state")
+        # The round is under way (a tick played), so the new browser's game is a resumed one.
+        await sock.until(lambda m: m["type"] == "state" and m["tick"] >= 1)
         made = (await old.http.post(f"/api/admin/participants/{joined['participant_id']}/resume_link",
                                     headers=ADMIN)).json()
         code = made["path"].split("#resume=", 1)[1]
