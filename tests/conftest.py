@@ -161,6 +161,20 @@ def _fresh_store_url(request: pytest.FixtureRequest, sqlite_dir: Path, prefix: s
 STORES = ["sqlite", pytest.param("postgresql", marks=pytest.mark.postgres)]
 
 
+@pytest.hookimpl(tryfirst=True)
+def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
+    """A test marked ``store_agnostic`` gets its store on SQLite only. The rest run on both stores: the store's
+    own tests, and every test whose outcome the database could change (queries, constraints, locks between
+    requests and processes, restarts and resumption, assignment, exports). A store-agnostic test checks the
+    protocol, the game's rules or what a participant is sent, which the store only records (docs/testing.md).
+    The store is given as a ``parametrize`` mark, which pytest applies instead of the fixture's own params."""
+    if metafunc.definition.get_closest_marker("store_agnostic") is None:
+        return
+    for name in ("db_url", "module_db_url"):
+        if name in metafunc.fixturenames:
+            metafunc.definition.add_marker(pytest.mark.parametrize(name, ["sqlite"], indirect=True))
+
+
 @pytest.fixture(params=STORES)
 def db_url(request: pytest.FixtureRequest, tmp_path: Path) -> Iterator[str]:
     """A store URL for an empty store, to be migrated before use (``Store.migrate()``, or the app at its start): a

@@ -31,6 +31,8 @@ from server.protocol.interrupts import Interrupt
 from server.protocol.server import server_adapter
 from store.tables import EventRow
 
+pytestmark = pytest.mark.store_agnostic
+
 CODES = {"bad_frame", "too_large", "bad_json", "invalid_message", "unknown_type", "unsupported_version",
          "bad_seq", "queue_full", "not_playing", "rate_limited"}
 LIMIT = 4096
@@ -265,7 +267,6 @@ def assert_no_crash(server: Any, trial_ids: list[int]) -> None:
     assert not [p for p in errors if p.get("code") in ("internal", "robot")], errors
 
 
-@pytest.mark.parametrize("db_url", ["sqlite"], indirect=True)
 def test_fuzzed_frames_interleaved_with_play_each_get_one_typed_reply(live_server, study_file):
     server = live_server([study(study_file)], join_rate_per_minute=0)
     trial_ids: list[int] = []
@@ -306,7 +307,6 @@ def test_fuzzed_frames_interleaved_with_play_each_get_one_typed_reply(live_serve
     assert_no_crash(server, trial_ids)
 
 
-@pytest.mark.parametrize("db_url", ["sqlite"], indirect=True)
 @settings(max_examples=1, deadline=None, database=None, phases=NO_SHRINK,
           suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.data_too_large,
                                  HealthCheck.large_base_example, HealthCheck.too_slow])

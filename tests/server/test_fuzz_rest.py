@@ -27,6 +27,8 @@ from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 from steakhouse_testing import Player, play_to_end
 
+pytestmark = pytest.mark.store_agnostic
+
 REQUESTS_PER_EXAMPLE = 6
 EXAMPLES = 150
 LIMIT = 64 * 1024
@@ -168,7 +170,6 @@ async def participants_in_every_state(url: str) -> list[str]:
     return tokens
 
 
-@pytest.mark.parametrize("db_url", ["sqlite"], indirect=True)
 def test_no_generated_request_gets_a_5xx(live_server, study_file):
     study = study_file(world={"orders": 1, "horizon": 20, "kb_delay": 1})
     server = live_server([study], join_rate_per_minute=0)
@@ -219,7 +220,6 @@ def _fields(response: httpx.Response) -> list[str]:
     return [str(problem["loc"][-1]) for problem in response.json()["detail"]]
 
 
-@pytest.mark.parametrize("db_url", ["sqlite"], indirect=True)
 def test_hostile_inputs_get_a_4xx_naming_the_field_and_no_echo(live_server, study_file):
     study = study_file(world={"orders": 1, "horizon": 20, "kb_delay": 1},
                        quiz={"questions": [{"id": "seen", "text": "?", "options": ["a", "b"], "answer": 1,

@@ -6,12 +6,15 @@ from __future__ import annotations
 
 import asyncio
 
+import pytest
 from steakhouse_testing import Player, eventually
 
 from server.game.needs import NEEDS
 from server.game.view import drawn_bounds
 from store import trials
 from study_config import load_layout
+
+pytestmark = pytest.mark.store_agnostic
 
 
 def test_a_blocked_choice_is_explained_and_logged_and_the_game_goes_on(live_server, study_file):

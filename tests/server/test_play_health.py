@@ -6,11 +6,14 @@ import asyncio
 import logging
 
 import httpx
+import pytest
 from steakhouse_testing import Player, play_to_end
 
 from store import trials
 from store.tables import EventRow, TrialRow
 from study_config.study.validity import DEFAULT_MAX_MISSED_DECISIONS_PCT
+
+pytestmark = pytest.mark.store_agnostic
 
 ADMIN = {"Authorization": "Bearer admin-secret"}
 

@@ -12,6 +12,8 @@ from websockets.exceptions import ConnectionClosed
 
 from store.tables import EventRow
 
+pytestmark = pytest.mark.store_agnostic
+
 BAD = [
     ("not json at all", "bad_json", None),
     ('{"v": 1, "seq": 10, "type": "select_subtask", "subtask": "pickup_meat"', "bad_json", None),

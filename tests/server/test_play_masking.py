@@ -17,6 +17,8 @@ from steakhouse_masking import check_masked
 from steakhouse_test_robots import simulated_partner
 from steakhouse_testing import Player
 
+pytestmark = pytest.mark.store_agnostic
+
 MOVES = ("up", "down", "left", "right")
 
 

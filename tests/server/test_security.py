@@ -24,6 +24,8 @@ from store.tables import EventRow, TrialRow
 sys.path.insert(0, str(REPO / "benchmarks" / "load"))
 from simulated_participant import run_load
 
+pytestmark = pytest.mark.store_agnostic
+
 UNAUTHORIZED = {"detail": {"code": "unauthorized", "message": "a valid token is required"}}
 BAD_ADMIN = [{}, {"Authorization": "Bearer wrong"}, {"Authorization": "admin-secret"},
              {"Authorization": "Basic admin-secret"}, {"Authorization": "Bearer admin-secretx"},
@@ -212,7 +214,6 @@ def test_pages_and_answers_carry_the_security_headers(live_server, study_file):
 
 # -- the masking property under load --------------------------------------------------------------------
 
-@pytest.mark.parametrize("db_url", ["sqlite"], indirect=True)
 def test_no_participant_message_leaves_the_field_of_view_under_load(live_server, study_file):
     study = study_file(kitchens=["mid_2", "none_3"], factors=["kitchen"],
                        world={"orders": 2, "horizon": 400, "kb_delay": 3, "fov_angle": 120})

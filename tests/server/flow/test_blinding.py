@@ -10,12 +10,15 @@ import json
 from typing import Any
 
 import httpx
+import pytest
 from steakhouse_blinding import Recorder, forbidden_names, hits
 from steakhouse_test_robots import simulated_partner
 from steakhouse_testing import REPO
 from websockets.asyncio.client import connect
 
 from study_config.study import load_study
+
+pytestmark = pytest.mark.store_agnostic
 
 STUDY = {
     "title": "FOV-aware robot versus baseline and no_rollout (none_3, mid_2)",

@@ -7,10 +7,13 @@ from __future__ import annotations
 import asyncio
 import time
 
+import pytest
 from steakhouse_testing import Player, eventually, play_to_end
 
 from server.game.budget import BURST, RATE_PER_S, EventBudget
 from store.tables import EventRow
+
+pytestmark = pytest.mark.store_agnostic
 
 
 class Clock:

@@ -4,6 +4,9 @@ API; without client files nothing is mounted."""
 from __future__ import annotations
 
 import httpx
+import pytest
+
+pytestmark = pytest.mark.store_agnostic
 
 
 def test_client_files_and_fallback(live_server, study_file, tmp_path):
