@@ -52,7 +52,6 @@ from planner.belief import Belief
 from planner.cycle import CycleWatch, broken, watch, without_avoided
 from planner.decision import Decision
 from planner.events import Event, EventKind
-from planner.fov import view
 from planner.geometry import DIRECTIONS, Action, Pos, manhattan, move_action
 from planner.human import HumanMemory
 from planner.kb import KnowledgeBase, omniscient_kb
@@ -86,6 +85,7 @@ from planner.standoff import (
 )
 from planner.state import AgentState, WorldState
 from planner.subtasks import NOTHING_NEEDED, Subtask, targets
+from planner.view_wait import wait_gains
 
 TICKS_PER_SUBTASK = 6
 
@@ -460,27 +460,16 @@ class QmdpRobot:
         budget = self.showing.waits(world, garnish)
         if budget <= 0 or not self.cfg.wait_price or not self.layout.serves:
             return False
-        assert self.kb is not None
         pose = (world.robot.pos, world.robot.facing)
         ticks = min(distance(self.layout, pose, c) for c in self.layout.serves) + 2 * budget + 2
         gains = [0.0] * (budget + 1)
         for s, p in likely:
             worlds = self.predicted_worlds(world, s, subtask, ticks, seed)
-            if not worlds:
+            one = wait_gains(self.layout, self.cfg.human_angle, world.robot, worlds, budget, self.cfg.wait_price,
+                             garnish)
+            if one is None:
                 return False
-            robot = [(world.robot.pos, world.robot.held)] + [(w.robot.pos, w.robot.held) for w in worlds]
-            people = [view(self.layout, w.human.pos, w.human.facing, self.cfg.human_angle).cells for w in worlds]
-            trip = [t for t in range(1, len(robot)) if robot[t][1] == DISH]
-            if not trip or (garnish and robot[1][1] != DISH):
-                return False
-            end = trip[-1] + 1
-            for k in range(budget + 1):
-                seen = 0
-                for t in range(k + 1, end + k):  # the walk after the wait: waiting in view is no gain
-                    pos, held = robot[t - k]
-                    if held == DISH and pos in people[min(t, len(people)) - 1]:
-                        seen += 1
-                gains[k] += p * (seen - self.cfg.wait_price * k)
+            gains = [g + p * x for g, x in zip(gains, one, strict=True)]
         best = max(range(budget + 1), key=lambda k: (gains[k], -k))
         return best > 0
 
