@@ -12,9 +12,9 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from steakhouse_wait_kitchen import WAIT_KITCHEN
 
 from planner.geometry import Action, Direction
-from planner.layout import parse_layout
 from planner.objects import DISH, STEAK_PLATE
 from planner.planner_config import PlannerConfig
 from planner.qmdp import QmdpRobot, make_qmdp_robot
@@ -23,16 +23,7 @@ from planner.state import AgentState, initial_state
 from planner.subtasks import Subtask
 
 RULES = Rules(chop_time=12)
-LAYOUT = parse_layout("\n".join([
-    "XXXXXXXXX",
-    "XMXDXWXSX",
-    "X1      X",
-    "X       X",
-    "X       X",
-    "X   2   X",
-    "XOXBXXPXX",
-    "XXXXXXXXX",
-]), name="wait_test")
+LAYOUT = WAIT_KITCHEN  # steakhouse_wait_kitchen.py
 PERSON = AgentState((4, 5), Direction.SOUTH)
 LIKELY = ((Subtask.PICKUP_MEAT, 1.0),)
 WAITING = PlannerConfig(wait_price=0.2)

@@ -7,24 +7,15 @@ from __future__ import annotations
 from dataclasses import replace
 
 import pytest
+from steakhouse_wait_kitchen import WAIT_KITCHEN
 
 from planner.geometry import Direction
-from planner.layout import parse_layout
 from planner.objects import DISH
 from planner.rules import Rules
 from planner.state import AgentState, WorldState, initial_state
 from planner.view_wait import wait_gains
 
-LAYOUT = parse_layout("\n".join([
-    "XXXXXXXXX",
-    "XMXDXWXSX",
-    "X1      X",
-    "X       X",
-    "X       X",
-    "X   2   X",
-    "XOXBXXPXX",
-    "XXXXXXXXX",
-]), name="wait_test")
+LAYOUT = WAIT_KITCHEN  # steakhouse_wait_kitchen.py
 START = AgentState((1, 2), Direction.EAST, DISH)
 PRICE = 0.2
 
