@@ -61,20 +61,22 @@ def hypothesis_ss(x: np.ndarray, z: np.ndarray, rows: np.ndarray) -> tuple[float
 
 
 def mixed_anova_table(values: np.ndarray, groups: Sequence[int], n_groups: int, levels: Sequence[int],
-                      within: Sequence[str], between: str) -> pd.DataFrame:
+                      within: Sequence[str], between: str, intervals: bool = True) -> pd.DataFrame:
     """The ANOVA rows (``ANOVA_COLUMNS``) of participants × cells ``values`` whose between level is ``groups[s]``:
-    the between effect, then each within effect followed by its interaction with the between factor."""
+    the between effect, then each within effect followed by its interaction with the between factor. Without
+    ``intervals`` the partial η² intervals are left empty (the power simulation reads only the tests)."""
     n, n_cells = values.shape
     dof = n - n_groups
     total = float(((values - values.mean()) ** 2).sum())
     (ss_b, ss_sb), within_parts = _sums(values, groups, n_groups, levels, within)
     error_total = ss_sb + sum(part[4] for part in within_parts)
     spherical = Sphericity(1, math.nan, math.nan, math.nan, math.nan, 1.0, 1.0)
-    rows = [_row(between, n_groups - 1, dof, ss_b, ss_sb, total, error_total, spherical)]
+    rows = [_row(between, n_groups - 1, dof, ss_b, ss_sb, total, error_total, spherical, intervals)]
     for name, d, ss_w, ss_bw, ss_err, error in within_parts:
         s = covariance_sphericity(error / dof if dof > 0 else error, dof, n_cells)
-        rows.append(_row(name, d, d * dof, ss_w, ss_err, total, error_total, s))
-        rows.append(_row(f"{between} * {name}", (n_groups - 1) * d, d * dof, ss_bw, ss_err, total, error_total, s))
+        rows.append(_row(name, d, d * dof, ss_w, ss_err, total, error_total, s, intervals))
+        rows.append(_row(f"{between} * {name}", (n_groups - 1) * d, d * dof, ss_bw, ss_err, total, error_total, s,
+                         intervals))
     return pd.DataFrame(rows, columns=ANOVA_COLUMNS)
 
 
@@ -131,11 +133,11 @@ def _sums(values: np.ndarray, groups: Sequence[int], n_groups: int, levels: Sequ
 
 
 def _row(name: str, df1: int, df2: int, ss: float, ss_err: float, total: float, error_total: float,
-         s: Sphericity) -> dict[str, object]:
+         s: Sphericity, interval: bool) -> dict[str, object]:
     note = "not testable: fewer participants than groups + 1" if df2 <= 0 else _untestable(
         df2 + 2, ss, ss_err, total)
     f_value = math.nan if note else (ss / df1) / (ss_err / df2)
-    low, high = partial_eta2_ci(f_value, df1, df2) if not note else (math.nan, math.nan)
+    low, high = partial_eta2_ci(f_value, df1, df2) if interval and not note else (math.nan, math.nan)
     row: dict[str, object] = {
         "effect": name, "df1": df1, "df2": df2, "SS": ss, "SS_error": ss_err, "MS": ss / df1,
         "MSE": ss_err / df2 if df2 > 0 else math.nan, "F": f_value,

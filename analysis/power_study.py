@@ -1,4 +1,5 @@
-"""``power_study``: the simulation power analysis (:mod:`analysis.power`) of a stored study's pilot participants.
+"""``power_study``: the simulation power analysis of a stored study's pilot participants (:mod:`analysis.power`;
+:mod:`analysis.power_mixed` for a study with a factor between participants).
 
 Steps: export the study with its pilot participants (``<out>/data/``, as ``analyze --include-pilot`` does);
 keep the cells of pilot participants only (the people whose behaviour the pilot simulated); prepare the
@@ -32,6 +33,7 @@ from analysis.export import export_study
 from analysis.levels import apply_level_order
 from analysis.power import PILOT, POWER_COLUMNS, MeasureData, measure_data, measure_power, n_reaching
 from analysis.power_effect import EffectSize
+from analysis.power_mixed import GroupedData, grouped_data, mixed_measure_power
 from analysis.scales import score_scales
 from analysis.study import DATA_DIR, DEFAULT_MEASURES, SUBJECT, attach_trial_columns
 from analysis.study_design import StudyDesign
@@ -49,12 +51,23 @@ class PowerResult:
     files: tuple[Path, ...]
 
 
-def pilot_table(source: Engine | str, study_id: str, out: Path,
-                include: frozenset[str] = frozenset()) -> tuple[pd.DataFrame, list[str], StudyDesign, int]:
-    """The analysis table of the pilot participants (exclusions applied), the within factors, the design and
-    the number of pilot participants."""
+@dataclass(frozen=True, slots=True, eq=False)
+class PilotTable:
+    """The analysis table of the pilot participants (exclusions applied) and how to read it."""
+
+    kept: pd.DataFrame
+    within: list[str]
+    between: str | None
+    """The factor between participants (a mixed design), if any."""
+    design: StudyDesign
+    pilots: int
+    """Pilot participants in the study (with or without complete cells)."""
+
+
+def pilot_table(source: Engine | str, study_id: str, out: Path, include: frozenset[str] = frozenset()) -> PilotTable:
+    """The pilot participants' table as ``analyze`` prepares it (see the module docstring)."""
     export = export_study(source, study_id, out / DATA_DIR, include_pilot=True)
-    cells = pd.read_csv(out / DATA_DIR / "cells.csv", dtype={SUBJECT: str})
+    cells = pd.read_csv(out / DATA_DIR / "cells.csv", dtype={SUBJECT: str, "fov_angle": str})  # as analysis.study
     people = export.dataset.tables["participants.csv"]
     pilots = set(people.loc[people["pilot"].astype(int) == 1, "participant"].astype(str))
     trials = pd.read_csv(out / DATA_DIR / "trials.csv", dtype={SUBJECT: str})
@@ -63,29 +76,33 @@ def pilot_table(source: Engine | str, study_id: str, out: Path,
         raise AnalysisInputError(f"study {study_id!r} has no pilot participant with a finished main trial; run "
                                  f"steakhouse pilot first")
     design = StudyDesign.from_config(export.dataset.config)
-    if design.between:
-        raise AnalysisInputError(f"study {study_id!r} has a factor between participants ({', '.join(design.between)}"
-                                 "); the power simulation covers within-participant designs only")
-    within = [f for f in design.factors if f in cells.columns and cells[f].nunique() > 1]
+    between = [f for f in design.between if f in cells.columns and cells[f].nunique() > 1]
+    if len(between) > 1:
+        raise AnalysisInputError(f"study {study_id!r} has {len(between)} factors between participants in the "
+                                 f"pilot ({', '.join(between)}); the power simulation takes one")
+    within = [f for f in design.factors if f in cells.columns and cells[f].nunique() > 1 and f not in between]
     if not within:
         raise AnalysisInputError(f"study {study_id!r}: no within factor with two levels in the pilot's cells")
-    table = apply_level_order(cells, within, design.levels, strict=False)
+    table = apply_level_order(cells, [*within, *between], design.levels, strict=False)
     table = score_scales(table, design.items, design.scales) if design.scales else table
     kept, _ = apply_exclusions(table, within, SUBJECT, include)
-    return kept, within, design, len(pilots)
+    return PilotTable(kept, within, between[0] if between else None, design, len(pilots))
 
 
-Task = tuple[MeasureData, tuple[int, ...], int, float, int, int, EffectSize | None]
+Task = tuple[MeasureData | GroupedData, tuple[int, ...], int, float, int, int, EffectSize | None]
 
 
 def _one(args: Task, on_step: Callable[[], None] = lambda: None) -> pd.DataFrame:
     data, ns, simulations, alpha, seed, index, effect_size = args
-    return measure_power(data, ns, simulations, alpha, np.random.default_rng([seed, index]), effect_size, on_step)
+    rng = np.random.default_rng([seed, index])
+    if isinstance(data, GroupedData):
+        return mixed_measure_power(data, ns, simulations, alpha, rng, on_step)
+    return measure_power(data, ns, simulations, alpha, rng, effect_size, on_step)
 
 
 def steps_per_measure(within: Sequence[str], ns: Sequence[int], effect_size: EffectSize | None) -> int:
     """Progress steps of one measure: one per n, for the pilot's effects and for each omnibus effect at the chosen
-    size."""
+    size (within designs only)."""
     return len(ns) * (1 + (2 ** len(within) - 1 if effect_size is not None else 0))
 
 
@@ -100,12 +117,19 @@ def power_study(source: Engine | str, study_id: str, out_dir: Path | str, ns: Se
     measure done."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    kept, within, design, n_pilots = pilot_table(source, study_id, out, include)
+    pilot = pilot_table(source, study_id, out, include)
+    kept, within, design, n_pilots = pilot.kept, pilot.within, pilot.design, pilot.pilots
+    if pilot.between is not None and effect_size is not None:
+        raise AnalysisInputError(f"study {study_id!r} has {pilot.between} between participants: a chosen effect "
+                                 "size (--effect) is simulated for designs within participants only")
     chosen = list(measures) if measures is not None else [*DEFAULT_MEASURES, *(s.column for s in design.scales)]
     missing = [m for m in chosen if m not in kept.columns]
     if missing:
         raise AnalysisInputError(f"no column {', '.join(missing)} in the pilot's cells")
-    datas = [measure_data(kept, m, within, SUBJECT) for m in chosen]
+    between = pilot.between
+    datas: list[MeasureData | GroupedData] = (
+        [measure_data(kept, m, within, SUBJECT) for m in chosen] if between is None else
+        [grouped_data(kept, m, within, between, SUBJECT, _groups(kept, between, design)) for m in chosen])
     per_measure = steps_per_measure(within, ns, effect_size)
     on_start(len(datas) * per_measure)
     tasks: list[Task] = [(d, tuple(ns), simulations, alpha, seed, i, effect_size) for i, d in enumerate(datas)]
@@ -128,8 +152,15 @@ def power_study(source: Engine | str, study_id: str, out_dir: Path | str, ns: Se
     needed.to_csv(files[1], index=False)
     if plots and not table.empty:
         files.append(_plot(table, out / "power.png", alpha))
-    files.append(_report(table, needed, out / "power.md", study_id, n_pilots, simulations, alpha))
+    files.append(_report(table, needed, out / "power.md", study_id, n_pilots, simulations, alpha, between))
     return PowerResult(table, needed, n_pilots, tuple(files))
+
+
+def _groups(kept: pd.DataFrame, between: str, design: StudyDesign) -> list[str]:
+    """The groups of ``between``: the study's levels, then any other level the pilot's cells hold (a study whose
+    configuration was edited afterwards), as ``apply_level_order`` names them."""
+    study = [str(level) for level in design.levels.get(between, ())]
+    return study + [str(level) for level in kept[between].cat.categories if str(level) not in study]
 
 
 def _needed(table: pd.DataFrame) -> pd.DataFrame:
@@ -171,7 +202,7 @@ def _plot(table: pd.DataFrame, path: Path, alpha: float) -> Path:
 
 
 def _report(table: pd.DataFrame, needed: pd.DataFrame, path: Path, study_id: str, n_pilots: int,
-            simulations: int, alpha: float) -> Path:
+            simulations: int, alpha: float, between: str | None) -> Path:
     lines = [f"# Power analysis: study {study_id}", "",
              f"Simulated from {n_pilots} pilot participants (steakhouse pilot: simulated participants, not people): "
              f"{simulations} resamples with replacement at each n, α = {alpha:g}, the tests `analyze` runs "
@@ -181,6 +212,10 @@ def _report(table: pd.DataFrame, needed: pd.DataFrame, path: Path, study_id: str
              "Rows whose effect size is `eta2g=…` set that omnibus effect's generalized η² to the chosen value "
              "(`--effect`), keeping the pilot's pattern of means and its error terms; their F and partial η² are "
              "those of the pilot so changed.", "",
+             *([f"A mixed design: {between} is between participants. n is the total, split between the groups of "
+                f"{between} as evenly as assignment splits them, each group resampled from its own pilot "
+                "participants; the tests are the mixed ANOVA's (the between factor, each within effect and its "
+                "interaction with it). Its follow-ups are not simulated.", ""] if between else []),
              "| measure | effect size | test | pilot F | pilot partial η² | n for 80 % | n for 90 % |",
              "|---|---|---|---|---|---|---|"]
     first = table.drop_duplicates(["measure", "scenario", "test"]).set_index(["measure", "scenario", "test"])

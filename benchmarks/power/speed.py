@@ -72,8 +72,8 @@ def main() -> None:
 
     ns = [int(x) for x in args.n.split(",")]
     with tempfile.TemporaryDirectory() as tmp:
-        (kept, within, design, pilots), wall, cpu = timed(
-            lambda: pilot_table(args.database_url, args.study, Path(tmp) / "prep"))
+        pilot, wall, cpu = timed(lambda: pilot_table(args.database_url, args.study, Path(tmp) / "prep"))
+        kept, within, design, pilots = pilot.kept, pilot.within, pilot.design, pilot.pilots
         print(f"export and preparation: {wall:.1f} s wall, {cpu:.1f} s CPU ({pilots} pilot participants, "
               f"within {' × '.join(within)})")
         measures = [*DEFAULT_MEASURES, *(s.column for s in design.scales)]

@@ -7,7 +7,9 @@
 For each measure and planned test (main effects, interaction, each factor's simple effects) the pilot
 participants (``steakhouse pilot``) are resampled with replacement at each n and the test ``analyze`` runs is
 run on each sample (:mod:`analysis.power`, :mod:`analysis.power_study`); with ``--effect eta2g=0.1`` also each
-omnibus effect set to that generalized η² (:mod:`analysis.power_effect`). A progress bar (on a terminal) counts
+omnibus effect set to that generalized η² (:mod:`analysis.power_effect`). A study with a factor between
+participants gets the mixed ANOVA's tests, n the total over its groups (:mod:`analysis.power_mixed`; no
+``--effect``). A progress bar (on a terminal) counts
 measure × n steps; otherwise a line per measure. Writes power.csv, n_needed.csv, power.png and power.md to
 ``--out``.
 """

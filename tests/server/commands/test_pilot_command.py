@@ -97,3 +97,28 @@ def _exports_leave_pilots_out_unless_asked(study_id: str, db_url: str, tmp_path)
     table = pd.read_csv(power / "power.csv")
     assert set(table["n"]) == {4, 8} and set(table["measure"]) == {"ticks", "interrupts"}
     assert table["power"].between(0, 1).all() and (table["pilot_n"] == 3).all()
+
+
+@pytest.mark.store_agnostic
+def test_power_of_a_pilot_with_the_view_between_participants(live_server, study_file, tmp_path, capsys) -> None:
+    """A mixed design's pilot gets the mixed ANOVA's tests at each total n; a chosen effect size, simulated for
+    designs within participants only, is refused with the reason."""
+    path = study_file("between_view", kitchens=["none_3"], robots=["stay", "baseline"], factors=["robot"],
+                      views=["top_down", "first_person"], between=["view"],
+                      world={"orders": 1, "horizon": 60, "kb_delay": 2})
+    server = live_server([path], robot_factory=simulated_partner)
+    loaded = load_one(path)
+    result = asyncio.run(run_pilot(Seat(server.url, "admin-secret", loaded, ParticipantConfig()), 6, 3, seed=2))
+    assert not result.failures and all(o.completed for o in result.outcomes)
+    url = server.services.store.engine.url.render_as_string(hide_password=False)
+    out = tmp_path / "power"
+    assert main(["power", "--study", "between_view", "--database-url", url, "--n", "4,8", "--simulations", "20",
+                 "--dv", "ticks", "--no-plots", "--out", str(out)]) == 0
+    table = pd.read_csv(out / "power.csv")
+    assert list(dict.fromkeys(table["test"])) == ["view", "robot", "view * robot"]
+    assert set(table["n"]) == {4, 8} and table["power"].between(0, 1).all() and (table["pilot_n"] == 6).all()
+    assert "view is between participants" in (out / "power.md").read_text(encoding="utf-8")
+    capsys.readouterr()
+    assert main(["power", "--study", "between_view", "--database-url", url, "--n", "8", "--effect", "eta2g=0.1",
+                 "--out", str(tmp_path / "refused")]) == 2
+    assert "within participants only" in capsys.readouterr().err
