@@ -13,7 +13,6 @@ from __future__ import annotations
 import asyncio
 import json
 import random
-import ssl
 import time
 from dataclasses import dataclass, field
 from typing import Any
@@ -24,7 +23,7 @@ from websockets.exceptions import ConnectionClosedOK
 
 # One TLS context for every simulated participant: httpx otherwise loads the certificate bundle per client, CPU
 # this benchmark would count against the server it measures.
-TLS = ssl.create_default_context()
+TLS = httpx.create_ssl_context()
 HEARTBEAT_S = 1.0
 
 

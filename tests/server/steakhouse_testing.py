@@ -13,7 +13,6 @@ import json
 import os
 import signal
 import socket
-import ssl
 import subprocess
 import sys
 import threading
@@ -31,7 +30,7 @@ from websockets.exceptions import ConnectionClosedOK
 REPO = Path(__file__).resolve().parents[2]
 RECV_TIMEOUT = 10.0
 # One TLS context for every test client: httpx otherwise loads the certificate bundle for each new client.
-TLS = ssl.create_default_context()
+TLS = httpx.create_ssl_context()
 
 
 def _merge(base: dict[str, Any], extra: dict[str, Any]) -> dict[str, Any]:
