@@ -187,6 +187,15 @@ def wide_matrix(df: pd.DataFrame, dv: str, within: Sequence[str], subject: str) 
     return values, subjects
 
 
+def group_index(df: pd.DataFrame, subjects: Sequence[Any], between: str, subject: str, groups: Sequence[Any]
+                ) -> list[int]:
+    """Each of ``subjects``' group in ``df`` (one level of ``between`` per participant) as its index in ``groups``:
+    the row groups of :func:`wide_matrix`'s ``Y`` for a mixed design."""
+    group_of = df.drop_duplicates(subject).set_index(subject)[between]
+    order = list(groups)
+    return [order.index(group_of[s]) for s in subjects]
+
+
 def _subject_key(subject: Any) -> tuple[int, Any]:
     """Subjects in order: numbers numerically, everything else as text."""
     if isinstance(subject, int | float) and not isinstance(subject, bool):

@@ -14,7 +14,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import pandas as pd
 
-from analysis.cells import complete_cases, factor_levels, wide_matrix
+from analysis.cells import complete_cases, factor_levels, group_index, wide_matrix
 from analysis.censoring import censoring_note
 from analysis.descriptives import DESCRIPTIVE_STATS
 from analysis.followups import SIMPLE_EFFECT_COLUMNS
@@ -61,8 +61,7 @@ def analyze_mixed_measure(df: pd.DataFrame, measure: str, within: Sequence[str],
             order=OrderCheck(measure, n_used, 0, note=reason), notes=(reason, *filter(None, notes)),
             tested=False), clean
     values, subjects = wide_matrix(clean, measure, within, subject)
-    group_of = clean.drop_duplicates(subject).set_index(subject)[between]
-    index = [groups.index(group_of[s]) for s in subjects]
+    index = group_index(clean, subjects, between, subject, groups)
     levels = levels_of(clean, within)
     anova = mixed_anova_table(values, index, len(groups), levels, within, between)
     rng = np.random.default_rng([options.seed, zlib.crc32(measure.encode())])

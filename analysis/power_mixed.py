@@ -16,14 +16,13 @@ this project's machine), more with more effects.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
 
-from analysis.cells import complete_cases, factor_levels, wide_matrix
+from analysis.cells import complete_cases, factor_levels, group_index, wide_matrix
 from analysis.errors import AnalysisInputError
 from analysis.mixed_anova import mixed_anova_table
 from analysis.power import PILOT, POWER_COLUMNS, wilson
@@ -38,28 +37,26 @@ class GroupedData:
     """Participants × within cells in design order."""
     groups: tuple[int, ...]
     """Each participant's group, an index into ``group_names``."""
-    group_names: tuple[object, ...]
+    group_names: tuple[str, ...]
     within: tuple[str, ...]
     levels: tuple[tuple[object, ...], ...]
     between: str
 
 
 def grouped_data(kept: pd.DataFrame, measure: str, within: Sequence[str], between: str, subject: str,
-                 group_names: Sequence[object]) -> GroupedData:
+                 group_names: Sequence[str]) -> GroupedData:
     """Complete cases of ``measure`` (as ``analyze`` keeps them) with each participant's group among
-    ``group_names`` (the study's levels of ``between``). Raises ``AnalysisInputError`` naming a group without a
-    pilot participant who has every cell: its population cannot be resampled."""
+    ``group_names`` (the study's levels of ``between``, as text). Raises ``AnalysisInputError`` naming a group
+    without a pilot participant who has every cell: its population cannot be resampled."""
     clean, _ = complete_cases(kept, measure, tuple(within), subject, {})
-    names = clean[between].astype(str)
-    empty = [str(g) for g in group_names if not (names == str(g)).any()]
+    clean = clean.assign(**{between: clean[between].astype(str)})
+    empty = [g for g in group_names if g not in set(clean[between])]
     if empty:
         raise AnalysisInputError(f"{measure}: no pilot participant of {between} = {', '.join(empty)} has a value in "
                                  "every condition of their group; run more pilot participants")
     levels = tuple(tuple(factor_levels(clean, f)) for f in within)
     values, subjects = wide_matrix(clean, measure, within, subject)
-    group_of = clean.assign(**{between: names}).drop_duplicates(subject).set_index(subject)[between]
-    order = [str(g) for g in group_names]
-    groups = tuple(order.index(group_of[s]) for s in subjects)
+    groups = tuple(group_index(clean, subjects, between, subject, group_names))
     return GroupedData(measure, values, groups, tuple(group_names), tuple(within), levels, between)
 
 
@@ -104,10 +101,6 @@ def mixed_measure_power(data: GroupedData, ns: Sequence[int], simulations: int, 
             rows.append({"measure": data.measure, "test": row.effect, "kind": "effect", "scenario": PILOT, "n": n,
                          "simulations": simulations, "alpha": alpha, "power": int(hits[t]) / simulations,
                          "ci_low": low, "ci_high": high, "pilot_n": data.values.shape[0], "pilot_F": row.F,
-                         "pilot_p": row.p_read, "pilot_partial_eta2": _number(row.partial_eta2)})
+                         "pilot_p": row.p_read, "pilot_partial_eta2": row.partial_eta2})
         on_step()
     return pd.DataFrame(rows, columns=POWER_COLUMNS)
-
-
-def _number(value: object) -> float:
-    return float(value) if isinstance(value, int | float) else math.nan

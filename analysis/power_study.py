@@ -35,7 +35,7 @@ from analysis.power import PILOT, POWER_COLUMNS, MeasureData, measure_data, meas
 from analysis.power_effect import EffectSize
 from analysis.power_mixed import GroupedData, grouped_data, mixed_measure_power
 from analysis.scales import score_scales
-from analysis.study import DATA_DIR, DEFAULT_MEASURES, SUBJECT, attach_trial_columns
+from analysis.study import DATA_DIR, DEFAULT_MEASURES, SUBJECT, attach_trial_columns, read_cells, varied_factors
 from analysis.study_design import StudyDesign
 
 TARGETS = (0.8, 0.9)
@@ -67,7 +67,7 @@ class PilotTable:
 def pilot_table(source: Engine | str, study_id: str, out: Path, include: frozenset[str] = frozenset()) -> PilotTable:
     """The pilot participants' table as ``analyze`` prepares it (see the module docstring)."""
     export = export_study(source, study_id, out / DATA_DIR, include_pilot=True)
-    cells = pd.read_csv(out / DATA_DIR / "cells.csv", dtype={SUBJECT: str, "fov_angle": str})  # as analysis.study
+    cells = read_cells(out)
     people = export.dataset.tables["participants.csv"]
     pilots = set(people.loc[people["pilot"].astype(int) == 1, "participant"].astype(str))
     trials = pd.read_csv(out / DATA_DIR / "trials.csv", dtype={SUBJECT: str})
@@ -76,11 +76,10 @@ def pilot_table(source: Engine | str, study_id: str, out: Path, include: frozens
         raise AnalysisInputError(f"study {study_id!r} has no pilot participant with a finished main trial; run "
                                  f"steakhouse pilot first")
     design = StudyDesign.from_config(export.dataset.config)
-    between = [f for f in design.between if f in cells.columns and cells[f].nunique() > 1]
+    within, between = varied_factors(cells, design)
     if len(between) > 1:
         raise AnalysisInputError(f"study {study_id!r} has {len(between)} factors between participants in the "
                                  f"pilot ({', '.join(between)}); the power simulation takes one")
-    within = [f for f in design.factors if f in cells.columns and cells[f].nunique() > 1 and f not in between]
     if not within:
         raise AnalysisInputError(f"study {study_id!r}: no within factor with two levels in the pilot's cells")
     table = apply_level_order(cells, [*within, *between], design.levels, strict=False)

@@ -59,16 +59,14 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
     export = export_study(source, study_id, out / DATA_DIR,
                           include_invalid=INVALID.name in include or LOW_ENGAGEMENT.name in include,
                           include_pilot=PILOT in include)
-    # Levels are read as written: an angle's level is ``90`` (as in the design), not the float ``90.0``.
-    cells = pd.read_csv(out / DATA_DIR / "cells.csv", dtype={SUBJECT: str, "fov_angle": str})
+    cells = read_cells(out)
     trials = pd.read_csv(out / DATA_DIR / "trials.csv", dtype={SUBJECT: str})
     if cells.empty:
         raise AnalysisInputError(
             f"study {study_id!r} has no analysable main trial (cells.csv is empty); "
             f"see {out / DATA_DIR / 'excluded.csv'} and participants.csv")
     design = StudyDesign.from_config(export.dataset.config)
-    within = [f for f in design.factors if f in cells.columns and cells[f].nunique() > 1]
-    between = [f for f in design.between if f in cells.columns and cells[f].nunique() > 1]
+    within, between = varied_factors(cells, design)
     if len(between) > 1:
         raise AnalysisInputError(f"study {study_id!r} has {len(between)} between factors ({', '.join(between)}); "
                                  "the analysis takes one")
@@ -86,6 +84,19 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
     result = analyze_long(attach_trial_columns(cells, trials), chosen, within, SUBJECT, out, options,
                           _context(export, trials, study_id, design, within))
     return StudyAnalysis(export, result, cells, design)
+
+
+def read_cells(out: Path) -> pd.DataFrame:
+    """The exported ``cells.csv`` under ``out``. Levels are read as written: an angle's level is ``90`` (as in the
+    design), not the float ``90.0``."""
+    return pd.read_csv(out / DATA_DIR / "cells.csv", dtype={SUBJECT: str, "fov_angle": str})
+
+
+def varied_factors(cells: pd.DataFrame, design: StudyDesign) -> tuple[list[str], list[str]]:
+    """The design's factors within and between participants that take two levels or more in ``cells``."""
+    def varied(factors: Sequence[str]) -> list[str]:
+        return [f for f in factors if f in cells.columns and cells[f].nunique() > 1]
+    return varied(design.factors), varied(design.between)
 
 
 def attach_trial_columns(cells: pd.DataFrame, trials: pd.DataFrame) -> pd.DataFrame:

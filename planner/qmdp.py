@@ -354,7 +354,7 @@ class QmdpRobot:
         human's view held for ``kb_delay`` ticks), each scored by a rollout that tracks the modelled KB.
         ``direct_value`` is the direct move's score, already computed for ``Q`` (same rollouts, same seeds)."""
         default = self.rollout.robot_move(world, subtask, self.human_still >= 2)
-        if not self.shows_itself:
+        if not self.shows_itself or (default is Action.INTERACT and not self.cfg.wait_price):
             return default, 0
         cells = self.tasker.targets(subtask, world)
         route = self.showing.view_route(world, cells)
