@@ -49,17 +49,14 @@ class PlannerConfig:
     are valued with it): ``shown_value`` once, when the modelled person's KB acknowledges what the robot holds
     now while it still holds it; ``shown_empty`` the same for empty hands (a put-down the person did not see;
     also, with nothing to do, the robot then walks into view; off by default: it cost ticks for little less KB
-    gap); ``seen_carrying`` per tick while it carries a dish in the person's view, as long as the dish trip has
-    detour left; ``wrong_hands`` (off by default: it cost ticks) is lost per tick the modelled KB is wrong about
+    gap); ``wrong_hands`` (off by default: it cost ticks) is lost per tick the modelled KB is wrong about
     what the robot holds (stale or unknown), in the exploration only. ``view_detour``: the most extra ticks of a
     whole dish trip, and of a showing walk less its ``human_delay − 1`` ticks in view (at most
-    ``view_detour + human_delay − 1``). ``wait_price``: the ticks in the person's view a tick of waiting with
-    a dish (or at a ready garnish) must be expected to add to the dish trip before the robot waits for the
-    person to turn (:meth:`planner.qmdp.QmdpRobot.wait_for_view`, within the trip's detour); 0, the default,
-    never waits: at 0.2 it raised behaviour 2 but made the team 3.5 % slower over the shipped kitchens
-    (docs/domain.md §5, §6). Tuned on generated
-    kitchens of generator seeds 0–29 only. (With ``reuse_rollouts`` the kept rollouts carry no knowing value,
-    so the direct move is scored without it: not measured.)"""
+    ``view_detour + human_delay − 1``). ``walk_price``: behaviour 2's dish walk (:mod:`planner.dish_walk`) takes
+    an extra tick only for at least this much more of the dish trip's share in the person's view (0.05: five
+    points; at 0.02 the team was 1.4 points of ticks slower on the tuning kitchens, docs/domain.md §5). Tuned
+    on generated kitchens of generator seeds 0–29 only. (With ``reuse_rollouts`` the kept rollouts carry no
+    knowing value, so the direct move is scored without it: not measured.)"""
 
     human_angle: float = FOV_ANGLE
     human_delay: int = KB_DELAY
@@ -96,10 +93,9 @@ class PlannerConfig:
     rollout_budget: int = 0
     shown_value: float = 10.0
     shown_empty: float = 0.0
-    seen_carrying: float = 2.0
     view_detour: int = 4
     wrong_hands: float = 0.0
-    wait_price: float = 0.0
+    walk_price: float = 0.05
 
     def __post_init__(self) -> None:
         if self.lookahead not in LOOKAHEADS:
@@ -108,7 +104,7 @@ class PlannerConfig:
     @property
     def values_knowing(self) -> bool:
         """The exploration values the person's knowing (:meth:`planner.rollout.Rollout.knowing`)."""
-        return bool(self.shown_value or self.shown_empty or self.seen_carrying or self.wrong_hands)
+        return bool(self.shown_value or self.shown_empty or self.wrong_hands)
 
     def omniscient_human(self) -> PlannerConfig:
         return replace(self, human_angle=360.0, human_delay=0)

@@ -19,13 +19,13 @@ Each tick the robot
    after which the robot has stood ``kb_delay`` consecutive ticks in the human's current view, through the
    view on the way when it can, else into it and waiting there (:func:`planner.view_route.show_walk`; it
    replaces the plain candidate with the same first move, scoring both measured worse; the robot follows it
-   while the human neither moves nor turns), and with a dish, the dish route (:mod:`planner.view_route`); it
-   keeps the one whose value, the rollout's progress plus what the person comes to know (docs/domain.md §5,
-   "The person's knowing"), is highest (ties: the direct move). This produces the staircase paths that stay
-   in the FOV and the robot walking alongside the human to show what it carries (paper §VI-C). With a dish and
-   no dish route, or with a plated steak at a ready garnish, it first asks whether to wait for the person to
-   turn its way (:meth:`QmdpRobot.wait_for_view`, on the person's predicted poses). The no-rollout robot
-   (depth 0) and the baseline take the direct move.
+   while the human neither moves nor turns); it keeps the one whose value, the rollout's progress plus what
+   the person comes to know (docs/domain.md §5, "The person's knowing"), is highest (ties: the direct move).
+   This produces the staircase paths that stay in the FOV and the robot walking alongside the human to show
+   what it carries (paper §VI-C). With a dish, or with a plated steak at a ready garnish, it instead plans the
+   dish walk on the person's predicted poses (:meth:`QmdpRobot.dish_walk`, :mod:`planner.dish_walk`): the way
+   to the serving counter, waits included, whose trip the person is expected to see most, within the trip's
+   detour. The no-rollout robot (depth 0) and the baseline take the direct move.
 
 The lookahead horizon is ``search_depth`` subtasks × 6 ticks (default 7: 42 ticks).
 ``PlannerConfig(lookahead="abstract")`` replaces steps 2–4 by docs/domain.md §5 as the reference planned
@@ -51,6 +51,7 @@ from planner.alone import solo_rollout
 from planner.belief import Belief
 from planner.cycle import CycleWatch, broken, watch, without_avoided
 from planner.decision import Decision
+from planner.dish_walk import dish_walk
 from planner.events import Event, EventKind
 from planner.geometry import DIRECTIONS, Action, Pos, manhattan, move_action
 from planner.human import HumanMemory
@@ -85,7 +86,6 @@ from planner.standoff import (
 )
 from planner.state import AgentState, WorldState
 from planner.subtasks import NOTHING_NEEDED, Subtask, targets
-from planner.view_wait import wait_gains
 
 TICKS_PER_SUBTASK = 6
 
@@ -354,18 +354,16 @@ class QmdpRobot:
         human's view held for ``kb_delay`` ticks), each scored by a rollout that tracks the modelled KB.
         ``direct_value`` is the direct move's score, already computed for ``Q`` (same rollouts, same seeds)."""
         default = self.rollout.robot_move(world, subtask, self.human_still >= 2)
-        if not self.shows_itself or (default is Action.INTERACT and not self.cfg.wait_price):
+        if not self.shows_itself:
             return default, 0
-        cells = self.tasker.targets(subtask, world)
-        route = self.showing.view_route(world, cells)
-        if self.cfg.wait_price:
-            garnish = (default is Action.INTERACT and subtask is Subtask.PICKUP_GARNISH
-                       and self.at_ready_garnish(world))
-            dish = world.robot.held == DISH and default is not Action.STAY and not route
-            if (garnish or dish) and self.wait_for_view(world, subtask, likely, seed, garnish):
-                return Action.STAY, len(likely)
+        garnish = default is Action.INTERACT and subtask is Subtask.PICKUP_GARNISH and self.at_ready_garnish(world)
+        if garnish or (world.robot.held == DISH and subtask is Subtask.DELIVER_DISH and default is not Action.STAY):
+            plan = self.dish_walk(world, subtask, likely, seed, garnish)
+            if plan:
+                return plan[0], len(likely)
         if default is Action.INTERACT:
             return default, 0
+        cells = self.tasker.targets(subtask, world)
         assert self.kb is not None
         candidates: dict[Action, tuple[Action, ...]] = {default: ()}
         pose = (world.robot.pos, world.robot.facing)
@@ -376,13 +374,11 @@ class QmdpRobot:
         show = self.showing.show_plan(world, self.kb, cells)
         if show:
             candidates[show[0]] = show[1:]
-        plans = [(move, rest, True) for move, rest in candidates.items()]
-        if route and route[1:] != candidates.get(route[0]):
-            plans.append((route[0], route[1:], False))
+        plans = list(candidates.items())
         if len(plans) < 2:
             return default, 0
         scored: list[tuple[float, bool, int]] = []
-        for i, (move, rest, _) in enumerate(plans):
+        for i, (move, rest) in enumerate(plans):
             if deadline is not None and scored and time.perf_counter() > deadline:
                 break
             if move is default and not rest:
@@ -392,8 +388,8 @@ class QmdpRobot:
                 v = sum(p * self.sampled(world, s, subtask, horizon, seed, plan, self.cfg.values_knowing)
                         for s, p in likely)
             scored.append((v, move is default and not rest, i))
-        move, rest, kept = plans[max(scored, key=lambda t: (t[0], t[1]))[2]]
-        self.showing.keep(rest if kept else (), world)
+        move, rest = plans[max(scored, key=lambda t: (t[0], t[1]))[2]]
+        self.showing.keep(rest, world)
         return move, len(scored)
 
     def sampled(self, world: WorldState, human_subtask: Subtask, robot_subtask: Subtask, horizon: int,
@@ -415,13 +411,12 @@ class QmdpRobot:
             # The subtask's value is the progress alone; the same rollouts' knowing is kept for its first move.
             sums = [self.rollout.parts(world, self.kb, HumanMemory(subtask=human_subtask, held=world.human.held),
                                        np.random.default_rng(seed + 7919 * i), robot_subtask, horizon,
-                                       parked_for=self.human_still, knowing=True, carrying=self.showing.carrying)
+                                       parked_for=self.human_still, knowing=True)
                     for i in range(n)]
             self.showing.known[(robot_subtask, human_subtask)] = sum(k for _, k in sums) / n
             return sum(v for v, _ in sums) / n
         return sum(self.rollout.value(world, self.kb, human_subtask, robot_subtask, horizon, seed + 7919 * i,
-                                      prefix=prefix, parked_for=self.human_still, knowing=knowing,
-                                      carrying=self.showing.carrying)
+                                      prefix=prefix, parked_for=self.human_still, knowing=knowing)
                    for i in range(n)) / n
 
     def yield_if_blocking(self, world: WorldState, subtask: Subtask, action: Action) -> Action:
@@ -446,32 +441,21 @@ class QmdpRobot:
         return any(cell == faced and status is not None and status >= self.rules.chop_time
                    for cell, status in zip(self.layout.boards, world.boards, strict=True))
 
-    def wait_for_view(self, world: WorldState, subtask: Subtask, likely: tuple[tuple[Subtask, float], ...],
-                      seed: int, garnish: bool) -> bool:
-        """Behaviour 2's wait (docs/domain.md §5, "The person's knowing"): whether the robot with a dish (or,
-        ``garnish``, about to take a ready garnish onto its plated steak) should wait this tick for the person to
-        turn its way. The person's poses are predicted tick by tick (:meth:`predicted_worlds`, one
-        rollout per likely subtask, the robot going on with ``subtask``), and the robot's way with them; a wait
-        of ``k`` ticks (at most what is left of the trip's detour, :meth:`planner.showing.Showing.waits`) keeps
-        the robot where it stands for ``k`` ticks and then takes the same way ``k`` ticks later, the person's
-        poses unchanged. It waits when some ``k`` > 0 is expected to bring at least ``wait_price`` more ticks of
-        that walk into the person's view per tick waited than going on now (the ticks waited count for nothing,
-        seen or not: a wait is for the walk to be seen, not for standing in view)."""
-        budget = self.showing.waits(world, garnish)
-        if budget <= 0 or not self.cfg.wait_price or not self.layout.serves:
-            return False
+    def dish_walk(self, world: WorldState, subtask: Subtask, likely: tuple[tuple[Subtask, float], ...],
+                  seed: int, garnish: bool) -> tuple[Action, ...]:
+        """Behaviour 2's plan for the dish (:func:`planner.dish_walk.dish_walk`; ``garnish``: the robot stands with a
+        plated steak at a ready garnish): the person's poses are predicted tick by tick, one rollout per likely
+        subtask of theirs (:meth:`predicted_worlds`, the robot going on with ``subtask``), within what is left of
+        the trip's detour. Planned anew every tick."""
+        if not self.layout.serves:
+            return ()
+        budget = self.showing.walk_budget(world, garnish)
         pose = (world.robot.pos, world.robot.facing)
         ticks = min(distance(self.layout, pose, c) for c in self.layout.serves) + 2 * budget + 2
-        gains = [0.0] * (budget + 1)
-        for s, p in likely:
-            worlds = self.predicted_worlds(world, s, subtask, ticks, seed)
-            one = wait_gains(self.layout, self.cfg.human_angle, world.robot, worlds, budget, self.cfg.wait_price,
-                             garnish)
-            if one is None:
-                return False
-            gains = [g + p * x for g, x in zip(gains, one, strict=True)]
-        best = max(range(budget + 1), key=lambda k: (gains[k], -k))
-        return best > 0
+        futures = [(p, [(w.human.pos, w.human.facing) for w in self.predicted_worlds(world, s, subtask, ticks, seed)])
+                   for s, p in likely]
+        return dish_walk(self.layout, self.cfg.human_angle, pose, futures, budget, self.cfg.walk_price, garnish,
+                         self.showing.trip_seen)
 
     def predicted_worlds(self, world: WorldState, human_subtask: Subtask, robot_subtask: Subtask, ticks: int,
                          seed: int) -> list[WorldState]:
@@ -480,10 +464,6 @@ class QmdpRobot:
         assert self.kb is not None
         trace = traced(self.rollout, world, self.kb, human_subtask, robot_subtask, ticks, seed, self.human_still)
         return [state.world for state in trace.states[1:]] + [trace.end.world]
-
-    def view_route(self, world: WorldState, subtask: Subtask) -> tuple[Action, ...]:
-        """Behaviour 2's dish route toward ``subtask``'s targets (:meth:`planner.showing.Showing.view_route`)."""
-        return self.showing.view_route(world, self.tasker.targets(subtask, world))
 
 
 def make_qmdp_robot(name: str, layout: Layout, rules: Rules, config: PlannerConfig | None = None) -> QmdpRobot:

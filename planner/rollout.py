@@ -23,7 +23,6 @@ from functools import lru_cache
 import numpy as np
 
 from planner.events import EventKind
-from planner.fov import view
 from planner.geometry import Action, Pos
 from planner.human import HumanMemory, HumanModel
 from planner.kb import KnowledgeBase, omniscient_kb, update_kb
@@ -159,23 +158,22 @@ class Rollout:
 
     def value(self, world: WorldState, kb: KnowledgeBase, human_subtask: Subtask, robot_subtask: Subtask,
               horizon: int, seed: int, prefix: tuple[Action, ...] = (), parked_for: int = 0,
-              knowing: bool = False, carrying: bool = True) -> float:
+              knowing: bool = False) -> float:
         """The discounted progress of the hypothesis; the robot plays ``prefix`` first, then its subtask.
-        ``knowing``: each tick also adds :meth:`knowing` (``carrying``: with its value of a dish carried in view)."""
+        ``knowing``: each tick also adds :meth:`knowing`."""
         return self.run(world, kb, HumanMemory(subtask=human_subtask, held=world.human.held),
-                        np.random.default_rng(seed), robot_subtask, horizon, prefix, parked_for, knowing, carrying)
+                        np.random.default_rng(seed), robot_subtask, horizon, prefix, parked_for, knowing)
 
     def run(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory, rng: np.random.Generator,
             robot_subtask: Subtask, horizon: int, prefix: tuple[Action, ...] = (), parked_for: int = 0,
-            knowing: bool = False, carrying: bool = True) -> float:
+            knowing: bool = False) -> float:
         """:meth:`value` from a given human memory and random stream (``rng`` is consumed)."""
-        progress, known = self.parts(world, kb, memory, rng, robot_subtask, horizon, prefix, parked_for, knowing,
-                                     carrying)
+        progress, known = self.parts(world, kb, memory, rng, robot_subtask, horizon, prefix, parked_for, knowing)
         return progress + known
 
     def parts(self, world: WorldState, kb: KnowledgeBase, memory: HumanMemory, rng: np.random.Generator,
               robot_subtask: Subtask, horizon: int, prefix: tuple[Action, ...] = (), parked_for: int = 0,
-              knowing: bool = False, carrying: bool = True) -> tuple[float, float]:
+              knowing: bool = False) -> tuple[float, float]:
         """:meth:`run`'s two sums apart: the discounted progress, and the discounted :meth:`knowing` (0 unless
         ``knowing``), so one rollout serves a subtask's value and its first move's."""
         sim = self.start(world, kb, memory, robot_subtask, parked_for)
@@ -187,7 +185,7 @@ class Rollout:
             before = sim
             sim, gain = self.tick(sim, rng, prefix[t] if t < len(prefix) else None)
             if knowing:
-                known += discount * self.knowing(before, sim.world, sim.kb, showing, still_showing, carrying)
+                known += discount * self.knowing(before, sim.world, sim.kb, showing, still_showing)
                 still_showing = still_showing and sim.world.robot.held == showing
             total += discount * gain
             discount *= self.cfg.tick_discount
@@ -226,18 +224,17 @@ class Rollout:
         return SimState(world, kb, memory, next_task, human_still, phi), phi - sim.phi
 
     def knowing(self, before: SimState, world: WorldState, kb: KnowledgeBase, showing: str | None,
-                still_showing: bool = True, carrying: bool = True) -> float:
+                still_showing: bool = True) -> float:
         """This tick's value of what the modelled person comes to know of the robot (docs/domain.md §5, "The
         person's knowing"): at the tick their KB acknowledges ``showing`` (what the robot held when the decision
         was made; ``still_showing``: it has held that ever since) ``+shown_value`` for an object and
-        ``+shown_empty`` for empty hands (a load put down where the person did not see it), and
-        ``+seen_carrying`` while the robot is in their view with a dish (on the way to the serving counter; only
-        while ``carrying``: the robot's dish trip has detour left, :meth:`planner.showing.Showing.trip_detour_left`).
-        Zero for a person who sees everything. Only what the robot holds now earns the shown value: a cost for
-        every unknown load in the lookahead made the robot avoid and delay work, and one for every tick the KB
-        still believes the robot holds what it put down made it keep its load in view (measured,
-        docs/domain.md §5). ``−wrong_hands`` (off by default) at every tick their KB is wrong about what the robot
-        holds, now that the exploration's candidates are bounded walks (the show plan, the dish route)."""
+        ``+shown_empty`` for empty hands (a load put down where the person did not see it); a dish's way through
+        their view is planned apart (:mod:`planner.dish_walk`). Zero for a person who sees everything. Only what
+        the robot holds now earns the shown value: a cost for every unknown load in the lookahead made the robot
+        avoid and delay work, and one for every tick the KB still believes the robot holds what it put down made it
+        keep its load in view (measured, docs/domain.md §5). ``−wrong_hands`` (off by default) at every tick their
+        KB is wrong about what the robot holds, now that the exploration's candidates are bounded walks (the show
+        plan, a shortest path)."""
         held = world.robot.held
         value = 0.0
         if still_showing and held == showing and kb.robot is not None and kb.robot.held == held and (
@@ -245,10 +242,6 @@ class Rollout:
             value += self.cfg.shown_value if held is not None else self.cfg.shown_empty
         if self.cfg.wrong_hands and (kb.robot is None or kb.robot.held != held):
             value -= self.cfg.wrong_hands
-        if carrying and held == DISH and self.cfg.seen_carrying:
-            human = world.human
-            if world.robot.pos in view(self.layout, human.pos, human.facing, self.cfg.human_angle).cells:
-                value += self.cfg.seen_carrying
         return value
 
     def robot_move(self, world: WorldState, subtask: Subtask, human_parked: bool = False) -> Action:

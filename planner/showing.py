@@ -2,10 +2,10 @@
 
 The plans that show the robot to the person and their state: the show plan (:func:`planner.view_route.show_walk`)
 and the rest of it the robot is following (``pending``, kept while the person neither moves nor turns), the dish
-trip and its detour budget (behaviour 2's dish route, :func:`planner.view_route.view_route`), and this decision's
-value of the person's knowing per (robot subtask, person's subtask), kept from the rollouts that valued the
-subtasks for the direct move (``known``). Which plan the robot takes is the robot's choice
-(:meth:`planner.qmdp.QmdpRobot.first_move`), not this module's.
+trip, its detour budget and its ticks in the person's view so far (behaviour 2's dish walk,
+:mod:`planner.dish_walk`), and this decision's value of the person's knowing per (robot subtask, person's
+subtask), kept from the rollouts that valued the subtasks for the direct move (``known``). Which plan the robot
+takes is the robot's choice (:meth:`planner.qmdp.QmdpRobot.first_move`), not this module's.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from planner.paths import distance
 from planner.planner_config import PlannerConfig
 from planner.state import WorldState
 from planner.subtasks import Subtask
-from planner.view_route import show_walk, view_route
+from planner.view_route import show_walk
 
 
 class Showing:
@@ -31,36 +31,43 @@ class Showing:
         self.pending_person: tuple[Pos, Direction] | None = None
         self.dish_trip: tuple[int, int] | None = None
         self.known: dict[tuple[Subtask, Subtask], float] = {}
-        self.carrying = True
+        self.trip_seen = (0, 0)
+        """The ticks of the robot's dish trip so far with it in the person's view, and in all."""
 
     def reset(self) -> None:
         """A trial starts or resumes: nothing pending, no dish trip."""
         self.pending = ()
         self.dish_trip = None
+        self.trip_seen = (0, 0)
 
     def observe(self, world: WorldState) -> None:
         """A dish trip ends when the robot no longer carries a dish (or the plated steak it waits with at a ready
-        garnish, :meth:`trip_detour_left`)."""
+        garnish, :meth:`trip_detour_left`); while it carries one, each tick counts toward :attr:`trip_seen`."""
         if world.robot.held not in (DISH, STEAK_PLATE):
             self.dish_trip = None
+        if world.robot.held == DISH:
+            seen = world.robot.pos in view(self.layout, world.human.pos, world.human.facing, self.cfg.human_angle).cells
+            self.trip_seen = (self.trip_seen[0] + seen, self.trip_seen[1] + 1)
+        else:
+            self.trip_seen = (0, 0)
 
     def follow(self, world: WorldState, kb: KnowledgeBase) -> Action | None:
         """The next action of the show plan being followed, while the modelled KB still does not know what the
         robot holds and the person has neither moved nor turned since it was made; ``None`` when there is none
-        to follow (the robot decides anew)."""
-        if self.pending and kb.robot is not None and kb.robot.held != world.robot.held and (
+        to follow (the robot decides anew; with a dish, always: the dish walk is planned every tick)."""
+        held = world.robot.held
+        if self.pending and held != DISH and kb.robot is not None and kb.robot.held != held and (
                 (world.human.pos, world.human.facing) == self.pending_person):
             action, self.pending = self.pending[0], self.pending[1:]
             return action
         return None
 
     def start(self, world: WorldState, garnish: bool = False) -> None:
-        """A new decision: nothing pending, no knowing value yet, and whether a dish carried in view is still
-        worth anything on this trip (:meth:`trip_detour_left`; ``garnish``: the robot is about to take a ready
-        garnish)."""
+        """A new decision: nothing pending, no knowing value yet; a dish trip's clock starts at its first decision
+        (:meth:`trip_detour_left`; ``garnish``: the robot is about to take a ready garnish)."""
         self.pending = ()
         self.known = {}
-        self.carrying = self.trip_detour_left(world, garnish) > 0
+        self.trip_detour_left(world, garnish)
 
     def keep(self, rest: tuple[Action, ...], world: WorldState) -> None:
         """Follow ``rest`` from the next tick while the person stays as they are in ``world``."""
@@ -104,26 +111,7 @@ class Showing:
         return min(self.cfg.view_detour,
                    self.cfg.view_detour - (world.tick - self.dish_trip[0] - (self.dish_trip[1] - base)))
 
-    def view_route(self, world: WorldState, cells: tuple[Pos, ...]) -> tuple[Action, ...]:
-        """Behaviour 2's plan while the robot carries a dish and ``seen_carrying`` values that (docs/domain.md §5,
-        "The person's knowing": a delivery route through their view) to ``cells`` (the serving counters):
-        :func:`planner.view_route.view_route` with what is left of the trip's detour (:meth:`trip_detour_left`).
-        Empty when it carries no dish, is at its station or has no detour left; while it has none, a dish carried
-        in view is worth nothing either (``carrying``)."""
-        if world.robot.held != DISH or not self.cfg.seen_carrying:
-            return ()
-        detour = self.trip_detour_left(world)
-        if not cells or detour <= 0:
-            return ()
-        pose = (world.robot.pos, world.robot.facing)
-        seen = view(self.layout, world.human.pos, world.human.facing, self.cfg.human_angle).cells
-        return view_route(self.layout, pose, cells, seen, world.human.pos, detour)
-
-    def waits(self, world: WorldState, garnish: bool = False) -> int:
-        """How many ticks the robot may wait before going on with its dish (or, ``garnish``, before taking a ready
-        garnish onto its plated steak) for the person to turn its way (docs/domain.md §5, "The person's knowing":
-        which wait, if any, the rollouts' predicted person makes worth it): what is left of the trip's detour
-        (:meth:`trip_detour_left`); 0 when ``seen_carrying`` values nothing."""
-        if not self.cfg.seen_carrying:
-            return 0
+    def walk_budget(self, world: WorldState, garnish: bool = False) -> int:
+        """The extra ticks the dish walk may still take (or, ``garnish``, spend before and after taking a ready
+        garnish onto its plated steak): what is left of the trip's detour (:meth:`trip_detour_left`), at least 0."""
         return max(self.trip_detour_left(world, garnish), 0)

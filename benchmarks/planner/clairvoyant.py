@@ -74,7 +74,7 @@ class ClairvoyantRobot(QmdpRobot):
         assert self.snapshot is not None, "see_human() must be called before decide()"
         kb, memory, human_rng = self.snapshot
         return self.rollout.run(world, kb, memory, copy.deepcopy(human_rng), robot_subtask, horizon, prefix,
-                                parked_for=self.human_still, knowing=knowing, carrying=self.showing.carrying)
+                                parked_for=self.human_still, knowing=knowing)
 
 
 def clairvoyant_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings()) -> WorldState:

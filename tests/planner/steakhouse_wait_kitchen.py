@@ -1,4 +1,4 @@
-"""The kitchen of the wait tests (``test_planner_behaviour_wait.py``, ``test_view_wait.py``): a robot with a dish at
+"""The kitchen of the dish walk tests (``test_planner_dish_walk.py``, ``test_dish_walk.py``): a robot with a dish at
 (1, 2) walks east along the top row to the serving counter (7, 1) while the person stands at (4, 5), below the row."""
 
 from __future__ import annotations

@@ -120,17 +120,6 @@ def test_the_shown_value_is_earned_once_when_the_persons_kb_takes_in_the_load(ki
     assert rollout.knowing(before, world, aware, showing=None) == 0.0
 
 
-def test_carrying_a_dish_in_the_persons_view_is_worth_something_every_tick(kitchen):
-    rollout = Rollout(kitchen, RULES, replace(CFG, wrong_hands=0.0))  # the KB here does not know the dish
-    start = initial_state(kitchen, RULES)  # the person at (7, 3) facing south
-    kb = initial_kb(start)
-    in_view = replace(start, robot=AgentState((6, 4), Direction.EAST, DISH))
-    behind = replace(start, robot=AgentState((6, 2), Direction.EAST, DISH))
-    sim = rollout.start(in_view, kb, HumanMemory(), Subtask.DELIVER_DISH)
-    assert rollout.knowing(sim, in_view, kb, showing=None) == CFG.seen_carrying
-    assert rollout.knowing(sim, behind, kb, showing=None) == 0.0
-
-
 def test_the_robot_offers_to_put_a_plated_steak_down_while_no_garnish_is_coming(kitchen):
     tasker = RobotTasker(kitchen, RULES)
     start = initial_state(kitchen, RULES)
@@ -154,7 +143,7 @@ def test_the_robot_takes_the_nearest_subtask_the_person_is_not_doing(kitchen):
 def test_the_wrong_hands_option_costs_every_tick_the_person_is_wrong_about_the_robots_hands(kitchen):
     """``wrong_hands`` (off by default; docs/domain.md §5, "The person's knowing"): the knowing value loses it at
     every tick the modelled KB believes the robot holds something else than it does, stale or unknown alike."""
-    config = replace(CFG, wrong_hands=1.5, seen_carrying=0.0, shown_value=0.0)
+    config = replace(CFG, wrong_hands=1.5, shown_value=0.0)
     assert config.values_knowing and CFG.wrong_hands == 0.0
     rollout = Rollout(kitchen, RULES, config)
     start = initial_state(kitchen, RULES)

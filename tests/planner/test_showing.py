@@ -1,6 +1,7 @@
 """The FOV-aware robot's showing state (planner.showing) in the small pickup kitchen of
 ``test_planner_behaviour_pickup.py``: a show plan is followed only while the person stays as they were, and a
-dish trip's detour budget runs down with every tick the dish takes beyond its shortest way."""
+dish trip's detour budget runs down with every tick the dish takes beyond its shortest way, and the trip's ticks
+in the person's view are counted as it goes."""
 
 from __future__ import annotations
 
@@ -52,8 +53,7 @@ def test_the_dish_trip_budget_runs_down_with_the_ticks_beyond_the_shortest_way()
     assert showing.trip_detour_left(world) == config.view_detour
     later = replace(world, tick=world.tick + 3)  # three ticks later, no nearer the serving counter
     assert showing.trip_detour_left(later) == config.view_detour - 3
-    showing.start(replace(later, tick=later.tick + 1))
-    assert showing.carrying == (config.view_detour - 4 > 0)
+    assert showing.walk_budget(replace(later, tick=later.tick + 5)) == 0  # spent: no detour, no wait
     showing.observe(world_with(None))
     assert showing.dish_trip is None and showing.trip_detour_left(world_with(None)) == 0
 
@@ -67,3 +67,14 @@ def test_value_averages_restart_when_the_robots_hands_or_the_orders_change():
     assert values.fold(Subtask.PICKUP_MEAT, 5.0) == 10.0
     values.restart_on((MEAT, 2))
     assert values.fold(Subtask.PICKUP_MEAT, 5.0) == 5.0
+
+
+def test_the_dish_trips_ticks_in_the_persons_view_are_counted_until_the_dish_is_gone():
+    """The person at (3, 3) faces south: (2, 3) beside them is in view, (1, 2) is not."""
+    showing = Showing(LAYOUT, PlannerConfig())
+    showing.observe(world_with(DISH))
+    showing.observe(world_with(DISH, robot_pos=(2, 3)))
+    showing.observe(world_with(DISH, robot_pos=(2, 3)))
+    assert showing.trip_seen == (2, 3)
+    showing.observe(world_with(None, robot_pos=(2, 3)))
+    assert showing.trip_seen == (0, 0)
