@@ -1,0 +1,157 @@
+"""How much of a dish trip any robot could show the person: an upper bound on behaviour 2 (docs/domain.md §6).
+
+For each robot × kitchen × seed, one simulated trial as ``behaviours.py`` plays it; for every dish trip in it, the
+share of the trip the person actually saw, and the largest share any walk from the trip's start could have had,
+knowing the person's actual poses tick by tick (:func:`planner.dish_walk.dish_walk` given the true future instead of
+a prediction, no price), for walks at most ``d`` ticks longer than the shortest. When the trip began by taking a
+ready garnish, the bound's walk may also wait before taking it (the ticks waited count against ``d``). The person's
+poses are those of the trial as played: a robot on another way could have made them step otherwise, so this is a
+bound on what the robot's way alone can show, not on a whole other trial. The walks never step into the person's
+cell; the trip as played counts among them when it was within ``d``.
+
+Printed per group (each shipped kitchen; generated kitchens together) and robot: trips, the mean share seen, and
+the mean bound per ``d`` over the trips that have one (in brackets: how many have none, the person standing in
+the way of every walk within ``d``). The FOV-aware robot's trips (``view_detour`` 4) are the ones to compare with
+``d`` = 4.
+
+    .venv/bin/python benchmarks/planner/dish_bound.py --seeds 30
+    .venv/bin/python benchmarks/planner/dish_bound.py --shipped "" --generator-seeds 0-29 --seeds 2
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import sys
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from behaviours import config_of, kitchen_layout, seed_range
+
+from planner.dish_walk import dish_walk
+from planner.fov import view
+from planner.geometry import Action, Direction, Pos
+from planner.layout import Layout
+from planner.objects import DISH, STEAK_PLATE
+from planner.paths import Pose, distance, next_pose
+from planner.perception import FOV_ANGLE
+from planner.play import TrialSettings, run_trial
+from planner.robots import make_robot
+from planner.rules import Rules
+from planner.state import WorldState, initial_state
+from planner.step import step
+
+DETOURS = (0, 2, 4, 6)
+
+
+def best_share(layout: Layout, worlds: list[WorldState], start: int, detour: int) -> float | None:
+    """The largest share of the trip that begins at frame ``start`` (the first with the dish; ``worlds[i]`` is the
+    world after tick ``i + 1``) the person could have seen, within ``detour`` extra ticks; ``None`` when no walk
+    within them reaches the counter (the person stands in the way)."""
+    garnish = start > 0 and worlds[start - 1].robot.held == STEAK_PLATE
+    origin = start - 1 if garnish else start
+    robot = worlds[origin].robot
+    pose: Pose = (robot.pos, robot.facing)
+    poses = [(w.human.pos, w.human.facing) for w in worlds[origin + 1:]]
+    views = [view(layout, pos, facing, FOV_ANGLE).cells for pos, facing in poses]
+    if not views:
+        return None
+    holding, seen, ticks = not garnish, 0, 0
+    if not garnish:
+        ticks, seen = 1, int(robot.pos in view(layout, *person_pose(worlds, origin), FOV_ANGLE).cells)
+    plan = dish_walk(layout, FOV_ANGLE, pose, [(1.0, poses)], detour, 0.0, garnish, (seen, ticks))
+    if not plan:
+        return None
+    for t, action in enumerate(plan):
+        if action is Action.INTERACT:
+            if holding:
+                break
+            holding = True
+        elif action.direction is not None:
+            pose = next_pose(layout, pose, action.direction)
+        if holding:
+            ticks += 1
+            seen += pose[0] in views[min(t, len(views) - 1)]
+    return seen / ticks if ticks else None
+
+
+def person_pose(worlds: list[WorldState], frame: int) -> tuple[Pos, Direction]:
+    """The person's cell and facing at ``frame``."""
+    human = worlds[frame].human
+    return human.pos, human.facing
+
+
+def bound(*shares: float | None) -> float | None:
+    known = [s for s in shares if s is not None]
+    return max(known) if known else None
+
+
+def run_one(job: tuple[str, str, int]) -> tuple[str, str, list[list[float | None]]]:
+    """Per dish trip of one trial: the share seen, then the bound per detour of :data:`DETOURS` (``None``: no walk
+    within that detour, neither the trip as played)."""
+    kitchen, robot_name, seed = job
+    layout = kitchen_layout(kitchen)
+    rules = Rules()
+    result = run_trial(layout, seed, TrialSettings(rules=rules),
+                       robot=make_robot(robot_name, layout, rules, config_of(())), record=True)
+    world = initial_state(layout, rules)
+    worlds: list[WorldState] = []
+    for h_action, r_action in result.actions:
+        world, _ = step(layout, world, {"human": h_action, "robot": r_action}, rules)
+        worlds.append(world)
+    trips: list[list[float | None]] = []
+    t = 0
+    while t < len(worlds):
+        if worlds[t].robot.held == DISH and (t == 0 or worlds[t - 1].robot.held != DISH):
+            end = t
+            while end < len(worlds) and worlds[end].robot.held == DISH:
+                end += 1
+            if end < len(worlds) and worlds[end].robot.held is None and worlds[end].score > worlds[t].score:
+                seen = sum(worlds[k].robot.pos in view(layout, *person_pose(worlds, k), FOV_ANGLE).cells
+                           for k in range(t, end))
+                robot = worlds[t].robot
+                extra = end - t - 1 - min(distance(layout, (robot.pos, robot.facing), c) for c in layout.serves)
+                share = seen / (end - t)  # the trip as played is one of the walks within its own extra ticks
+                trips.append([share] + [bound(best_share(layout, worlds, t, d), share if extra <= d else None)
+                                        for d in DETOURS])
+            t = end
+        else:
+            t += 1
+    return kitchen, robot_name, trips
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--shipped", default="none_3,mid_2", help="shipped kitchens, comma separated ('' for none)")
+    parser.add_argument("--generator-seeds", default="", help="generated kitchens, e.g. 0-29")
+    parser.add_argument("--seeds", type=int, default=30, help="simulation seeds 0..N-1 per kitchen")
+    parser.add_argument("--robots", default="baseline,fov_aware")
+    parser.add_argument("--jobs", type=int, default=2)
+    args = parser.parse_args(argv)
+    kitchens = [k for k in args.shipped.split(",") if k]
+    if args.generator_seeds:
+        kitchens += [f"gen_{s}" for s in seed_range(args.generator_seeds)]
+    if not kitchens:
+        parser.error("no kitchens: give --shipped or --generator-seeds")
+    jobs = [(k, r, s) for k in kitchens for r in args.robots.split(",") for s in range(args.seeds)]
+    groups: dict[tuple[str, str], list[list[float | None]]] = {}
+    with ProcessPoolExecutor(max(args.jobs, 1)) as pool:
+        for kitchen, robot, trips in pool.map(run_one, jobs):
+            group = "generated" if kitchen.startswith("gen_") else kitchen
+            groups.setdefault((group, robot), []).extend(trips)
+    print(f"{'kitchen':<11}{'robot':<11}{'trips':>6}{'seen':>7}"
+          + "".join(f"{'bound d=' + str(d):>11}" for d in DETOURS))
+    for (group, robot), trips in sorted(groups.items()):
+        if not trips:
+            continue
+        columns = [[v for v in c if v is not None] for c in zip(*trips, strict=True)]
+        print(f"{group:<11}{robot:<11}{len(trips):>6}{statistics.mean(columns[0]):>7.2f}"
+              + "".join(f"{statistics.mean(c):>7.2f} ({len(trips) - len(c)})" if c else f"{'-':>11}"
+                        for c in columns[1:]))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
