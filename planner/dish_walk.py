@@ -93,3 +93,23 @@ def _step(layout: Layout, layer: _Layer, chance: dict[Pos, float], person: Pos |
             if q not in nxt or value > nxt[q][0]:
                 nxt[q] = (value, plan + (action,))
     return nxt
+
+
+def walk_seen(layout: Layout, angle: float, pose: Pose, plan: Sequence[Action], poses: Sequence[tuple[Pos, Direction]],
+              garnish: bool) -> tuple[int, int]:
+    """How a plan of :func:`dish_walk` plays against the person's poses after each tick (the last one held once they
+    run out): the ticks of the dish trip the person sees and the trip's ticks, the deliver tick excluded (``garnish``:
+    counted from the interact that makes the dish)."""
+    holding, seen, ticks = not garnish, 0, 0
+    for t, action in enumerate(plan):
+        if action is Action.INTERACT:
+            if holding:
+                break
+            holding = True
+        elif action.direction is not None:
+            pose = next_pose(layout, pose, action.direction)
+        if holding and poses:
+            here, facing = poses[min(t, len(poses) - 1)]
+            ticks += 1
+            seen += pose[0] in view(layout, here, facing, angle).cells
+    return seen, ticks

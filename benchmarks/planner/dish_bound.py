@@ -30,12 +30,12 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from behaviours import config_of, kitchen_layout, seed_range
 
-from planner.dish_walk import dish_walk
+from planner.dish_walk import dish_walk, walk_seen
 from planner.fov import view
-from planner.geometry import Action, Direction, Pos
+from planner.geometry import Direction, Pos
 from planner.layout import Layout
 from planner.objects import DISH, STEAK_PLATE
-from planner.paths import Pose, distance, next_pose
+from planner.paths import Pose, distance
 from planner.perception import FOV_ANGLE
 from planner.play import TrialSettings, run_trial
 from planner.robots import make_robot
@@ -55,26 +55,16 @@ def best_share(layout: Layout, worlds: list[WorldState], start: int, detour: int
     robot = worlds[origin].robot
     pose: Pose = (robot.pos, robot.facing)
     poses = [(w.human.pos, w.human.facing) for w in worlds[origin + 1:]]
-    views = [view(layout, pos, facing, FOV_ANGLE).cells for pos, facing in poses]
-    if not views:
+    if not poses:
         return None
-    holding, seen, ticks = not garnish, 0, 0
+    seen, ticks = 0, 0
     if not garnish:
         ticks, seen = 1, int(robot.pos in view(layout, *person_pose(worlds, origin), FOV_ANGLE).cells)
     plan = dish_walk(layout, FOV_ANGLE, pose, [(1.0, poses)], detour, 0.0, garnish, (seen, ticks))
     if not plan:
         return None
-    for t, action in enumerate(plan):
-        if action is Action.INTERACT:
-            if holding:
-                break
-            holding = True
-        elif action.direction is not None:
-            pose = next_pose(layout, pose, action.direction)
-        if holding:
-            ticks += 1
-            seen += pose[0] in views[min(t, len(views) - 1)]
-    return seen / ticks if ticks else None
+    more_seen, more_ticks = walk_seen(layout, FOV_ANGLE, pose, plan, poses, garnish)
+    return (seen + more_seen) / (ticks + more_ticks) if ticks + more_ticks else None
 
 
 def person_pose(worlds: list[WorldState], frame: int) -> tuple[Pos, Direction]:

@@ -8,8 +8,7 @@ from __future__ import annotations
 import pytest
 from steakhouse_wait_kitchen import WAIT_KITCHEN
 
-from planner.dish_walk import dish_walk, seen_chances
-from planner.fov import view
+from planner.dish_walk import dish_walk, seen_chances, walk_seen
 from planner.geometry import Action, Direction
 from planner.paths import distance, next_pose
 
@@ -27,18 +26,14 @@ def person(turn_at: int | None, ticks: int = 20) -> list[tuple[tuple[int, int], 
 
 
 def replay(plan, poses, garnish=False):
-    """The robot's cells after each tick of ``plan`` and how many of the dish's ticks the person sees."""
-    pose, cells, seen, holding = START, [], 0, not garnish
-    for t, action in enumerate(plan):
-        if action is Action.INTERACT:
-            if holding:
-                break
-            holding = True
-        elif action.direction is not None:
+    """The robot's cells after each tick of ``plan`` before it delivers, and how many of the dish's ticks the person
+    sees (:func:`planner.dish_walk.walk_seen`)."""
+    pose, cells = START, []
+    for action in plan[:-1]:  # the last is the interact that delivers
+        if action.direction is not None:
             pose = next_pose(LAYOUT, pose, action.direction)
         cells.append(pose[0])
-        here, facing = poses[t]
-        seen += holding and pose[0] in view(LAYOUT, here, facing, 120).cells
+    seen, _ = walk_seen(LAYOUT, 120, START, plan, poses, garnish)
     return pose, cells, seen
 
 
@@ -105,3 +100,13 @@ def test_hypotheses_are_weighed_by_their_probability():
 
 def test_no_serving_counter_or_no_prediction_no_plan():
     assert dish_walk(LAYOUT, 120, START, [], 4, 0.02, garnish=False) == ()
+
+
+def test_a_walk_is_scored_on_the_poses_it_meets():
+    """Going east at once along the top row: the person turned north at tick 4 sees the robot from (5, 2) on, the
+    person facing south never; at a garnish the first tick (the interact) holds the dish too."""
+    plan = (Action.EAST,) * 6 + (Action.INTERACT,)
+    assert walk_seen(LAYOUT, 120, START, plan, person(None), garnish=False) == (0, 6)
+    seen, ticks = walk_seen(LAYOUT, 120, START, plan, person(4), garnish=False)
+    assert ticks == 6 and 0 < seen <= 3
+    assert walk_seen(LAYOUT, 120, START, (Action.INTERACT,) + plan, person(1), garnish=True) == (7, 7)
