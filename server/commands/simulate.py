@@ -32,6 +32,7 @@ def _simulate(args: argparse.Namespace) -> int:
     import os
     from concurrent.futures import ProcessPoolExecutor
 
+    from analysis.simulation import robot_effects
     from planner.experiment import COLUMNS, TrialSpec, run_spec, summarize_trials
     from planner.layout import LayoutError
     from planner.registry import PLANNER_NAMES
@@ -71,6 +72,8 @@ def _simulate(args: argparse.Namespace) -> int:
         writer.writerows(rows)
     print(f"lookahead: {args.lookahead}")
     print(summarize_trials(rows))
+    for line in robot_effects(rows, "kb_gap_mean", robots):
+        print(line)
     print(f"wrote {out / 'trials.csv'} ({len(rows)} trials)")
     return 0
 

@@ -1,4 +1,5 @@
-"""``steakhouse simulate``: the paper's simulation experiment writes trials.csv and prints the paired table."""
+"""``steakhouse simulate``: the paper's simulation experiment writes trials.csv and prints the paired table and, with
+three seeds or more, the paper's test of the KB gap with the seeds as participants."""
 
 from __future__ import annotations
 
@@ -12,8 +13,8 @@ from server.cli import main
 
 # The abstract lookahead is several times slower than the rollouts; each planner's abstract trial of the practice
 # kitchen is played to the end in tests/planner/test_reference.py, so here one seed shows the option reaches the
-# trials, and the paired table (the same code for either lookahead) is read from the two seeds of the rollouts.
-@pytest.mark.parametrize(("lookahead", "seeds"), [("rollout", 2), ("abstract", 1)])
+# trials, and the paired table (the same code for either lookahead) is read from the three seeds of the rollouts.
+@pytest.mark.parametrize(("lookahead", "seeds"), [("rollout", 3), ("abstract", 1)])
 def test_simulate_writes_paired_trials_and_the_table(lookahead, seeds, tmp_path, capsys):
     argv = ["simulate", "--layouts", "practice", "--robots", "fov_aware,baseline", "--seeds", str(seeds),
             "--jobs", "1", "--quiet", "--lookahead", lookahead, "--out", str(tmp_path)]
@@ -29,6 +30,10 @@ def test_simulate_writes_paired_trials_and_the_table(lookahead, seeds, tmp_path,
     assert f"lookahead: {lookahead}" in out and f"wrote {tmp_path / 'trials.csv'} ({2 * seeds} trials)" in out
     if seeds > 1:
         assert f"fov_aware vs baseline over {seeds} paired trials" in out
+        assert f"kb_gap_mean, {seeds} seeds as participants (repeated-measures ANOVA):" in out
+        assert f"  robot: F(1, {seeds - 1}) = " in out
+    else:
+        assert "seeds as participants" not in out
 
 
 def test_an_unknown_lookahead_is_a_usage_error(tmp_path, capsys):
