@@ -351,8 +351,10 @@ class QmdpRobot:
                    seed: int, deadline: float | None, direct_value: float) -> tuple[Action, int]:
         """Exploration: the direct first move toward ``subtask`` against the first moves of plans that
         show the robot to the human first (every first move on a shortest path, and the way into the
-        human's view held for ``kb_delay`` ticks), each scored by a rollout that tracks the modelled KB.
-        ``direct_value`` is the direct move's score, already computed for ``Q`` (same rollouts, same seeds)."""
+        human's view held for ``kb_delay`` ticks), each scored by a rollout that tracks the modelled KB; with a dish
+        on its way (or a plated steak at a ready garnish), the first action of the dish walk instead
+        (:meth:`dish_walk`). ``direct_value`` is the direct move's score, already computed for ``Q`` (same
+        rollouts, same seeds)."""
         default = self.rollout.robot_move(world, subtask, self.human_still >= 2)
         if not self.shows_itself:
             return default, 0
