@@ -156,7 +156,7 @@ class AbstractSearch:
             return 0, None
         walk = max(walk - job.elapsed, 0)
         presses = self.presses(world, job.task, best)
-        if job.task is Subtask.PICKUP_GARNISH and (_status(self.layout, world, best) or 0) < self.rules.chop_time:
+        if job.task is Subtask.PICKUP_GARNISH and not self.rules.chopped(_status(self.layout, world, best)):
             return WAITING, best
         if job.task is Subtask.PICKUP_STEAK:
             status = _status(self.layout, world, best)

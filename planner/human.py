@@ -108,7 +108,7 @@ class HumanModel:
         if subtask is Subtask.PICKUP_STEAK:
             return not any(g is not None and g >= self.rules.cook_time for g in kb.grills)
         if subtask is Subtask.PICKUP_GARNISH:
-            return not any(b is not None and b >= self.rules.chop_time for b in kb.boards)
+            return not any(self.rules.chopped(b) for b in kb.boards)
         return False
 
     def move_toward(self, pose: Pose, cells: tuple[Pos, ...], blocked: Pos,

@@ -440,7 +440,7 @@ class QmdpRobot:
         if world.robot.held != STEAK_PLATE:
             return False
         faced = world.robot.facing.ahead(world.robot.pos)
-        return any(cell == faced and status is not None and status >= self.rules.chop_time
+        return any(cell == faced and self.rules.chopped(status)
                    for cell, status in zip(self.layout.boards, world.boards, strict=True))
 
     def dish_walk(self, world: WorldState, subtask: Subtask, likely: tuple[tuple[Subtask, float], ...],

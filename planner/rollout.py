@@ -112,20 +112,20 @@ def _robot_options(rules: Rules, held: str | None, human_held: str | None, order
     b = Believed(kb=KnowledgeBase(objects=objects, grills=grills, boards=boards, sinks=sinks, robot=None),
                  held=held, partner_held=human_held, orders_left=orders_left)
     options = list(available(b, rules, current))
-    unchopped = any(v is not None and v < rules.chop_time for v in boards)
-    unwashed = any(v is not None and v < rules.wash_time for v in sinks)
+    unchopped = any(rules.chopping(v) for v in boards)
+    unwashed = any(rules.washing(v) for v in sinks)
     if held is None:
         if unchopped and Subtask.CHOP_ONION not in options:
             options.append(Subtask.CHOP_ONION)
         if unwashed and Subtask.WASH_PLATE not in options:
             options.append(Subtask.WASH_PLATE)
-    elif (held == STEAK_PLATE and not any(v is not None and v >= rules.chop_time for v in boards)
+    elif (held == STEAK_PLATE and not any(rules.chopped(v) for v in boards)
           and Subtask.DROP_ON_COUNTER not in options):
         options.append(Subtask.DROP_ON_COUNTER)
     coming = ((any(g is not None for g in grills) or human_held == MEAT)
               and (any(v is not None for v in boards) or human_held == ONION))
     if coming and held is None and Subtask.PICKUP_CLEAN_PLATE not in options:
-        if (any(v is not None and v >= rules.wash_time for v in sinks)
+        if (any(rules.clean(v) for v in sinks)
                 or any(obj == CLEAN_PLATE for _, obj in objects)):
             options.append(Subtask.PICKUP_CLEAN_PLATE)
     elif coming and held == CLEAN_PLATE and Subtask.PICKUP_STEAK not in options:

@@ -21,5 +21,21 @@ class Rules:
             if getattr(self, name) < 1:
                 raise ValueError(f"{name} must be at least 1, got {getattr(self, name)}")
 
+    def chopped(self, board: int | None) -> bool:
+        """A board's status (``None``: empty, else its chop count) holds a chopped garnish."""
+        return board is not None and board >= self.chop_time
+
+    def chopping(self, board: int | None) -> bool:
+        """A board holds an onion not yet chopped."""
+        return board is not None and board < self.chop_time
+
+    def clean(self, sink: int | None) -> bool:
+        """A sink's status (``None``: empty, else its wash count) holds a clean plate."""
+        return sink is not None and sink >= self.wash_time
+
+    def washing(self, sink: int | None) -> bool:
+        """A sink holds a plate not yet clean."""
+        return sink is not None and sink < self.wash_time
+
     def to_dict(self) -> dict[str, int]:
         return asdict(self)

@@ -61,10 +61,10 @@ def available(b: Believed, rules: Rules, current: Subtask | None = None) -> tupl
     if b.held is not None:
         return (forced_continuation(b),)
     if current in (Subtask.CHOP_ONION, Subtask.DROP_ONION) and any(
-            s is not None and s < rules.chop_time for s in kb.boards):
+            rules.chopping(s) for s in kb.boards):
         return (Subtask.CHOP_ONION,)
     if current in (Subtask.WASH_PLATE, Subtask.DROP_PLATE) and any(
-            s is not None and s < rules.wash_time for s in kb.sinks):
+            rules.washing(s) for s in kb.sinks):
         return (Subtask.WASH_PLATE,)
     options = []
     if any(g is None for g in kb.grills) and b.orders_left > 0 and b.partner_held != MEAT:
@@ -73,7 +73,7 @@ def available(b: Believed, rules: Rules, current: Subtask | None = None) -> tupl
         options.append(Subtask.PICKUP_ONION)
     if any(s is None for s in kb.sinks) and b.partner_held not in PLATES:
         options.append(Subtask.PICKUP_PLATE)
-    plate_clean = any(s is not None and s >= rules.wash_time for s in kb.sinks)
+    plate_clean = any(rules.clean(s) for s in kb.sinks)
     steak = any(g is not None for g in kb.grills)
     garnish = any(s is not None for s in kb.boards) or b.partner_held == ONION
     if plate_clean and steak and garnish:
@@ -134,7 +134,7 @@ def _targets(layout: Layout, subtask: Subtask, objects: tuple[tuple[Pos, str], .
     if subtask is Subtask.PICKUP_PLATE:
         return layout.plates + counters_with(DIRTY_PLATE)
     if subtask is Subtask.PICKUP_CLEAN_PLATE:
-        return where(layout.sinks, sinks, lambda s: s is not None and s >= rules.wash_time) + \
+        return where(layout.sinks, sinks, rules.clean) + \
             counters_with(CLEAN_PLATE)
     if subtask is Subtask.PICKUP_STEAK:
         return where(layout.grills, grills, lambda s: s is not None) or layout.grills
@@ -147,9 +147,9 @@ def _targets(layout: Layout, subtask: Subtask, objects: tuple[tuple[Pos, str], .
     if subtask is Subtask.DROP_PLATE:
         return where(layout.sinks, sinks, lambda s: s is None)
     if subtask is Subtask.CHOP_ONION:
-        return where(layout.boards, boards, lambda s: s is not None and s < rules.chop_time)
+        return where(layout.boards, boards, rules.chopping)
     if subtask is Subtask.WASH_PLATE:
-        return where(layout.sinks, sinks, lambda s: s is not None and s < rules.wash_time)
+        return where(layout.sinks, sinks, rules.washing)
     if subtask is Subtask.DELIVER_DISH:
         return layout.serves
     occupied = {p for p, _ in objects}
@@ -171,9 +171,9 @@ def finished(subtask: Subtask, held_before: str | None, held: str | None, boards
     if subtask in _DROPS:
         return held_before is not None and held is None
     if subtask is Subtask.CHOP_ONION:
-        return not any(s is not None and s < rules.chop_time for s in boards)
+        return not any(rules.chopping(s) for s in boards)
     if subtask is Subtask.WASH_PLATE:
-        return not any(s is not None and s < rules.wash_time for s in sinks)
+        return not any(rules.washing(s) for s in sinks)
     return False
 
 
@@ -233,7 +233,7 @@ def resumable(held: str | None, objects: tuple[tuple[Pos, str], ...], boards: tu
     if held is not None:
         return ()
     lying = {obj for _, obj in objects}
-    garnish = any(b is not None and b >= rules.chop_time for b in boards)
+    garnish = any(rules.chopped(b) for b in boards)
     return tuple(s for s, obj in RESUMED.items() if obj in lying and (obj == DISH or garnish))
 
 
