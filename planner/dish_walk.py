@@ -13,12 +13,12 @@ the person at that tick.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 
 from planner.fov import view
-from planner.geometry import DIRECTIONS, Action, Direction, Pos, move_action
+from planner.geometry import Action, Direction, Pos
 from planner.layout import Layout
-from planner.paths import UNREACHABLE, Pose, distance, next_pose
+from planner.paths import UNREACHABLE, Pose, nearest_distances, next_pose, tick_successors
 
 Future = tuple[float, Sequence[tuple[Pos, Direction]]]
 """One hypothesis of what the person does: its probability and their (cell, facing) after each coming tick."""
@@ -49,11 +49,8 @@ def dish_walk(layout: Layout, angle: float, pose: Pose, futures: Sequence[Future
     reached or there is no prediction."""
     if not layout.serves or not futures:
         return ()
-
-    def to_serve(p: Pose) -> int:
-        return min(distance(layout, p, c) for c in layout.serves)
-
-    shortest = to_serve(pose)
+    to_serve = nearest_distances(layout, layout.serves)
+    shortest = to_serve.get(pose, UNREACHABLE)
     if shortest >= UNREACHABLE:
         return ()
     budget = max(budget, 0)
@@ -70,7 +67,7 @@ def dish_walk(layout: Layout, angle: float, pose: Pose, futures: Sequence[Future
         for frame in range(first, last + 1):
             trip = past[1] + frame - first + (1 if garnish else 0)
             for p, (seen, plan) in layer.items():
-                if to_serve(p) == 0:
+                if to_serve.get(p) == 0:
                     extra = frame - first - shortest + wait
                     key = ((past[0] + seen) / max(trip, 1) - price * extra, -extra, plan + (Action.INTERACT,))
                     if best is None or key[:2] > best[:2]:
@@ -81,13 +78,14 @@ def dish_walk(layout: Layout, angle: float, pose: Pose, futures: Sequence[Future
 
 
 def _step(layout: Layout, layer: _Layer, chance: dict[Pos, float], person: Pos | None, frame: int, last: int,
-          to_serve: Callable[[Pose], int]) -> _Layer:
+          to_serve: dict[Pose, int]) -> _Layer:
     """Every pose one tick on (a stay or a move), keeping per pose the walk with the most expected ticks in view,
     among those that can still reach the counter by frame ``last``."""
     nxt: _Layer = {}
+    successors = tick_successors(layout)
     for p, (seen, plan) in layer.items():
-        for q, action in [(p, Action.STAY)] + [(next_pose(layout, p, d), move_action(d)) for d in DIRECTIONS]:
-            if (q[0] != p[0] and q[0] == person) or frame + to_serve(q) > last:
+        for action, q in successors[p]:
+            if (q[0] != p[0] and q[0] == person) or frame + to_serve.get(q, UNREACHABLE) > last:
                 continue
             value = seen + chance.get(q[0], 0.0)
             if q not in nxt or value > nxt[q][0]:

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-from planner.geometry import DIRECTIONS, Action, Direction, Pos, move_action
+from planner.geometry import DIRECTIONS, MOVES, Action, Direction, Pos, move_action
 from planner.layout import Layout
 
 Pose = tuple[Pos, Direction]
@@ -120,3 +120,21 @@ def _distances_avoiding(layout: Layout, target: Pos, blocked: Pos) -> dict[Pose,
                     nxt.append(prev)
         frontier = nxt
     return dist
+
+
+@lru_cache(maxsize=1024)
+def nearest_distances(layout: Layout, cells: tuple[Pos, ...]) -> dict[Pose, int]:
+    """Per pose, the distance to the nearest of ``cells`` (absent: unreachable)."""
+    tables = [distances_to(layout, c) for c in cells]
+    keys = set().union(*tables) if tables else set()
+    return {pose: min(t.get(pose, UNREACHABLE) for t in tables) for pose in keys}
+
+
+@lru_cache(maxsize=64)
+def tick_successors(layout: Layout) -> dict[Pose, tuple[tuple[Action, Pose], ...]]:
+    """Per floor pose, each action of a walk that moves or stays and the pose it leads to: a stay first, so that
+    among equally good walks a stay wins over a move that would only turn the agent."""
+    return {(cell, facing): ((Action.STAY, (cell, facing)),
+                             *((move, next_pose(layout, (cell, facing), move.direction)) for move in MOVES
+                               if move.direction is not None))
+            for cell in layout.floor for facing in DIRECTIONS}

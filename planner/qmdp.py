@@ -58,7 +58,7 @@ from planner.human import HumanMemory
 from planner.kb import KnowledgeBase, omniscient_kb
 from planner.layout import Layout
 from planner.objects import DISH, STEAK_PLATE
-from planner.paths import best_moves, distance
+from planner.paths import UNREACHABLE, best_moves, distance, nearest_distances
 from planner.person_model import PersonModel
 from planner.planner_config import PlannerConfig
 from planner.reference import ReferenceLookahead
@@ -449,11 +449,12 @@ class QmdpRobot:
         plated steak at a ready garnish): the person's poses are predicted tick by tick, one rollout per likely
         subtask of theirs (:meth:`predicted_worlds`, the robot going on with ``subtask``), within what is left of
         the trip's detour. Planned anew every tick."""
-        if not self.layout.serves:
-            return ()
         budget = self.showing.walk_budget(world, garnish)
         pose = (world.robot.pos, world.robot.facing)
-        ticks = min(distance(self.layout, pose, c) for c in self.layout.serves) + 2 * budget + 2
+        shortest = nearest_distances(self.layout, self.layout.serves).get(pose, UNREACHABLE)
+        if shortest >= UNREACHABLE:
+            return ()
+        ticks = shortest + budget + 2  # as far ahead as the walk's programme looks (the garnish's interact too)
         futures = [(p, [(w.human.pos, w.human.facing) for w in self.predicted_worlds(world, s, subtask, ticks, seed)])
                    for s, p in likely]
         return dish_walk(self.layout, self.cfg.human_angle, pose, futures, budget, self.cfg.walk_price, garnish,

@@ -9,11 +9,9 @@ on the person's predicted views instead, :mod:`planner.dish_walk`.)
 
 from __future__ import annotations
 
-from functools import lru_cache
-
-from planner.geometry import DIRECTIONS, MOVES, Action, Pos
+from planner.geometry import Action, Pos
 from planner.layout import Layout
-from planner.paths import UNREACHABLE, Pose, distances_to, next_pose
+from planner.paths import UNREACHABLE, Pose, nearest_distances, tick_successors
 
 
 def show_walk(layout: Layout, start: Pose, cells: tuple[Pos, ...], seen: frozenset[Pos], person: Pos, need: int,
@@ -28,7 +26,7 @@ def show_walk(layout: Layout, start: Pose, cells: tuple[Pos, ...], seen: frozens
     person's cell. Empty when there is none, or when no tick is needed."""
     if run >= need:
         return ()
-    nearest = _nearest(layout, cells)
+    nearest = nearest_distances(layout, cells)
     far = UNREACHABLE if cells else 0
 
     def to_target(pose: Pose) -> int:
@@ -43,7 +41,7 @@ def show_walk(layout: Layout, start: Pose, cells: tuple[Pos, ...], seen: frozens
         steps += 1
         nxt = []
         for pose, streak, actions in layer:
-            for action, after in _ticks(layout)[pose]:
+            for action, after in tick_successors(layout)[pose]:
                 cell = after[0]
                 if cell == person:
                     continue
@@ -60,21 +58,3 @@ def show_walk(layout: Layout, start: Pose, cells: tuple[Pos, ...], seen: frozens
                     best = (extra, steps, walk)
         layer = nxt
     return best[2] if best is not None else ()
-
-
-@lru_cache(maxsize=64)
-def _ticks(layout: Layout) -> dict[Pose, tuple[tuple[Action, Pose], ...]]:
-    """Per floor pose, each tick of a showing walk and the pose it leads to: a stay first, so that among equally
-    cheap walks a stay wins over a move that would only turn the robot."""
-    return {(cell, facing): ((Action.STAY, (cell, facing)),
-                             *((move, next_pose(layout, (cell, facing), move.direction)) for move in MOVES
-                               if move.direction is not None))
-            for cell in layout.floor for facing in DIRECTIONS}
-
-
-@lru_cache(maxsize=1024)
-def _nearest(layout: Layout, cells: tuple[Pos, ...]) -> dict[Pose, int]:
-    """Per pose, the distance to the nearest of ``cells`` (absent: unreachable)."""
-    tables = [distances_to(layout, c) for c in cells]
-    keys = set().union(*tables) if tables else set()
-    return {pose: min(t.get(pose, UNREACHABLE) for t in tables) for pose in keys}

@@ -30,12 +30,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from behaviours import config_of, kitchen_layout, seed_range
 
+from planner.behaviours import Frame, frame_of, holdings
 from planner.dish_walk import dish_walk, walk_seen
-from planner.fov import view
-from planner.geometry import Direction, Pos
 from planner.layout import Layout
 from planner.objects import DISH, STEAK_PLATE
-from planner.paths import Pose, distance
+from planner.paths import UNREACHABLE, Pose, nearest_distances
 from planner.perception import FOV_ANGLE
 from planner.play import TrialSettings, run_trial
 from planner.robots import make_robot
@@ -46,10 +45,11 @@ from planner.step import step
 DETOURS = (0, 2, 4, 6)
 
 
-def best_share(layout: Layout, worlds: list[WorldState], start: int, detour: int) -> float | None:
+def best_share(layout: Layout, worlds: list[WorldState], frames: list[Frame], start: int,
+               detour: int) -> float | None:
     """The largest share of the trip that begins at frame ``start`` (the first with the dish; ``worlds[i]`` is the
-    world after tick ``i + 1``) the person could have seen, within ``detour`` extra ticks; ``None`` when no walk
-    within them reaches the counter (the person stands in the way)."""
+    world after tick ``i + 1``, ``frames[i]`` its frame) the person could have seen, within ``detour`` extra ticks;
+    ``None`` when no walk within them reaches the counter (the person stands in the way)."""
     garnish = start > 0 and worlds[start - 1].robot.held == STEAK_PLATE
     origin = start - 1 if garnish else start
     robot = worlds[origin].robot
@@ -57,20 +57,12 @@ def best_share(layout: Layout, worlds: list[WorldState], start: int, detour: int
     poses = [(w.human.pos, w.human.facing) for w in worlds[origin + 1:]]
     if not poses:
         return None
-    seen, ticks = 0, 0
-    if not garnish:
-        ticks, seen = 1, int(robot.pos in view(layout, *person_pose(worlds, origin), FOV_ANGLE).cells)
+    seen, ticks = (0, 0) if garnish else (int(frames[origin].seen), 1)
     plan = dish_walk(layout, FOV_ANGLE, pose, [(1.0, poses)], detour, 0.0, garnish, (seen, ticks))
     if not plan:
         return None
     more_seen, more_ticks = walk_seen(layout, FOV_ANGLE, pose, plan, poses, garnish)
     return (seen + more_seen) / (ticks + more_ticks) if ticks + more_ticks else None
-
-
-def person_pose(worlds: list[WorldState], frame: int) -> tuple[Pos, Direction]:
-    """The person's cell and facing at ``frame``."""
-    human = worlds[frame].human
-    return human.pos, human.facing
 
 
 def bound(*shares: float | None) -> float | None:
@@ -79,8 +71,8 @@ def bound(*shares: float | None) -> float | None:
 
 
 def run_one(job: tuple[str, str, int]) -> tuple[str, str, list[list[float | None]]]:
-    """Per dish trip of one trial: the share seen, then the bound per detour of :data:`DETOURS` (``None``: no walk
-    within that detour, neither the trip as played)."""
+    """Per dish trip of one trial (as :func:`planner.behaviours.measure` counts them): the share seen, then the
+    bound per detour of :data:`DETOURS` (``None``: no walk within that detour, neither the trip as played)."""
     kitchen, robot_name, seed = job
     layout = kitchen_layout(kitchen)
     rules = Rules()
@@ -88,27 +80,21 @@ def run_one(job: tuple[str, str, int]) -> tuple[str, str, list[list[float | None
                        robot=make_robot(robot_name, layout, rules, config_of(())), record=True)
     world = initial_state(layout, rules)
     worlds: list[WorldState] = []
+    frames: list[Frame] = []
     for h_action, r_action in result.actions:
-        world, _ = step(layout, world, {"human": h_action, "robot": r_action}, rules)
+        world, events = step(layout, world, {"human": h_action, "robot": r_action}, rules)
         worlds.append(world)
+        frames.append(frame_of(layout, world, events, FOV_ANGLE))
+    to_serve = nearest_distances(layout, layout.serves)
     trips: list[list[float | None]] = []
-    t = 0
-    while t < len(worlds):
-        if worlds[t].robot.held == DISH and (t == 0 or worlds[t - 1].robot.held != DISH):
-            end = t
-            while end < len(worlds) and worlds[end].robot.held == DISH:
-                end += 1
-            if end < len(worlds) and worlds[end].robot.held is None and worlds[end].score > worlds[t].score:
-                seen = sum(worlds[k].robot.pos in view(layout, *person_pose(worlds, k), FOV_ANGLE).cells
-                           for k in range(t, end))
-                robot = worlds[t].robot
-                extra = end - t - 1 - min(distance(layout, (robot.pos, robot.facing), c) for c in layout.serves)
-                share = seen / (end - t)  # the trip as played is one of the walks within its own extra ticks
-                trips.append([share] + [bound(best_share(layout, worlds, t, d), share if extra <= d else None)
-                                        for d in DETOURS])
-            t = end
-        else:
-            t += 1
+    for a, b in holdings(frames):
+        if frames[a].held != DISH or b >= len(frames) or not frames[b].delivered:
+            continue
+        robot = worlds[a].robot
+        extra = b - a - 1 - to_serve.get((robot.pos, robot.facing), UNREACHABLE)
+        share = sum(f.seen for f in frames[a:b]) / (b - a)  # the trip as played is one walk within its extra ticks
+        trips.append([share] + [bound(best_share(layout, worlds, frames, a, d), share if extra <= d else None)
+                                for d in DETOURS])
     return kitchen, robot_name, trips
 
 
