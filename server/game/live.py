@@ -107,6 +107,9 @@ class LiveGame:
             deps.store, meta, self.event)
         self.stalls = StallHints(timing.stall_hint_ticks())
         self.finished = False
+        self.stored = asyncio.Event()
+        """Set once an ending trial's last ticks and its end are stored (:meth:`end`), so that a reconnection
+        arriving meanwhile decides on what the store then says, not on a store still missing its last ticks."""
         self.task: asyncio.Task[None] | None = None
 
     # -- what the registry, the admin and the tests read ------------------------------------------------
@@ -373,28 +376,31 @@ class LiveGame:
         if self.finished:
             return
         self.finished = True
-        if self.task is not None and self.task is not asyncio.current_task():
-            self.task.cancel()
-        if self.robot.pending is not None:
-            self.robot.pending.cancel()
-        world = self.engine.world
-        self.keeper.update(self.keeper.health.final(), "ended invalid")
-        self._store_drops(force=True)
-        self.event("trial_end", {"status": status, "reason": reason, "ticks": world.tick})
-        await self.deps.writer.flush()
-        delivered = self.engine.rules.orders - world.orders_left
-        await self.keeper.settle()
-        progress = await asyncio.to_thread(
-            service.end_trial, self.deps.store, self.meta.participant_id, self.meta.trial_id, self.meta.kind,
-            self.meta.index, status=status, reason=reason, ticks=world.tick, delivered=delivered, score=world.score,
-            study=self.loaded.study)
-        if self.link.connection is not None:
-            self.link.connection.send(TrialEnd(status=status, reason=reason,  # type: ignore[arg-type]
-                                               ticks=world.tick, delivered=delivered, score=world.score,
-                                               next=progress.phase.value if progress else "unknown"))
-            self.link.connection.begin_close(1000)
-        await self.deps.pool.close_trial(self.meta.trial_id)
-        self.deps.on_end(self)
+        try:
+            if self.task is not None and self.task is not asyncio.current_task():
+                self.task.cancel()
+            if self.robot.pending is not None:
+                self.robot.pending.cancel()
+            world = self.engine.world
+            self.keeper.update(self.keeper.health.final(), "ended invalid")
+            self._store_drops(force=True)
+            self.event("trial_end", {"status": status, "reason": reason, "ticks": world.tick})
+            await self.deps.writer.flush()
+            delivered = self.engine.rules.orders - world.orders_left
+            await self.keeper.settle()
+            progress = await asyncio.to_thread(
+                service.end_trial, self.deps.store, self.meta.participant_id, self.meta.trial_id, self.meta.kind,
+                self.meta.index, status=status, reason=reason, ticks=world.tick, delivered=delivered, score=world.score,
+                study=self.loaded.study)
+            if self.link.connection is not None:
+                self.link.connection.send(TrialEnd(status=status, reason=reason,  # type: ignore[arg-type]
+                                                   ticks=world.tick, delivered=delivered, score=world.score,
+                                                   next=progress.phase.value if progress else "unknown"))
+                self.link.connection.begin_close(1000)
+            await self.deps.pool.close_trial(self.meta.trial_id)
+            self.deps.on_end(self)
+        finally:
+            self.stored.set()
 
     async def suspend(self) -> None:
         """Stop the loop without ending the trial (server shutdown, eviction): it can be resumed from the store."""

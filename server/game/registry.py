@@ -137,11 +137,14 @@ class GameRegistry:
         lock = self._locks.setdefault(participant.id, asyncio.Lock())
         async with lock:
             game = self._by_participant.get(participant.id)
-            if game is not None and not game.finished and (game.meta.kind, game.meta.index) == (
-                    step.trial_kind, step.index):
-                self._cancel_timer(game)
-                game.attach(conn)
-                return game
+            if game is not None and (game.meta.kind, game.meta.index) == (step.trial_kind, step.index):
+                if not game.finished:
+                    self._cancel_timer(game)
+                    game.attach(conn)
+                    return game
+                # The trial is ending here (its last ticks and its end are being stored): resuming it from the
+                # store now would replay those ticks. Once stored, the participant has moved on (NoTrial below).
+                await game.stored.wait()
             try:
                 prepared = await asyncio.to_thread(prepare_trial, self.deps.store, loaded, participant.id, step)
             except StepPassed as passed:  # the trial ended after the participant's row was read

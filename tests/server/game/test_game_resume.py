@@ -1,13 +1,19 @@
-"""A reconnection that read the participant's step just before their trial ended does not start the trial
-again: ``prepare_trial`` checks the step against the participant's progress in its own transaction."""
+"""A reconnection racing the end of its trial does not start the trial again: ``prepare_trial`` checks the step
+against the participant's progress in its own transaction, and a reconnection arriving while the trial's end is
+being stored waits for it."""
 
 from __future__ import annotations
 
+import asyncio
+import threading
+from typing import Any
+
 import pytest
-from steakhouse_testing import write_study
+from steakhouse_testing import Player, write_study
 
 from server.flow import service
 from server.flow.progress import Move, Phase
+from server.game import registry
 from server.game.resume import StepPassed, prepare_trial
 from store import trials
 from store.engine import Store
@@ -42,3 +48,50 @@ def test_a_step_read_before_its_trial_ended_gets_no_second_attempt(db_url, tmp_p
             assert [t.id for t in session.query(TrialRow).filter_by(participant_id=pid)] == [first.trial.id]
     finally:
         store.dispose()
+
+
+def test_a_reconnection_while_the_trial_is_being_stored_as_ended_does_not_resume_it(live_server, study_file,
+                                                                                       monkeypatch) -> None:
+    """The trial reaches its horizon and its end is being stored when the participant's browser reconnects: the
+    reconnection waits for the end to be stored and gets ``no_trial``, instead of resuming the trial from a store
+    still missing its last ticks (which replayed them: a tick stored twice, a reconnection back in time). The end
+    is held for up to a second for a reconnection that did not wait to show itself."""
+    server = live_server([study_file(world={"orders": 1, "horizon": 8, "kb_delay": 1})])
+    order: list[str] = []
+    ending, second_prepare = threading.Event(), threading.Event()
+    original_end, original_prepare = service.end_trial, registry.prepare_trial
+
+    def slow_end(*args, **kwargs):  # type: ignore[no-untyped-def]
+        ending.set()
+        second_prepare.wait(timeout=1.0)
+        result = original_end(*args, **kwargs)
+        order.append("end stored")
+        return result
+
+    def watched_prepare(*args, **kwargs):  # type: ignore[no-untyped-def]
+        order.append("prepare")
+        if order.count("prepare") == 2:
+            second_prepare.set()
+        return original_prepare(*args, **kwargs)
+
+    monkeypatch.setattr(service, "end_trial", slow_end)
+    monkeypatch.setattr(registry, "prepare_trial", watched_prepare)
+
+    async def scenario() -> dict[str, Any]:
+        player = Player(server.url)
+        try:
+            await player.ready(PROLIFIC_PID="late")
+            first = await player.socket()
+            assert (await first.recv())["type"] == "hello"
+            assert await asyncio.to_thread(ending.wait, 60)
+            again = await player.socket()
+            reply = await again.recv()
+            await again.close()
+            await first.close()
+            return reply
+        finally:
+            await player.close()
+
+    reply = asyncio.run(scenario())
+    assert reply["type"] == "error" and reply["code"] == "no_trial"
+    assert order == ["prepare", "end stored", "prepare"]
