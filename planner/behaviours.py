@@ -11,6 +11,12 @@ the robot stands in the person's view (:mod:`planner.fov`) and whether the robot
 * **Behaviour 2, a delivery in view:** a *dish trip* runs from the tick the robot comes to hold a dish to the
   tick before it delivers it (a trip that ends otherwise is not counted). Its share is the fraction of the
   trip's ticks with the robot in the person's view. Rate: the mean share over trips.
+
+The robot component of the KB gap (ticks at which the person's KB is wrong about what the robot holds) is split
+by why (:func:`hands_gap`): *lag*, the ticks it would be wrong even if the person watched the robot every tick
+(each change of hands needs ``kb_delay`` consecutive ticks in view to be acknowledged); *unseen*, the robot holds
+something the person has not acknowledged; *stale*, the robot's hands are empty but the person still believes it
+holds what it last showed them.
 """
 
 from __future__ import annotations
@@ -56,6 +62,25 @@ class Behaviours:
                           self.trip_share_sum + other.trip_share_sum)
 
 
+@dataclass(frozen=True, slots=True)
+class HandsGap:
+    """Ticks of one trial (or a sum of trials) at which the person's KB is wrong about the robot's hands, by why
+    (module docstring); ``ticks`` is all ticks."""
+
+    ticks: int = 0
+    lag: int = 0
+    unseen: int = 0
+    stale: int = 0
+
+    @property
+    def wrong(self) -> int:
+        return self.lag + self.unseen + self.stale
+
+    def __add__(self, other: HandsGap) -> HandsGap:
+        return HandsGap(self.ticks + other.ticks, self.lag + other.lag, self.unseen + other.unseen,
+                        self.stale + other.stale)
+
+
 def frame_of(layout: Layout, world: WorldState, events: Sequence[Event], angle: float) -> Frame:
     """The frame of one tick of our own trials: ``world`` after the step, ``events`` the step's events."""
     seen = world.robot.pos in view(layout, world.human.pos, world.human.facing, angle).cells
@@ -96,3 +121,29 @@ def measure(frames: Sequence[Frame], kb_delay: int) -> Behaviours:
             trips += 1
             share += sum(f.seen for f in frames[a:b]) / (b - a)
     return Behaviours(len(spans), shown, trips, share)
+
+
+def hands_gap(frames: Sequence[Frame], kb_delay: int) -> HandsGap:
+    """The person's KB about what the robot holds, tick by tick, by the KB's rule (docs/domain.md §3: it takes what
+    the robot holds once the robot has stood ``kb_delay`` consecutive ticks in view holding it; at the start it
+    knows the robot's empty hands), and the ticks it is wrong, split into lag, unseen and stale."""
+    believed = watched = None  # the KB's belief, and a person's who watched the robot every tick
+    streak = run = 0
+    lag = unseen = stale = 0
+    for t, frame in enumerate(frames):
+        same = t > 0 and frame.held == frames[t - 1].held
+        run = run + 1 if same else 1
+        streak = (streak + 1 if same and frames[t - 1].seen else 1) if frame.seen else 0
+        if frame.seen and streak >= kb_delay:
+            believed = frame.held
+        if run >= kb_delay:
+            watched = frame.held
+        if believed == frame.held:
+            continue
+        if watched != frame.held:
+            lag += 1
+        elif frame.held is None:
+            stale += 1
+        else:
+            unseen += 1
+    return HandsGap(len(frames), lag, unseen, stale)

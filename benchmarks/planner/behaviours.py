@@ -3,10 +3,11 @@
 For each robot × kitchen × seed, one simulated trial with the FOV-limited simulated human (the same human random
 stream per seed for every robot, so trials are paired): behaviour 1 (a pickup shown to the person for
 ``kb_delay`` consecutive ticks), behaviour 2 (share of a dish trip's ticks in the person's view), the robot
-component of the KB gap (% of ticks the person's KB is wrong about what the robot holds) and ticks
-(:mod:`planner.behaviours`). Kitchens: shipped ones by name (``--shipped``, default the paper's two study
-kitchens) and generated ones by generator seed (``--generator-seeds``; tune only on seeds < 1000, report on
-seeds ≥ 1000, as ``generated.py`` does). Rows are appended to ``OUT/trials.csv`` as trials finish.
+component of the KB gap (% of ticks the person's KB is wrong about what the robot holds; split into lag, unseen
+and stale, :func:`planner.behaviours.hands_gap`) and ticks (:mod:`planner.behaviours`). Kitchens: shipped ones by
+name (``--shipped``, default the paper's two study kitchens) and generated ones by generator seed
+(``--generator-seeds``; tune only on seeds < 1000, report on seeds ≥ 1000, as ``generated.py`` does). Rows are
+appended to ``OUT/trials.csv`` as trials finish.
 
 Printed per group (each shipped kitchen; generated kitchens together) and robot: the pooled rates, then each
 robot against the baseline over paired seeds: mean difference of the per-trial values with a 95 % t interval
@@ -33,7 +34,7 @@ from typing import Any
 import numpy as np
 from scipy import stats
 
-from planner.behaviours import Frame, frame_of, measure
+from planner.behaviours import Frame, frame_of, hands_gap, measure
 from planner.layout import Layout
 from planner.layout_gen import generate_named
 from planner.perception import FOV_ANGLE, KB_DELAY
@@ -46,7 +47,11 @@ from planner.step import step
 from study_config import load_layout
 
 COLUMNS = ("kitchen", "robot", "seed", "ticks", "finished", "holdings", "shown", "trips", "trip_share_sum",
-           "robot_gap_pct", "kb_gap_mean")
+           "robot_gap_pct", "gap_lag_pct", "gap_unseen_pct", "gap_stale_pct", "kb_gap_mean")
+
+
+GAP_PARTS = ("lag", "unseen", "stale")
+"""The robot gap's parts (:func:`planner.behaviours.hands_gap`): % of ticks, summing to ``robot_gap_pct``."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -85,10 +90,12 @@ def run_one(spec: Spec) -> dict[str, object]:
         world, events = step(layout, world, {"human": h_action, "robot": r_action}, rules)
         frames.append(frame_of(layout, world, events, FOV_ANGLE))
     b = measure(frames, KB_DELAY)
+    hands = hands_gap(frames, KB_DELAY)
     return {"kitchen": spec.kitchen, "robot": spec.robot, "seed": spec.seed, "ticks": result.ticks,
             "finished": int(result.finished), "holdings": b.holdings, "shown": b.shown, "trips": b.trips,
             "trip_share_sum": round(b.trip_share_sum, 4),
             "robot_gap_pct": round(result.gap_component_pct["robot_held"], 2),
+            **{f"gap_{part}_pct": round(100.0 * getattr(hands, part) / hands.ticks, 2) for part in GAP_PARTS},
             "kb_gap_mean": round(result.kb_gap_mean, 4)}
 
 
@@ -98,11 +105,14 @@ def seed_range(text: str) -> range:
 
 
 def trial_values(row: dict[str, Any]) -> dict[str, float | None]:
-    """Per-trial values compared between robots: behaviour rates (None without a holding / a trip), % and ticks."""
+    """Per-trial values compared between robots: behaviour rates (None without a holding / a trip), % and ticks
+    (the robot gap's parts None in rows written before they were measured)."""
     holdings, trips = int(row["holdings"]), int(row["trips"])
+    parts = {f"gap_{part}": float(row[f"gap_{part}_pct"]) if row.get(f"gap_{part}_pct") else None
+             for part in GAP_PARTS}
     return {"b1": int(row["shown"]) / holdings if holdings else None,
             "b2": float(row["trip_share_sum"]) / trips if trips else None,
-            "robot_gap": float(row["robot_gap_pct"]), "ticks": float(row["ticks"])}
+            "robot_gap": float(row["robot_gap_pct"]), **parts, "ticks": float(row["ticks"])}
 
 
 def paired(a: list[float], b: list[float]) -> str:
@@ -114,6 +124,14 @@ def paired(a: list[float], b: list[float]) -> str:
     half = float(stats.t.ppf(0.975, len(d) - 1)) * sem
     p = float(stats.ttest_rel(a, b).pvalue) if np.any(d != 0) else 1.0
     return f"{mean:+.3g} [{mean - half:+.3g}, {mean + half:+.3g}] p={p:.2g} n={len(d)}"
+
+
+def gap_parts(rows: list[dict[str, Any]]) -> str:
+    """``   lag + unseen + stale`` (mean % of ticks) of rows that have them, else nothing."""
+    if not all(r.get(f"gap_{part}_pct") for r in rows for part in GAP_PARTS):
+        return ""
+    means = [statistics.mean(float(r[f"gap_{part}_pct"]) for r in rows) for part in GAP_PARTS]
+    return "   " + " + ".join(f"{m:.1f}" for m in means)
 
 
 def table(rows: list[dict[str, Any]]) -> str:
@@ -128,7 +146,7 @@ def table(rows: list[dict[str, Any]]) -> str:
         lines.append(f"== {name}: {len({r['kitchen'] for r in part})} kitchen(s), "
                      f"seeds {len({r['seed'] for r in part})}")
         lines.append(f"{'robot':<12}{'trials':>7}{'unf.':>6}{'b1 shown':>16}{'b2 trip share':>20}"
-                     f"{'robot gap %':>13}{'ticks':>9}")
+                     f"{'robot gap %':>13}{'ticks':>9}   robot gap = lag + unseen + stale")
         for robot in robots:
             mine = [r for r in part if r["robot"] == robot]
             if not mine:
@@ -141,19 +159,21 @@ def table(rows: list[dict[str, Any]]) -> str:
             b2 = f"{share / trips:.2f} ({trips} trips)" if trips else "-"
             lines.append(f"{robot:<12}{len(mine):>7}{sum(1 for r in mine if not int(r['finished'])):>6}{b1:>16}"
                          f"{b2:>20}{statistics.mean(float(r['robot_gap_pct']) for r in mine):>13.1f}"
-                         f"{statistics.mean(float(r['ticks']) for r in mine):>9.1f}")
+                         f"{statistics.mean(float(r['ticks']) for r in mine):>9.1f}{gap_parts(mine)}")
         base = {(r["kitchen"], r["seed"]): trial_values(r) for r in part if r["robot"] == "baseline"}
         for robot in robots:
             if robot == "baseline":
                 continue
-            mine = {(r["kitchen"], r["seed"]): trial_values(r) for r in part if r["robot"] == robot}
-            keys = sorted(set(mine) & set(base))
+            values = {(r["kitchen"], r["seed"]): trial_values(r) for r in part if r["robot"] == robot}
+            keys = sorted(set(values) & set(base))
             if not keys:
                 continue
             lines.append(f"  {robot} − baseline (paired per kitchen × seed, mean [95% CI]):")
-            for measure_name in ("b1", "b2", "robot_gap", "ticks"):
-                pairs = [(mine[k][measure_name], base[k][measure_name]) for k in keys
-                         if mine[k][measure_name] is not None and base[k][measure_name] is not None]
+            for measure_name in ("b1", "b2", "robot_gap", *(f"gap_{part}" for part in GAP_PARTS), "ticks"):
+                pairs = [(values[k][measure_name], base[k][measure_name]) for k in keys
+                         if values[k][measure_name] is not None and base[k][measure_name] is not None]
+                if not pairs:
+                    continue
                 text = paired([float(a) for a, _ in pairs], [float(b) for _, b in pairs])  # type: ignore[arg-type]
                 if measure_name == "ticks" and len(pairs) > 1 and any(a != b for a, b in pairs):
                     ticks_base = statistics.mean(float(b) for _, b in pairs)  # type: ignore[arg-type]

@@ -2,8 +2,16 @@
 
 from __future__ import annotations
 
-from planner.behaviours import Frame, holdings, measure
+import pytest
+
+from planner.behaviours import Frame, HandsGap, frame_of, hands_gap, holdings, measure
 from planner.objects import CLEAN_PLATE, DISH, MEAT, STEAK_PLATE
+from planner.perception import FOV_ANGLE, KB_DELAY
+from planner.play import TrialSettings, run_trial
+from planner.rules import Rules
+from planner.state import initial_state
+from planner.step import step
+from study_config import load_layout
 
 
 def frames(spec: str, held: str | None = MEAT) -> list[Frame]:
@@ -35,3 +43,28 @@ def test_a_dish_trip_counts_only_when_the_robot_delivers_it():
     assert measure(dropped, 3).trips == 0
     assert measure(trip[:-1], 3).trips == 0
     assert (measure(trip, 3) + measure(trip, 3)).trip_share == 0.5
+
+
+def test_the_hands_gap_splits_the_ticks_the_kb_is_wrong_about_the_robots_hands():
+    # picked up in view: wrong until the third tick in view (2 ticks of lag), then right
+    assert hands_gap(frames("..HHHH"), 3) == HandsGap(ticks=6, lag=2, unseen=0, stale=0)
+    # picked up out of view: 2 ticks of lag, then unseen until it has stood 3 ticks in view
+    assert hands_gap(frames("..hhhhHHH"), 3) == HandsGap(ticks=9, lag=2, unseen=4, stale=0)
+    # shown, then put down out of view: 2 ticks of lag, then the person still believes the robot holds it
+    assert hands_gap(frames("HHHH...."), 3) == HandsGap(ticks=8, lag=4, unseen=0, stale=2)
+    # a load never seen and put down: the person was never wrong about the empty hands that follow
+    assert hands_gap(frames("hhhh...."), 3) == HandsGap(ticks=8, lag=2, unseen=2, stale=0)
+
+
+def test_the_hands_gap_counts_what_the_kb_counts_in_a_simulated_trial():
+    layout = load_layout("none_3")
+    rules = Rules()
+    result = run_trial(layout, 3, TrialSettings(FOV_ANGLE, KB_DELAY, rules), record=True)
+    world = initial_state(layout, rules)
+    played = []
+    for h_action, r_action in result.actions:
+        world, events = step(layout, world, {"human": h_action, "robot": r_action}, rules)
+        played.append(frame_of(layout, world, events, FOV_ANGLE))
+    gap = hands_gap(played, KB_DELAY)
+    assert gap.wrong > 0 and gap.unseen > 0
+    assert 100.0 * gap.wrong / gap.ticks == pytest.approx(result.gap_component_pct["robot_held"])
