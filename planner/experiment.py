@@ -3,7 +3,8 @@
 One trial per (kitchen, robot, seed); the human's random stream depends only on the seed, so the robots
 are compared on paired trials. :func:`summarize_trials` gives the paper-style table: mean ± sd ticks per
 robot per kitchen and overall, and the paired difference of the FOV-aware robot against the baseline
-(mean % change of ticks, paired t-test p and Wilcoxon signed-rank p).
+(mean % change of ticks, paired t-test p and Wilcoxon signed-rank p); then the paper's two robot behaviours per
+kitchen and robot (:mod:`planner.behaviours`): does the FOV-aware robot show itself in this kitchen?
 """
 
 from __future__ import annotations
@@ -18,12 +19,15 @@ from scipy import stats
 from planner.layout import Layout
 from planner.perception import FOV_ANGLE, KB_DELAY
 from planner.planner_config import PlannerConfig
-from planner.play import TrialSettings, run_trial
+from planner.play import TrialResult, TrialSettings, run_trial
 from planner.robots import make_robot
 from planner.rules import Rules
 
 COLUMNS = ("layout", "robot", "seed", "ticks", "finished", "reward", "kb_gap_mean", "kb_gap_ticks_pct",
-           "robot_in_fov_pct", "decision_ms_p50", "decision_ms_p99")
+           "robot_in_fov_pct", "decision_ms_p50", "decision_ms_p99", "holdings", "shown", "trips",
+           "trip_share_sum", "robot_gap_pct", "gap_lag_pct", "gap_unseen_pct", "gap_stale_pct")
+GAP_PARTS = ("lag", "unseen", "stale")
+"""The robot gap's parts (:func:`planner.behaviours.hands_gap`), % of ticks: they sum to ``robot_gap_pct``."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -55,7 +59,16 @@ def run_spec(spec: TrialSpec) -> dict[str, object]:
         "robot_in_fov_pct": round(result.robot_in_fov_pct, 2),
         "decision_ms_p50": round(float(np.percentile(times, 50)), 3),
         "decision_ms_p99": round(float(np.percentile(times, 99)), 3),
+        **behaviour_columns(result),
     }
+
+
+def behaviour_columns(result: TrialResult) -> dict[str, object]:
+    """The columns of the paper's robot behaviours and the robot gap's parts of one trial."""
+    b, hands = result.behaviours, result.hands
+    return {"holdings": b.holdings, "shown": b.shown, "trips": b.trips, "trip_share_sum": round(b.trip_share_sum, 4),
+            "robot_gap_pct": round(result.gap_component_pct["robot_held"], 2),
+            **{f"gap_{part}_pct": round(100.0 * getattr(hands, part) / max(hands.ticks, 1), 2) for part in GAP_PARTS}}
 
 
 @dataclass(frozen=True, slots=True)
@@ -105,4 +118,28 @@ def summarize_trials(rows: list[dict[str, Any]]) -> str:
         lines.append(f"fov_aware vs baseline over {comparison.pairs} paired trials: "
                      f"{comparison.mean_change_pct:+.1f}% ticks, paired t-test p = {comparison.t_p:.4g}, "
                      f"Wilcoxon p = {comparison.wilcoxon_p:.4g}")
-    return "\n".join(lines)
+    return "\n".join(lines + behaviour_lines(rows, robots, layouts))
+
+
+def behaviour_lines(rows: list[dict[str, Any]], robots: list[str], layouts: list[str]) -> list[str]:
+    """The paper's behaviours per kitchen and robot, pooled over seeds; none for rows written without them."""
+    if not rows or any(r.get("holdings") in (None, "") for r in rows):
+        return []
+    lines = ["", "the paper's robot behaviours (docs/domain.md §6, \"Behaviours\"), pooled over seeds:",
+             "  b1 = share of pickups shown kb_delay ticks in a row; b2 = mean share of a dish trip in the person's "
+             "view;",
+             "  robot gap = % of ticks the person's KB is wrong about what the robot holds = lag + unseen + stale",
+             f"{'kitchen':<10}{'robot':<14}{'b1 shown':>14}{'b2 trip share':>20}   robot gap %"]
+    for layout in layouts:
+        for rb in robots:
+            mine = [r for r in rows if r["robot"] == rb and r["layout"] == layout]
+            if not mine:
+                continue
+            holdings, trips = sum(int(r["holdings"]) for r in mine), sum(int(r["trips"]) for r in mine)
+            b1 = f"{sum(int(r['shown']) for r in mine) / holdings:.2f} ({holdings})" if holdings else "-"
+            b2 = (f"{sum(float(r['trip_share_sum']) for r in mine) / trips:.2f} ({trips} trips)"
+                  if trips else "-")
+            parts = " + ".join(f"{statistics.mean(float(r[f'gap_{p}_pct']) for r in mine):.1f}" for p in GAP_PARTS)
+            gap = statistics.mean(float(r["robot_gap_pct"]) for r in mine)
+            lines.append(f"{layout:<10}{rb:<14}{b1:>14}{b2:>20}   {gap:.1f} = {parts}")
+    return lines

@@ -11,9 +11,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from planner.behaviours import Behaviours, Frame, HandsGap, frame_of, hands_gap, measure
 from planner.decision import Robot
 from planner.events import Event
-from planner.fov import view
 from planner.geometry import Action
 from planner.human import HumanMemory, HumanModel
 from planner.kb import KnowledgeBase, initial_kb, update_kb
@@ -53,6 +53,10 @@ class TrialResult:
     timed_out: int = 0
     cycles_broken: int = 0
     """Joint cycles the robot broke (:mod:`planner.cycle`)."""
+    behaviours: Behaviours = field(default_factory=Behaviours)
+    """The paper's two robot behaviours in this trial (:mod:`planner.behaviours`)."""
+    hands: HandsGap = field(default_factory=HandsGap)
+    """The ticks the person's KB was wrong about the robot's hands, by why (:func:`planner.behaviours.hands_gap`)."""
 
     def to_dict(self) -> dict[str, object]:
         return {
@@ -85,6 +89,7 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
     component_ticks = dict.fromkeys(GAP_COMPONENTS, 0)
     actions: list[tuple[Action, Action]] = []
     decision_ms: list[float] = []
+    frames: list[Frame] = []
     timed_out = cycles_broken = 0
     while not is_done(world, rules):
         if before_human is not None:
@@ -105,7 +110,8 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
         gap_ticks += total > 0
         for name, value in gaps.items():
             component_ticks[name] += value
-        in_fov += world.robot.pos in view(layout, world.human.pos, world.human.facing, settings.angle).cells
+        frames.append(frame_of(layout, world, events, settings.angle))
+        in_fov += frames[-1].seen
         if record:
             actions.append((h_action, r_action))
     ticks = max(world.tick, 1)
@@ -116,4 +122,5 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
         gap_component_pct={k: 100.0 * v / ticks for k, v in component_ticks.items()},
         robot_in_fov_pct=100.0 * in_fov / ticks, final=world, actions=tuple(actions),
         decision_ms=tuple(decision_ms), timed_out=timed_out, cycles_broken=cycles_broken,
+        behaviours=measure(frames, settings.kb_delay), hands=hands_gap(frames, settings.kb_delay),
     )

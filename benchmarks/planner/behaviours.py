@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 from scipy import stats
 
-from planner.behaviours import Frame, frame_of, hands_gap, measure
+from planner.experiment import GAP_PARTS, behaviour_columns
 from planner.layout import Layout
 from planner.layout_gen import generate_named
 from planner.perception import FOV_ANGLE, KB_DELAY
@@ -42,16 +42,10 @@ from planner.planner_config import PlannerConfig
 from planner.play import TrialSettings, run_trial
 from planner.robots import make_robot
 from planner.rules import Rules
-from planner.state import initial_state
-from planner.step import step
 from study_config import load_layout
 
 COLUMNS = ("kitchen", "robot", "seed", "ticks", "finished", "holdings", "shown", "trips", "trip_share_sum",
            "robot_gap_pct", "gap_lag_pct", "gap_unseen_pct", "gap_stale_pct", "kb_gap_mean")
-
-
-GAP_PARTS = ("lag", "unseen", "stale")
-"""The robot gap's parts (:func:`planner.behaviours.hands_gap`): % of ticks, summing to ``robot_gap_pct``."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -83,19 +77,9 @@ def run_one(spec: Spec) -> dict[str, object]:
     layout = kitchen_layout(spec.kitchen)
     rules = Rules()
     robot = make_robot(spec.robot, layout, rules, config_of(spec.overrides))
-    result = run_trial(layout, spec.seed, TrialSettings(FOV_ANGLE, KB_DELAY, rules), robot=robot, record=True)
-    world = initial_state(layout, rules)
-    frames: list[Frame] = []
-    for h_action, r_action in result.actions:
-        world, events = step(layout, world, {"human": h_action, "robot": r_action}, rules)
-        frames.append(frame_of(layout, world, events, FOV_ANGLE))
-    b = measure(frames, KB_DELAY)
-    hands = hands_gap(frames, KB_DELAY)
+    result = run_trial(layout, spec.seed, TrialSettings(FOV_ANGLE, KB_DELAY, rules), robot=robot)
     return {"kitchen": spec.kitchen, "robot": spec.robot, "seed": spec.seed, "ticks": result.ticks,
-            "finished": int(result.finished), "holdings": b.holdings, "shown": b.shown, "trips": b.trips,
-            "trip_share_sum": round(b.trip_share_sum, 4),
-            "robot_gap_pct": round(result.gap_component_pct["robot_held"], 2),
-            **{f"gap_{part}_pct": round(100.0 * getattr(hands, part) / hands.ticks, 2) for part in GAP_PARTS},
+            "finished": int(result.finished), **behaviour_columns(result),
             "kb_gap_mean": round(result.kb_gap_mean, 4)}
 
 

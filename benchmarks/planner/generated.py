@@ -114,6 +114,11 @@ def run(specs: list[TrialSpec], jobs: int, out: Path, done: set[tuple[str, str, 
     """Run the specs not yet in ``done`` and append each row to ``out`` as it finishes."""
     todo = [s for s in specs if (s.layout.name, s.robot, s.seed) not in done]
     fresh = not out.exists()
+    if not fresh:
+        with out.open(newline="") as handle:
+            header = tuple(next(csv.reader(handle), ()))
+        if header != COLUMNS:
+            raise SystemExit(f"{out}: written with other columns ({', '.join(header)}); use another --out")
     with out.open("a", newline="") as handle:
         writer = csv.DictWriter(handle, fieldnames=COLUMNS)
         if fresh:

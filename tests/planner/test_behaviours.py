@@ -60,11 +60,14 @@ def test_the_hands_gap_counts_what_the_kb_counts_in_a_simulated_trial():
     layout = load_layout("none_3")
     rules = Rules()
     result = run_trial(layout, 3, TrialSettings(FOV_ANGLE, KB_DELAY, rules), record=True)
+    gap = result.hands
+    assert gap.ticks == result.ticks and gap.wrong > 0 and gap.unseen > 0
+    assert 100.0 * gap.wrong / gap.ticks == pytest.approx(result.gap_component_pct["robot_held"])
+    # the frames the trial measured are those of its recorded actions replayed
     world = initial_state(layout, rules)
     played = []
     for h_action, r_action in result.actions:
         world, events = step(layout, world, {"human": h_action, "robot": r_action}, rules)
         played.append(frame_of(layout, world, events, FOV_ANGLE))
-    gap = hands_gap(played, KB_DELAY)
-    assert gap.wrong > 0 and gap.unseen > 0
-    assert 100.0 * gap.wrong / gap.ticks == pytest.approx(result.gap_component_pct["robot_held"])
+    assert hands_gap(played, KB_DELAY) == gap and measure(played, KB_DELAY) == result.behaviours
+    assert result.behaviours.holdings > 0

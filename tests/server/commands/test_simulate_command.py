@@ -1,5 +1,6 @@
 """``steakhouse simulate``: the paper's simulation experiment writes trials.csv and prints the paired table and, with
-three seeds or more, the paper's test of the KB gap with the seeds as participants."""
+three seeds or more, the paper's test of the KB gap with the seeds as participants; and the paper's robot behaviours
+per kitchen and robot."""
 
 from __future__ import annotations
 
@@ -27,6 +28,17 @@ def test_simulate_writes_paired_trials_and_the_table(lookahead, seeds, tmp_path,
     assert sorted((r["robot"], r["seed"]) for r in rows) == [
         (robot, str(seed)) for robot in ("baseline", "fov_aware") for seed in range(seeds)]
     assert all(r["finished"] == "1" and int(r["ticks"]) > 0 for r in rows)
+    for row in rows:  # the robot gap's parts add up to it (up to the rounding of each)
+        parts = sum(float(row[f"gap_{part}_pct"]) for part in ("lag", "unseen", "stale"))
+        assert parts == pytest.approx(float(row["robot_gap_pct"]), abs=0.02)
+        assert 0 <= int(row["shown"]) <= int(row["holdings"]) and int(row["holdings"]) > 0
+    assert "the paper's robot behaviours" in out
+    for robot in ("fov_aware", "baseline"):
+        mine = [r for r in rows if r["robot"] == robot]
+        holdings = sum(int(r["holdings"]) for r in mine)
+        shown = sum(int(r["shown"]) for r in mine) / holdings
+        assert any(line.startswith(f"practice  {robot}") and f"{shown:.2f} ({holdings})" in line
+                   for line in out.splitlines())
     assert f"lookahead: {lookahead}" in out and f"wrote {tmp_path / 'trials.csv'} ({2 * seeds} trials)" in out
     if seeds > 1:
         assert f"fov_aware vs baseline over {seeds} paired trials" in out
