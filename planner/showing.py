@@ -64,10 +64,29 @@ class Showing:
 
     def start(self, world: WorldState, garnish: bool = False) -> None:
         """A new decision: nothing pending, no knowing value yet; a dish trip's clock starts at its first decision
-        (:meth:`trip_detour_left`; ``garnish``: the robot is about to take a ready garnish)."""
+        (:meth:`begin_trip`; ``garnish``: the robot is about to take a ready garnish)."""
         self.pending = ()
         self.known = {}
-        self.trip_detour_left(world, garnish)
+        self.begin_trip(world, garnish)
+
+    def begin_trip(self, world: WorldState, garnish: bool = False) -> None:
+        """Start the dish trip's clock if the robot carries a dish (or, ``garnish``, stands with a plated steak at a
+        ready garnish: the dish is held from the next tick on) away from the serving counter and no trip runs."""
+        if self.dish_trip is not None or not self.carries_dish(world, garnish):
+            return
+        shortest = self.shortest_to_serve(world)
+        if shortest:
+            self.dish_trip = (world.tick + (world.robot.held == STEAK_PLATE), shortest)
+
+    def carries_dish(self, world: WorldState, garnish: bool) -> bool:
+        """The robot carries a dish, or (``garnish``) a plated steak at a ready garnish, in a kitchen that serves."""
+        held = world.robot.held
+        return bool(self.layout.serves) and (held == DISH or (garnish and held == STEAK_PLATE))
+
+    def shortest_to_serve(self, world: WorldState) -> int:
+        """The ticks of the robot's shortest way to deliver at a serving counter from where it stands."""
+        pose = (world.robot.pos, world.robot.facing)
+        return min(distance(self.layout, pose, c) for c in self.layout.serves)
 
     def keep(self, rest: tuple[Action, ...], world: WorldState) -> None:
         """Follow ``rest`` from the next tick while the person stays as they are in ``world``."""
@@ -93,23 +112,21 @@ class Showing:
                          self.cfg.view_detour + max(need - 1, 0))
 
     def trip_detour_left(self, world: WorldState, garnish: bool = False) -> int:
-        """The ticks the robot's dish trip may still spend beyond its shortest way (``view_detour`` for the whole
-        trip, docs/domain.md §5, "The person's knowing"): the extra ticks the dish has taken so far (ticks since it
-        was taken less how much shorter the way to the serving counter has become) count against it, so the robot
-        cannot wait in view tick after tick. ``garnish``: the robot holds a plated steak and is about to take a
-        ready garnish; the trip starts there, so the ticks it waits before taking it count too. 0 when it carries
-        no dish (nor stands at a ready garnish) or stands at the counter; the first call of a trip starts it."""
-        held = world.robot.held
-        if not (held == DISH or (garnish and held == STEAK_PLATE)) or not self.layout.serves:
+        """The ticks the robot's dish trip (:meth:`begin_trip`) may still spend beyond its shortest way
+        (``view_detour`` for the whole trip, docs/domain.md §5, "The person's knowing"): the extra ticks the dish has
+        taken so far (ticks since it was taken less how much shorter the way to the serving counter has become)
+        count against it, so the robot cannot wait in view tick after tick. ``garnish``: the robot holds a plated
+        steak and is about to take a ready garnish; the trip starts there, so the ticks it waits before taking it
+        count too. 0 when no trip runs, it carries no dish (nor stands at a ready garnish) or stands at the
+        counter."""
+        if self.dish_trip is None or not self.carries_dish(world, garnish):
             return 0
-        pose = (world.robot.pos, world.robot.facing)
-        base = min(distance(self.layout, pose, c) for c in self.layout.serves)
-        if base == 0:
+        shortest = self.shortest_to_serve(world)
+        if shortest == 0:
             return 0
-        if self.dish_trip is None:  # at a garnish the dish is held from the next tick on
-            self.dish_trip = (world.tick + (held == STEAK_PLATE), base)
+        began, shortest_then = self.dish_trip
         return min(self.cfg.view_detour,
-                   self.cfg.view_detour - (world.tick - self.dish_trip[0] - (self.dish_trip[1] - base)))
+                   self.cfg.view_detour - (world.tick - began - (shortest_then - shortest)))
 
     def walk_budget(self, world: WorldState, garnish: bool = False) -> int:
         """The extra ticks the dish walk may still take (or, ``garnish``, spend before and after taking a ready

@@ -52,6 +52,7 @@ def test_the_robot_waits_only_for_a_person_predicted_to_turn_its_way(turn_at, fi
     robot = make_qmdp_robot("fov_aware", LAYOUT, RULES)
     world = with_dish()
     robot.reset(world)
+    robot.showing.begin_trip(world)  # as the decision does (Showing.start)
     scripted(robot, turn_at)
     assert robot.dish_walk(world, Subtask.DELIVER_DISH, LIKELY, 0, garnish=False)[0] is first
 
@@ -61,7 +62,7 @@ def test_no_wait_once_the_trips_detour_is_spent():
     world = with_dish()
     robot.reset(world)
     scripted(robot, 4)
-    robot.showing.trip_detour_left(world)  # the trip starts at tick 0
+    robot.showing.begin_trip(world)  # the trip starts at tick 0
     late = replace(world, tick=PlannerConfig().view_detour)  # as many ticks waited as the detour allows
     assert robot.dish_walk(late, Subtask.DELIVER_DISH, LIKELY, 0, garnish=False)[0] is Action.EAST
 
@@ -92,6 +93,7 @@ def test_at_a_ready_garnish_the_wait_counts_against_the_dish_trip():
     assert robot.at_ready_garnish(world)
     assert not robot.at_ready_garnish(replace(world, boards=(RULES.chop_time - 1,)))
     detour = PlannerConfig().view_detour
+    robot.showing.begin_trip(world, garnish=True)
     assert robot.showing.walk_budget(world, garnish=True) == detour and robot.showing.walk_budget(world) == 0
     assert robot.showing.walk_budget(replace(world, tick=2), garnish=True) == detour - 1
     dish = replace(world, tick=3, robot=replace(world.robot, held=DISH))

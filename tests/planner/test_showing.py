@@ -50,6 +50,8 @@ def test_the_dish_trip_budget_runs_down_with_the_ticks_beyond_the_shortest_way()
     config = PlannerConfig()
     showing = Showing(LAYOUT, config)
     world = world_with(DISH)
+    assert showing.trip_detour_left(world) == 0  # no trip yet: its first decision begins it
+    showing.begin_trip(world)
     assert showing.trip_detour_left(world) == config.view_detour
     later = replace(world, tick=world.tick + 3)  # three ticks later, no nearer the serving counter
     assert showing.trip_detour_left(later) == config.view_detour - 3
