@@ -173,6 +173,7 @@ def _tick_rows(participant: str, trial: StoredTrial, ticks: Sequence[StoredTick]
             "kb_gap_total": tick.kb_gap_total, "robot_in_fov": int(tick.robot_in_fov),
             "lateness_ms": tick.lateness_ms, "decision_ms": tick.decision_ms,
             "robot_missed": int(tick.robot_missed), "recorded_at": iso_time(tick.recorded_at),
+            "round_seconds": tick.round_seconds,
             "world_events": _events_text(tick.world_events),
         }
         for component in GAP_COMPONENTS:

@@ -117,6 +117,8 @@ TICK_COLUMNS: tuple[Column, ...] = (
     Column("decision_ms", NUM, "robot decision time in ms (empty: no decision)"),
     Column("robot_missed", FLAG, "1 when the robot's decision missed its deadline"),
     Column("recorded_at", TIME, "when the step was played"),
+    Column("round_seconds", NUM, "seconds the round had run by this step while the participant was connected (what "
+                                 "timing.max_round_seconds limits); empty for ticks stored before it was kept"),
     Column("world_events", TEXT, "what the step did, as agent:event (start_cooking, load_board, load_sink, chop, "
                                  "wash, plate_steak, garnish, deliver, pick_up, put_down, swap, dispense, blocked), "
                                  "';' between events; empty for ticks stored before events were kept"),

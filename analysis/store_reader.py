@@ -124,6 +124,8 @@ class StoredTick:
     recorded_at: datetime | None = None
     world_events: list[dict[str, Any]] | None = None
     """The step's world events (agent, kind, pos, obj); ``None`` for ticks stored before they were kept."""
+    round_seconds: float | None = None
+    """Seconds the round had run while the participant was connected; ``None`` for ticks stored before."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -212,7 +214,7 @@ def read_ticks(conn: Connection, trial_id: int) -> list[StoredTick]:
         TickRow.tick, TickRow.human_action, TickRow.robot_action, TickRow.action_source, TickRow.subtask,
         TickRow.kb_summary, TickRow.world_summary, TickRow.kb_gap, TickRow.kb_gap_total, TickRow.robot_in_fov,
         TickRow.lateness_ms, TickRow.decision_ms, TickRow.robot_missed, TickRow.world_state, TickRow.controller,
-        TickRow.recorded_at, TickRow.world_events,
+        TickRow.recorded_at, TickRow.world_events, TickRow.round_seconds,
     ).where(TickRow.trial_id == trial_id).order_by(TickRow.tick))
     return [StoredTick(**row._asdict()) for row in rows]
 

@@ -197,6 +197,10 @@ class TickRow(Base):
     world_events: Mapped[list[dict[str, Any]] | None] = mapped_column(JsonType, nullable=True)
     """The step's world events (``planner.events.Event.to_dict``: agent, kind, pos, obj); NULL in ticks
     stored before revision 0002."""
+    round_seconds: Mapped[float | None] = mapped_column(Float, nullable=True)
+    """Wall-clock seconds the round had run at this tick while the participant was connected (what
+    ``timing.max_round_seconds`` limits; a round resumed from the store goes on from it); NULL in ticks stored
+    before revision 0009."""
 
 
 class EventRow(Base):

@@ -106,7 +106,7 @@ def run(trials: int, ticks: int, seed: int, store: Store, timer: Callable[[], fl
             outcome = engine.advance(action)
             t2 = timer()
             rows.append(tick_row(trial_id, outcome, RobotChoice(ACTIONS[0], decision_ms=3.0, info=None), 1.0,
-                                 engine.controller.to_dict()))
+                                 engine.controller.to_dict(), tick / 5.0))
             t3 = timer()
             message = snapshot.state(engine, mode="fixed_rate", rate=5.0, ack=tick)
             t4 = timer()

@@ -25,7 +25,8 @@ The clock:
   (the robot's belief is spread over every subtask the person might start, and a fresh robot worker's caches
   are cold), and when many participants start at once those decisions would queue behind each other.
 - ``wait_for_participant`` rounds have a wall-clock limit (``timing.max_round_seconds``, counted while the
-  participant is connected): past it the round ends with reason ``time_limit``. Each stretch the world waits
+  participant is connected, and stored with each tick so a round resumed from the store goes on counting):
+  past it the round ends with reason ``time_limit``. Each stretch the world waits
   for the participant is logged as a ``wait`` event (its seconds count toward the trial's ``idle_pct``).
   In both clocks, a cook with nothing to do for ``timing.idle_nudge_seconds`` gets one ``nudge`` per stretch
   (``server.game.round_time``; the wall clock is injected, ``server.game.clock``).
@@ -93,10 +94,12 @@ class LiveGame:
     robot health, kept in the store) and :attr:`stalls` (the stall hints); the game drives them from its loop."""
 
     def __init__(self, meta: TrialMeta, loaded: LoadedStudy, engine: TrialEngine, deps: GameDeps,
-                 resumed: bool, health: RobotHealth | None = None) -> None:
+                 resumed: bool, health: RobotHealth | None = None, round_seconds: float = 0.0) -> None:
+        """``round_seconds``: what the round had already run while connected (a round resumed from the store)."""
         self.meta, self.loaded, self.engine, self.deps, self.resumed = meta, loaded, engine, deps, resumed
         timing = loaded.study.timing
-        self.pacing = Pacing(timing, engine.rules.horizon, deps.clock, fast=meta.pilot_pace == "fast")
+        self.pacing = Pacing(timing, engine.rules.horizon, deps.clock, fast=meta.pilot_pace == "fast",
+                             spent_s=round_seconds)
         self.link = ParticipantLink(deps.max_message_bytes)
         fast = self.pacing.fast
         self.robot = RobotDecisions(deps.pool, meta,
@@ -336,7 +339,7 @@ class LiveGame:
     def _record(self, outcome: TickOutcome, choice: RobotChoice, lateness_ms: float) -> None:
         self.pacing.lateness.append(lateness_ms)
         self.deps.writer.add_tick(tick_row(self.meta.trial_id, outcome, choice, lateness_ms,
-                                           self.engine.controller.to_dict()))
+                                           self.engine.controller.to_dict(), self.pacing.times.elapsed()))
 
     def _blocked(self, blocked: Blocked) -> None:
         """Tell the participant why their subtask is not getting anywhere; log it when the subtask ended."""

@@ -14,13 +14,13 @@ LATENESS_KEPT = 5000
 
 
 class Pacing:
-    def __init__(self, timing: Timing, horizon: int, clock: Clock, fast: bool) -> None:
+    def __init__(self, timing: Timing, horizon: int, clock: Clock, fast: bool, spent_s: float = 0.0) -> None:
         self.mode, self.rate, self.period = timing.mode, timing.tick_rate_hz, 1.0 / timing.tick_rate_hz
         self.fast = fast
         """A ``fast`` pilot trial: a step as soon as the simulated participant answered and the robot decided."""
         self.clock = clock
         """The wall clock of the round limit and the idle nudge (tests inject one they move by hand)."""
-        self.times = RoundTime(clock, timing.round_limit_seconds(horizon), timing.idle_nudge_seconds)
+        self.times = RoundTime(clock, timing.round_limit_seconds(horizon), timing.idle_nudge_seconds, spent_s)
         self.lateness: deque[float] = deque(maxlen=LATENESS_KEPT)
         """Milliseconds each recent step started after its scheduled start."""
 

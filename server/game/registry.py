@@ -179,8 +179,10 @@ class GameRegistry:
         row, study = prepared.trial, loaded.study
         health = RobotHealth(study.validity.max_missed_decisions_pct, loaded.rules.horizon, prepared.decisions,
                              prepared.missed, row.invalid_reason)
-        return LiveGame(trial_meta(loaded, participant, row), loaded, trial_engine(loaded, row, prepared.last_tick),
-                        self.deps, resumed=prepared.outcome == "resume", health=health)
+        last = prepared.last_tick
+        return LiveGame(trial_meta(loaded, participant, row), loaded, trial_engine(loaded, row, last),
+                        self.deps, resumed=prepared.outcome == "resume", health=health,
+                        round_seconds=(last.round_seconds or 0.0) if last is not None else 0.0)
 
     def detach(self, game: LiveGame, conn: Connection) -> None:
         if not game.detach(conn) or game.finished:

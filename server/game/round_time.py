@@ -3,7 +3,9 @@
 to do (the nudge after ``timing.idle_nudge_seconds``). Time comes from an injected :class:`~server.game.clock.Clock`.
 
 - The limit counts connected time only: while nobody is connected the world is paused and the reconnect grace
-  window applies instead. A round resumed after a server restart counts from its resumption.
+  window applies instead. A round resumed from the store (after a restart, or by another process) goes on
+  from the seconds stored with its last tick (``spent_s``; rounds stored before those were kept count from their
+  resumption).
 - An idle stretch starts when the cook has nothing to do (no task, no key waiting) and ends with the
   participant's next accepted choice or key; one nudge is due per stretch, ``idle_nudge_seconds`` into it
   (counted again from a reconnection).
@@ -15,9 +17,9 @@ from server.game.clock import Clock
 
 
 class RoundTime:
-    def __init__(self, clock: Clock, limit_s: float | None, nudge_s: float) -> None:
+    def __init__(self, clock: Clock, limit_s: float | None, nudge_s: float, spent_s: float = 0.0) -> None:
         self.clock, self.limit_s, self.nudge_s = clock, limit_s, nudge_s
-        self._spent = 0.0
+        self._spent = spent_s
         self._since: float | None = None
         self._idle_from: float | None = None
         self._nudged = False

@@ -1,6 +1,6 @@
 """A reconnection racing the end of its trial does not start the trial again: ``prepare_trial`` checks the step
 against the participant's progress in its own transaction, and a reconnection arriving while the trial's end is
-being stored waits for it."""
+being stored waits for it; a round resumed from the store keeps the wall-clock time it has already run."""
 
 from __future__ import annotations
 
@@ -9,8 +9,9 @@ import threading
 from typing import Any
 
 import pytest
-from steakhouse_testing import Player, write_study
+from steakhouse_testing import ManualClock, Player, ThreadServer, eventually, play_until, write_study
 
+from server.app import create_app
 from server.flow import service
 from server.flow.progress import Move, Phase
 from server.game import registry
@@ -95,3 +96,49 @@ def test_a_reconnection_while_the_trial_is_being_stored_as_ended_does_not_resume
     reply = asyncio.run(scenario())
     assert reply["type"] == "error" and reply["code"] == "no_trial"
     assert order == ["prepare", "end stored", "prepare"]
+
+
+def test_a_round_resumed_by_a_restarted_server_keeps_its_time_limit(live_server, make_settings, study_file) -> None:
+    """The waiting clock's wall-clock limit counts the seconds already played: after 12 of its 20 s on one server,
+    the round resumed on a restarted one ends at the limit 9 s later (and its ticks go on counting from 12 s), not
+    after another 20."""
+    study = study_file(timing={"mode": "wait_for_participant", "tick_rate_hz": 30, "max_round_seconds": 20,
+                               "idle_nudge_seconds": 1000}, world={"orders": 4, "horizon": 400})
+    before, after = ManualClock(), ManualClock()
+
+    def stored_seconds(server: ThreadServer, trial_id: int) -> float:
+        with server.services.store.transaction() as session:
+            return max((t.round_seconds or 0.0) for t in trials.ticks(session, trial_id))
+
+    with ThreadServer(create_app(make_settings([study]), clock=before)) as first:
+        async def play_a_while() -> tuple[str, int]:
+            player = Player(first.url)
+            await player.ready()
+            sock = await player.socket()
+            hello = await sock.recv()
+            await play_until(sock, 3)
+            before.advance(12.0)
+            await play_until(sock, 6)
+            await sock.close()
+            await player.close()
+            return player.token, hello["trial"]["id"]
+
+        token, trial_id = asyncio.run(play_a_while())
+        eventually(lambda: stored_seconds(first, trial_id), lambda s: s >= 12.0)
+    second = live_server([study], clock=after)
+
+    async def resume() -> tuple[dict[str, Any], dict[str, Any]]:
+        player = Player(second.url)
+        player.token = token  # the same participant's browser, on the restarted server
+        sock = await player.socket()
+        hello = await sock.recv()
+        after.advance(9.0)
+        end = await sock.until(lambda m: m["type"] == "trial_end")
+        await sock.close()
+        await player.close()
+        return hello, end
+
+    hello, end = asyncio.run(resume())
+    assert hello["resumed"] is True and hello["trial"]["id"] == trial_id
+    assert end["reason"] == "time_limit"
+    assert stored_seconds(second, trial_id) >= 12.0
