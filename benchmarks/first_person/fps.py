@@ -58,7 +58,10 @@ def write_study(folder: Path, fov: float) -> Path:
 def walk_and_count(page: Any, seconds: float, tick_s: float) -> tuple[int, float]:
     """Walk the cook for ``seconds``; returns (frames drawn, seconds elapsed) over the walk."""
     layout = load_layout(KITCHEN)
-    frames = lambda: int(page.eval_on_selector("#kitchen", "el => el.dataset.frames"))  # noqa: E731
+
+    def frames() -> int:
+        return int(page.eval_on_selector("#kitchen", "el => el.dataset.frames"))
+
     start_frames, start = frames(), time.monotonic()
     while time.monotonic() - start < seconds:
         x, y, facing = page.eval_on_selector("#kitchen", "el => el.dataset.you").split(",")

@@ -18,7 +18,7 @@ import time
 import uuid
 from collections.abc import Iterator
 from pathlib import Path
-from typing import Any
+from typing import Any, BinaryIO
 
 import httpx
 
@@ -70,6 +70,7 @@ class BenchServer:
                     "STEAKHOUSE_JOIN_RATE_PER_MINUTE": "0", "PYTHONPATH": str(REPO), **(env or {})}
         self.log = log
         self.process: subprocess.Popen[bytes] | None = None
+        self._out: BinaryIO | None = None
 
     def __enter__(self) -> BenchServer:
         self._out = open(self.log, "ab")
@@ -105,7 +106,7 @@ class BenchServer:
             except subprocess.TimeoutExpired:
                 process.kill()
                 process.wait(timeout=10)
-        out = getattr(self, "_out", None)
+        out = self._out
         if out is not None:
             out.close()
             self._out = None

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import contextlib
 import json
 import tempfile
 import threading
@@ -20,13 +21,15 @@ import time
 from collections import Counter
 from pathlib import Path
 from typing import Any
+from unittest.mock import patch
 
 import httpx
 import uvicorn
 import yaml
+from pydantic import SecretStr
 from websockets.asyncio.client import connect
 
-import server.game.live as live
+import server.game.link as link
 from server.app import create_app
 from server.game.budget import EventBudget
 from server.settings import Settings
@@ -62,9 +65,15 @@ def measure(seconds: float, budget: bool, folder: Path) -> dict[str, Any]:
     study = folder / "flood.yaml"
     study.write_text(yaml.safe_dump(STUDY), encoding="utf-8")
     settings = Settings(database_url=f"sqlite:///{folder / ('budget' if budget else 'unlimited')}.sqlite3",
-                        study_files=(study,), robot_workers=0, admin_token="bench", flush_interval_s=0.2,
+                        study_files=(study,), robot_workers=0, admin_token=SecretStr("bench"), flush_interval_s=0.2,
                         static_dir=folder / "no-static", join_rate_per_minute=0)
-    live.EventBudget = EventBudget if budget else (lambda: EventBudget(rate=1e12, burst=10**12))
+    # The participant's link makes its budget as the game starts; lifted, the server is as it was before it had one.
+    lifted = patch.object(link, "EventBudget", lambda: EventBudget(rate=1e12, burst=10**12))
+    with contextlib.nullcontext() if budget else lifted:
+        return run_flood(settings, seconds, budget)
+
+
+def run_flood(settings: Settings, seconds: float, budget: bool) -> dict[str, Any]:
     app = create_app(settings)
     server = uvicorn.Server(uvicorn.Config(app, host="127.0.0.1", port=0, log_level="error", lifespan="on"))
     thread = threading.Thread(target=server.run, daemon=True)

@@ -93,8 +93,9 @@ def run_one(job: tuple[str, str, int]) -> tuple[str, str, list[list[float | None
         robot = worlds[a].robot
         extra = b - a - 1 - to_serve.get((robot.pos, robot.facing), UNREACHABLE)
         share = sum(f.seen for f in frames[a:b]) / (b - a)  # the trip as played is one walk within its extra ticks
-        trips.append([share] + [bound(best_share(layout, worlds, frames, a, d), share if extra <= d else None)
-                                for d in DETOURS])
+        bounds: list[float | None] = [bound(best_share(layout, worlds, frames, a, d), share if extra <= d else None)
+                                      for d in DETOURS]
+        trips.append([share, *bounds])
     return kitchen, robot_name, trips
 
 

@@ -17,9 +17,17 @@ import os
 import subprocess
 import sys
 import time
+from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:  # the planner itself is imported in the worker, from whichever checkout it measures
+    from planner.decision import Decision, Robot
+    from planner.events import Event
+    from planner.kb import KnowledgeBase
+    from planner.state import WorldState
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -28,15 +36,16 @@ class Timed:
     """A robot whose every decision's CPU time (``time.thread_time``: what the decision costs one core, whatever
     else the machine runs) and wall time are kept."""
 
-    def __init__(self, robot) -> None:  # type: ignore[no-untyped-def]
+    def __init__(self, robot: Robot) -> None:
         self.robot = robot
         self.cpu_ms: list[float] = []
         self.wall_ms: list[float] = []
 
-    def reset(self, world) -> None:  # type: ignore[no-untyped-def]
-        self.robot.reset(world)
+    def reset(self, world: WorldState, kb: KnowledgeBase | None = None) -> None:
+        self.robot.reset(world, kb)
 
-    def decide(self, world, events, rng, deadline=None):  # type: ignore[no-untyped-def]
+    def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,
+               deadline: float | None = None) -> Decision:
         cpu, wall = time.thread_time(), time.perf_counter()
         decision = self.robot.decide(world, events, rng, deadline)
         self.cpu_ms.append((time.thread_time() - cpu) * 1000)

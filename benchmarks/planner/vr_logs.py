@@ -164,7 +164,8 @@ class Source:
             text = shown.stdout
         else:
             text = (self.path / LOG_DIR / name).read_text(encoding="utf-8")
-        return json.loads(text)
+        parsed: dict[str, Any] = json.loads(text)
+        return parsed
 
 
 def table(results: dict[tuple[str, str, float], Behaviours], files: dict[tuple[str, str], int]) -> str:

@@ -20,6 +20,7 @@ import argparse
 import tempfile
 import time
 from collections.abc import Callable, Sequence
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -52,8 +53,8 @@ def reference_pvalues(values: np.ndarray, levels: Sequence[int], within: Sequenc
                 p[s, t] = float(anova_table(sample[:, cols], [test.contrast.shape[1] + 1], [test.family])
                                 ["p_read"].iloc[0])
     for family in {t.family for t in tests if t.kind == "simple"}:
-        cols = [i for i, t in enumerate(tests) if t.kind == "simple" and t.family == family]
-        p[:, cols] = holm_matrix(p[:, cols])
+        simple = [i for i, t in enumerate(tests) if t.kind == "simple" and t.family == family]
+        p[:, simple] = holm_matrix(p[:, simple])
     return p
 
 
@@ -93,8 +94,8 @@ def main() -> None:
             tests = planned_tests(data.within, data.levels)
             for n in ns:
                 sample = data.values[np.random.default_rng([i, n]).integers(len(data.values), size=(k, n))]
-                ref, _, c_ref = timed(lambda s=sample, c=counts, w=data.within, t=tests: reference_pvalues(s, c, w, t))
-                new, _, c_new = timed(lambda s=sample, t=tests: sample_pvalues(s, t))
+                ref, _, c_ref = timed(partial(reference_pvalues, sample, counts, data.within, tests))
+                new, _, c_new = timed(partial(sample_pvalues, sample, tests))
                 ref_cpu, new_cpu = ref_cpu + c_ref, new_cpu + c_new
                 same &= bool(np.allclose(ref, new, rtol=1e-9, atol=1e-12, equal_nan=True))
         scale = args.simulations / k

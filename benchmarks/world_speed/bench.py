@@ -14,9 +14,10 @@ import random
 import statistics
 import sys
 import time
+from collections.abc import Callable
 
 
-def ours_runner(layout_name: str, seed: int):
+def ours_runner(layout_name: str, seed: int) -> Callable[[int], None]:
     import numpy as np
 
     from planner.fov import view
@@ -32,11 +33,11 @@ def ours_runner(layout_name: str, seed: int):
     layout = load_layout(layout_name)
     rules = Rules()
     rng = np.random.default_rng(seed)
-    state = {"world": initial_state(layout, rules)}
-    state["kb"] = initial_kb(state["world"])
+    world = initial_state(layout, rules)
+    kb = initial_kb(world)
 
     def run(steps: int) -> None:
-        world, kb = state["world"], state["kb"]
+        nonlocal world, kb  # each run goes on from where the last one left the world and the KB
         picks = rng.integers(len(ACTIONS), size=(steps, 2))
         for h, r in picks:
             world, events = step(layout, world, {"human": ACTIONS[h], "robot": ACTIONS[r]}, rules)
@@ -47,12 +48,11 @@ def ours_runner(layout_name: str, seed: int):
             if is_done(world, rules):
                 world = initial_state(layout, rules)
                 kb = initial_kb(world)
-        state["world"], state["kb"] = world, kb
 
     return run
 
 
-def theirs_runner(seed: int):
+def theirs_runner(seed: int) -> Callable[[int], None]:
     from overcooked_ai_py.mdp.actions import Action
     from overcooked_ai_py.mdp.overcooked_env import OvercookedEnv
     from overcooked_ai_py.mdp.overcooked_mdp import OvercookedGridworld
@@ -72,7 +72,7 @@ def theirs_runner(seed: int):
     return run
 
 
-def rate(run, steps: int) -> float:
+def rate(run: Callable[[int], None], steps: int) -> float:
     start = time.perf_counter()
     run(steps)
     return steps / (time.perf_counter() - start)
