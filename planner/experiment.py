@@ -25,7 +25,8 @@ from planner.rules import Rules
 
 COLUMNS = ("layout", "robot", "seed", "ticks", "finished", "reward", "kb_gap_mean", "kb_gap_ticks_pct",
            "robot_in_fov_pct", "decision_ms_p50", "decision_ms_p99", "holdings", "shown", "trips",
-           "trip_share_sum", "robot_gap_pct", "gap_lag_pct", "gap_unseen_pct", "gap_stale_pct")
+           "trip_share_sum", "robot_gap_pct", "gap_lag_pct", "gap_unseen_pct", "gap_stale_pct",
+           "robot_place_cells", "robot_place_wrong_pct")
 GAP_PARTS = ("lag", "unseen", "stale")
 """The robot gap's parts (:func:`planner.behaviours.hands_gap`), % of ticks: they sum to ``robot_gap_pct``."""
 
@@ -64,11 +65,14 @@ def run_spec(spec: TrialSpec) -> dict[str, object]:
 
 
 def behaviour_columns(result: TrialResult) -> dict[str, object]:
-    """The columns of the paper's robot behaviours and the robot gap's parts of one trial."""
+    """The columns of the paper's robot behaviours and the robot gap's parts of one trial, and where the person's KB
+    places the robot (how many cells off, on average; % of ticks elsewhere)."""
     b, hands = result.behaviours, result.hands
     return {"holdings": b.holdings, "shown": b.shown, "trips": b.trips, "trip_share_sum": round(b.trip_share_sum, 4),
             "robot_gap_pct": round(result.gap_component_pct["robot_held"], 2),
-            **{f"gap_{part}_pct": round(100.0 * getattr(hands, part) / max(hands.ticks, 1), 2) for part in GAP_PARTS}}
+            **{f"gap_{part}_pct": round(100.0 * getattr(hands, part) / max(hands.ticks, 1), 2) for part in GAP_PARTS},
+            "robot_place_cells": round(result.robot_place_cells, 3),
+            "robot_place_wrong_pct": round(result.robot_place_wrong_pct, 2)}
 
 
 @dataclass(frozen=True, slots=True)
@@ -128,8 +132,9 @@ def behaviour_lines(rows: list[dict[str, Any]], robots: list[str], layouts: list
     lines = ["", "the paper's robot behaviours (docs/domain.md §6, \"Behaviours\"), pooled over seeds:",
              "  b1 = share of pickups shown kb_delay ticks in a row; b2 = mean share of a dish trip in the person's "
              "view;",
-             "  robot gap = % of ticks the person's KB is wrong about what the robot holds = lag + unseen + stale",
-             f"{'kitchen':<10}{'robot':<14}{'b1 shown':>14}{'b2 trip share':>20}   robot gap %"]
+             "  robot gap = % of ticks the person's KB is wrong about what the robot holds = lag + unseen + stale;",
+             "  robot off = how many cells from where it is the person's KB places the robot, on average",
+             f"{'kitchen':<10}{'robot':<14}{'b1 shown':>14}{'b2 trip share':>20}{'robot off':>11}   robot gap %"]
     for layout in layouts:
         for rb in robots:
             mine = [r for r in rows if r["robot"] == rb and r["layout"] == layout]
@@ -141,5 +146,6 @@ def behaviour_lines(rows: list[dict[str, Any]], robots: list[str], layouts: list
                   if trips else "-")
             parts = " + ".join(f"{statistics.mean(float(r[f'gap_{p}_pct']) for r in mine):.1f}" for p in GAP_PARTS)
             gap = statistics.mean(float(r["robot_gap_pct"]) for r in mine)
-            lines.append(f"{layout:<10}{rb:<14}{b1:>14}{b2:>20}   {gap:.1f} = {parts}")
+            off = statistics.mean(float(r["robot_place_cells"]) for r in mine)
+            lines.append(f"{layout:<10}{rb:<14}{b1:>14}{b2:>20}{off:>11.2f}   {gap:.1f} = {parts}")
     return lines

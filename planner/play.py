@@ -14,7 +14,7 @@ import numpy as np
 from planner.behaviours import Behaviours, Frame, HandsGap, frame_of, hands_gap, measure
 from planner.decision import Robot
 from planner.events import Event
-from planner.geometry import Action
+from planner.geometry import Action, manhattan
 from planner.human import HumanMemory, HumanModel
 from planner.kb import KnowledgeBase, initial_kb, update_kb
 from planner.layout import Layout
@@ -57,6 +57,10 @@ class TrialResult:
     """The paper's two robot behaviours in this trial (:mod:`planner.behaviours`)."""
     hands: HandsGap = field(default_factory=HandsGap)
     """The ticks the person's KB was wrong about the robot's hands, by why (:func:`planner.behaviours.hands_gap`)."""
+    robot_place_cells: float = 0.0
+    """Mean over ticks of how far (cells, Manhattan) the person's KB places the robot from where it is."""
+    robot_place_wrong_pct: float = 0.0
+    """% of ticks at which the person's KB places the robot elsewhere than where it is."""
 
     def to_dict(self) -> dict[str, object]:
         return {
@@ -85,7 +89,7 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
     partner: Robot = robot if robot is not None else SimulatedPartner(layout, rules)
     partner.reset(world)
     events: tuple[Event, ...] = ()
-    gap_ticks = gap_sum = in_fov = 0
+    gap_ticks = gap_sum = in_fov = place_cells = place_wrong = 0
     component_ticks = dict.fromkeys(GAP_COMPONENTS, 0)
     actions: list[tuple[Action, Action]] = []
     decision_ms: list[float] = []
@@ -112,6 +116,10 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
             component_ticks[name] += value
         frames.append(frame_of(layout, world, events, settings.angle))
         in_fov += frames[-1].seen
+        if kb.robot is not None:
+            off = manhattan(kb.robot.pos, world.robot.pos)
+            place_cells += off
+            place_wrong += off > 0
         if record:
             actions.append((h_action, r_action))
     ticks = max(world.tick, 1)
@@ -123,4 +131,5 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
         robot_in_fov_pct=100.0 * in_fov / ticks, final=world, actions=tuple(actions),
         decision_ms=tuple(decision_ms), timed_out=timed_out, cycles_broken=cycles_broken,
         behaviours=measure(frames, settings.kb_delay), hands=hands_gap(frames, settings.kb_delay),
+        robot_place_cells=place_cells / ticks, robot_place_wrong_pct=100.0 * place_wrong / ticks,
     )

@@ -4,10 +4,11 @@ For each robot × kitchen × seed, one simulated trial with the FOV-limited simu
 stream per seed for every robot, so trials are paired): behaviour 1 (a pickup shown to the person for
 ``kb_delay`` consecutive ticks), behaviour 2 (share of a dish trip's ticks in the person's view), the robot
 component of the KB gap (% of ticks the person's KB is wrong about what the robot holds; split into lag, unseen
-and stale, :func:`planner.behaviours.hands_gap`) and ticks (:mod:`planner.behaviours`). Kitchens: shipped ones by
-name (``--shipped``, default the paper's two study kitchens) and generated ones by generator seed
-(``--generator-seeds``; tune only on seeds < 1000, report on seeds ≥ 1000, as ``generated.py`` does). Rows are
-appended to ``OUT/trials.csv`` as trials finish.
+and stale, :func:`planner.behaviours.hands_gap`), where the KB places the robot (``place_cells``: how many cells
+from where it is, on average; ``place_wrong``: % of ticks elsewhere) and ticks (:mod:`planner.behaviours`).
+Kitchens: shipped ones by name (``--shipped``, default the paper's two study kitchens) and generated ones by
+generator seed (``--generator-seeds``; tune only on seeds < 1000, report on seeds ≥ 1000, as ``generated.py``
+does). Rows are appended to ``OUT/trials.csv`` as trials finish.
 
 Printed per group (each shipped kitchen; generated kitchens together) and robot: the pooled rates, then each
 robot against the baseline over paired seeds: mean difference of the per-trial values with a 95 % t interval
@@ -45,7 +46,8 @@ from planner.rules import Rules
 from study_config import load_layout
 
 COLUMNS = ("kitchen", "robot", "seed", "ticks", "finished", "holdings", "shown", "trips", "trip_share_sum",
-           "robot_gap_pct", "gap_lag_pct", "gap_unseen_pct", "gap_stale_pct", "kb_gap_mean")
+           "robot_gap_pct", "gap_lag_pct", "gap_unseen_pct", "gap_stale_pct", "robot_place_cells",
+           "robot_place_wrong_pct", "kb_gap_mean")
 
 
 @dataclass(frozen=True, slots=True)
@@ -94,9 +96,11 @@ def trial_values(row: dict[str, Any]) -> dict[str, float | None]:
     holdings, trips = int(row["holdings"]), int(row["trips"])
     parts = {f"gap_{part}": float(row[f"gap_{part}_pct"]) if row.get(f"gap_{part}_pct") else None
              for part in GAP_PARTS}
+    place = {name: float(row[column]) if row.get(column) else None
+             for name, column in (("place_cells", "robot_place_cells"), ("place_wrong", "robot_place_wrong_pct"))}
     return {"b1": int(row["shown"]) / holdings if holdings else None,
             "b2": float(row["trip_share_sum"]) / trips if trips else None,
-            "robot_gap": float(row["robot_gap_pct"]), **parts, "ticks": float(row["ticks"])}
+            "robot_gap": float(row["robot_gap_pct"]), **parts, **place, "ticks": float(row["ticks"])}
 
 
 def paired(a: list[float], b: list[float]) -> str:
@@ -153,7 +157,8 @@ def table(rows: list[dict[str, Any]]) -> str:
             if not keys:
                 continue
             lines.append(f"  {robot} − baseline (paired per kitchen × seed, mean [95% CI]):")
-            for measure_name in ("b1", "b2", "robot_gap", *(f"gap_{part}" for part in GAP_PARTS), "ticks"):
+            for measure_name in ("b1", "b2", "robot_gap", *(f"gap_{part}" for part in GAP_PARTS), "place_cells",
+                                 "place_wrong", "ticks"):
                 pairs = [(values[k][measure_name], base[k][measure_name]) for k in keys
                          if values[k][measure_name] is not None and base[k][measure_name] is not None]
                 if not pairs:

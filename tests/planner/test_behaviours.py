@@ -71,3 +71,11 @@ def test_the_hands_gap_counts_what_the_kb_counts_in_a_simulated_trial():
         played.append(frame_of(layout, world, events, FOV_ANGLE))
     assert hands_gap(played, KB_DELAY) == gap and measure(played, KB_DELAY) == result.behaviours
     assert result.behaviours.holdings > 0
+
+
+def test_where_the_kb_places_the_robot_is_measured_against_where_it_is():
+    layout = load_layout("none_3")
+    omniscient = run_trial(layout, 1, TrialSettings(360.0, 0, Rules()))
+    assert (omniscient.robot_place_cells, omniscient.robot_place_wrong_pct) == (0.0, 0.0)
+    limited = run_trial(layout, 1, TrialSettings(FOV_ANGLE, KB_DELAY, Rules()))
+    assert limited.robot_place_cells > 0 and 0 < limited.robot_place_wrong_pct < 100
