@@ -35,14 +35,17 @@ from typing import Any
 import numpy as np
 from scipy import stats
 
+from planner.behaviours import Frame, frame_of
 from planner.experiment import GAP_PARTS, behaviour_columns
 from planner.layout import Layout
 from planner.layout_gen import generate_named
 from planner.perception import FOV_ANGLE, KB_DELAY
 from planner.planner_config import PlannerConfig
-from planner.play import TrialSettings, run_trial
+from planner.play import TrialResult, TrialSettings, run_trial
 from planner.robots import make_robot
 from planner.rules import Rules
+from planner.state import WorldState, initial_state
+from planner.step import step
 from study_config import load_layout
 
 COLUMNS = ("kitchen", "robot", "seed", "ticks", "finished", "holdings", "shown", "trips", "trip_share_sum",
@@ -88,6 +91,49 @@ def run_one(spec: Spec) -> dict[str, object]:
 def seed_range(text: str) -> range:
     low, _, high = text.partition("-")
     return range(int(low), int(high or low) + 1)
+
+
+def trial_arguments(parser: argparse.ArgumentParser, robots: str) -> None:
+    """The trials a benchmark of this folder plays: kitchens, seeds, robots and worker processes."""
+    parser.add_argument("--shipped", default="none_3,mid_2", help="shipped kitchens, comma separated ('' for none)")
+    parser.add_argument("--generator-seeds", default="", help="generated kitchens, e.g. 1000-1019 (tune on < 1000)")
+    parser.add_argument("--seeds", type=int, default=30, help="simulation seeds 0..N-1 per kitchen")
+    parser.add_argument("--robots", default=robots)
+    parser.add_argument("--jobs", type=int, default=2)
+
+
+def kitchens_of(args: argparse.Namespace) -> list[str]:
+    """The kitchens :func:`trial_arguments` named: shipped ones by name, generated ones as ``gen_<seed>``."""
+    kitchens = [k for k in args.shipped.split(",") if k]
+    if args.generator_seeds:
+        kitchens += [f"gen_{s}" for s in seed_range(args.generator_seeds)]
+    return kitchens
+
+
+@dataclass(frozen=True, slots=True)
+class Replayed:
+    """One trial as played, tick by tick: ``worlds[i]`` the world after tick ``i + 1``, ``frames[i]`` its frame."""
+
+    layout: Layout
+    result: TrialResult
+    worlds: list[WorldState]
+    frames: list[Frame]
+
+
+def replayed(kitchen: str, robot_name: str, seed: int) -> Replayed:
+    """A trial of ``robot_name`` (the default planner) with the simulated person, and its worlds replayed."""
+    layout = kitchen_layout(kitchen)
+    rules = Rules()
+    result = run_trial(layout, seed, TrialSettings(rules=rules),
+                       robot=make_robot(robot_name, layout, rules, config_of(())), record=True)
+    world = initial_state(layout, rules)
+    worlds: list[WorldState] = []
+    frames: list[Frame] = []
+    for h_action, r_action in result.actions:
+        world, events = step(layout, world, {"human": h_action, "robot": r_action}, rules)
+        worlds.append(world)
+        frames.append(frame_of(layout, world, events, FOV_ANGLE))
+    return Replayed(layout, result, worlds, frames)
 
 
 def trial_values(row: dict[str, Any]) -> dict[str, float | None]:
@@ -180,13 +226,9 @@ def read_rows(path: Path) -> list[dict[str, Any]]:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--shipped", default="none_3,mid_2", help="shipped kitchens, comma separated ('' for none)")
-    parser.add_argument("--generator-seeds", default="", help="generated kitchens, e.g. 1000-1019 (tune on < 1000)")
-    parser.add_argument("--seeds", type=int, default=30, help="simulation seeds 0..N-1 per kitchen")
-    parser.add_argument("--robots", default="fov_aware,baseline")
+    trial_arguments(parser, "fov_aware,baseline")
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                         help="a PlannerConfig field for every robot (repeatable)")
-    parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--out", required=True, type=Path)
     parser.add_argument("--table-only", action="store_true")
     args = parser.parse_args(argv)
@@ -199,9 +241,7 @@ def main(argv: list[str] | None = None) -> int:
         overrides.append((name, value))
     csv_path = args.out / "trials.csv"
     if not args.table_only:
-        kitchens = [k for k in args.shipped.split(",") if k]
-        if args.generator_seeds:
-            kitchens += [f"gen_{s}" for s in seed_range(args.generator_seeds)]
+        kitchens = kitchens_of(args)
         done = ({(r["kitchen"], r["robot"], int(r["seed"])) for r in read_rows(csv_path)}
                 if csv_path.exists() else set())
         specs = [Spec(k, r, s, tuple(overrides)) for s in range(args.seeds) for k in kitchens

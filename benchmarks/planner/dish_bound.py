@@ -28,19 +28,15 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from behaviours import config_of, kitchen_layout, seed_range
+from behaviours import kitchens_of, replayed, trial_arguments
 
-from planner.behaviours import Frame, frame_of, holdings
+from planner.behaviours import Frame, holdings
 from planner.dish_walk import dish_walk, walk_seen
 from planner.layout import Layout
 from planner.objects import DISH, STEAK_PLATE
 from planner.paths import UNREACHABLE, Pose, nearest_distances
 from planner.perception import FOV_ANGLE
-from planner.play import TrialSettings, run_trial
-from planner.robots import make_robot
-from planner.rules import Rules
-from planner.state import WorldState, initial_state
-from planner.step import step
+from planner.state import WorldState
 
 DETOURS = (0, 2, 4, 6)
 
@@ -74,17 +70,8 @@ def run_one(job: tuple[str, str, int]) -> tuple[str, str, list[list[float | None
     """Per dish trip of one trial (as :func:`planner.behaviours.measure` counts them): the share seen, then the
     bound per detour of :data:`DETOURS` (``None``: no walk within that detour, neither the trip as played)."""
     kitchen, robot_name, seed = job
-    layout = kitchen_layout(kitchen)
-    rules = Rules()
-    result = run_trial(layout, seed, TrialSettings(rules=rules),
-                       robot=make_robot(robot_name, layout, rules, config_of(())), record=True)
-    world = initial_state(layout, rules)
-    worlds: list[WorldState] = []
-    frames: list[Frame] = []
-    for h_action, r_action in result.actions:
-        world, events = step(layout, world, {"human": h_action, "robot": r_action}, rules)
-        worlds.append(world)
-        frames.append(frame_of(layout, world, events, FOV_ANGLE))
+    trial = replayed(kitchen, robot_name, seed)
+    layout, worlds, frames = trial.layout, trial.worlds, trial.frames
     to_serve = nearest_distances(layout, layout.serves)
     trips: list[list[float | None]] = []
     for a, b in holdings(frames):
@@ -101,15 +88,9 @@ def run_one(job: tuple[str, str, int]) -> tuple[str, str, list[list[float | None
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--shipped", default="none_3,mid_2", help="shipped kitchens, comma separated ('' for none)")
-    parser.add_argument("--generator-seeds", default="", help="generated kitchens, e.g. 0-29")
-    parser.add_argument("--seeds", type=int, default=30, help="simulation seeds 0..N-1 per kitchen")
-    parser.add_argument("--robots", default="baseline,fov_aware")
-    parser.add_argument("--jobs", type=int, default=2)
+    trial_arguments(parser, "baseline,fov_aware")
     args = parser.parse_args(argv)
-    kitchens = [k for k in args.shipped.split(",") if k]
-    if args.generator_seeds:
-        kitchens += [f"gen_{s}" for s in seed_range(args.generator_seeds)]
+    kitchens = kitchens_of(args)
     if not kitchens:
         parser.error("no kitchens: give --shipped or --generator-seeds")
     jobs = [(k, r, s) for k in kitchens for r in args.robots.split(",") for s in range(args.seeds)]
