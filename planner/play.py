@@ -89,7 +89,7 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
     partner: Robot = robot if robot is not None else SimulatedPartner(layout, rules)
     partner.reset(world)
     events: tuple[Event, ...] = ()
-    gap_ticks = gap_sum = in_fov = place_cells = place_wrong = 0
+    gap_ticks = gap_sum = place_cells = place_wrong = 0
     component_ticks = dict.fromkeys(GAP_COMPONENTS, 0)
     actions: list[tuple[Action, Action]] = []
     decision_ms: list[float] = []
@@ -115,7 +115,6 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
         for name, value in gaps.items():
             component_ticks[name] += value
         frames.append(frame_of(layout, world, events, settings.angle))
-        in_fov += frames[-1].seen
         if kb.robot is not None:
             off = manhattan(kb.robot.pos, world.robot.pos)
             place_cells += off
@@ -128,7 +127,7 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
         delivered=rules.orders - world.orders_left, score=world.score,
         kb_gap_mean=gap_sum / ticks, kb_gap_ticks_pct=100.0 * gap_ticks / ticks,
         gap_component_pct={k: 100.0 * v / ticks for k, v in component_ticks.items()},
-        robot_in_fov_pct=100.0 * in_fov / ticks, final=world, actions=tuple(actions),
+        robot_in_fov_pct=100.0 * sum(f.seen for f in frames) / ticks, final=world, actions=tuple(actions),
         decision_ms=tuple(decision_ms), timed_out=timed_out, cycles_broken=cycles_broken,
         behaviours=measure(frames, settings.kb_delay), hands=hands_gap(frames, settings.kb_delay),
         robot_place_cells=place_cells / ticks, robot_place_wrong_pct=100.0 * place_wrong / ticks,

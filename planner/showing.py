@@ -15,7 +15,7 @@ from planner.geometry import Action, Direction, Pos
 from planner.kb import ROBOT_KEY, KnowledgeBase
 from planner.layout import Layout
 from planner.objects import DISH, STEAK_PLATE
-from planner.paths import distance
+from planner.paths import UNREACHABLE, nearest_distances
 from planner.planner_config import PlannerConfig
 from planner.state import WorldState
 from planner.subtasks import Subtask
@@ -85,8 +85,8 @@ class Showing:
 
     def shortest_to_serve(self, world: WorldState) -> int:
         """The ticks of the robot's shortest way to deliver at a serving counter from where it stands."""
-        pose = (world.robot.pos, world.robot.facing)
-        return min(distance(self.layout, pose, c) for c in self.layout.serves)
+        return nearest_distances(self.layout, self.layout.serves).get((world.robot.pos, world.robot.facing),
+                                                                      UNREACHABLE)
 
     def keep(self, rest: tuple[Action, ...], world: WorldState) -> None:
         """Follow ``rest`` from the next tick while the person stays as they are in ``world``."""

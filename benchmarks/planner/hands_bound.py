@@ -41,7 +41,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from behaviours import kitchens_of, replayed, trial_arguments
 
-from planner.behaviours import Frame, hands_gap
+from planner.behaviours import Frame
 from planner.fov import view
 from planner.geometry import Action, Pos
 from planner.layout import Layout
@@ -91,10 +91,10 @@ def earliest_acknowledgement(layout: Layout, worlds: Sequence[WorldState], start
         nxt: dict[Pose, set[int]] = {}
         for pose, streaks in layer.items():
             if station is not None:  # an interact: it stays, facing the station
-                moves: tuple[tuple[object, Pose], ...] = ((None, pose),) if tables[station].get(pose) == 0 else ()
+                nexts = [pose] if tables[station].get(pose) == 0 else []
             else:
-                moves = successors[pose]
-            for _, q in moves:
+                nexts = [q for _, q in successors[pose]]
+            for q in nexts:
                 if (q[0] != pose[0] and q[0] == person) or not in_time(q, at):
                     continue
                 now = seen(q, at)
@@ -138,7 +138,7 @@ def run_one(job: tuple[str, str, int]) -> tuple[str, str, list[float]]:
     trial = replayed(kitchen, robot_name, seed)
     layout, result, worlds, frames = trial.layout, trial.result, trial.worlds, trial.frames
     ticks = max(len(frames), 1)
-    played = hands_gap(frames, KB_DELAY)
+    played = result.hands
     spans = legs_of(frames)
     # the robot's interacts: at frame t it stood, facing the station, where it stood at frame t - 1
     interacts = {t: worlds[t].robot.facing.ahead(worlds[t].robot.pos)
