@@ -56,7 +56,12 @@ class PlannerConfig:
     an extra tick only for at least this much more of the dish trip's share in the person's view (0.05: five
     points; at 0.02 the team was 1.4 points of ticks slower on the tuning kitchens, docs/domain.md §5). Tuned
     on generated kitchens of generator seeds 0–29 only. (With ``reuse_rollouts`` the kept rollouts carry no
-    knowing value, so the direct move is scored without it: not measured.)"""
+    knowing value, so the direct move is scored without it: not measured.)
+    ``hands_walk``: while the modelled KB is wrong about what the robot holds, the robot walks to its station by
+    the hands walk (:mod:`planner.hands_walk`), planned on the person's predicted views, instead of the show plan
+    scored by the rollouts; an extra tick must save at least ``hands_price`` expected ticks of that KB being
+    wrong. Beside the predicted poses, a person who has stood in one cell ``n`` ticks keeps their pose with weight
+    ``n / (n + hands_still)``: the robot's model of what they do next can be wrong, and standing is telling."""
 
     human_angle: float = FOV_ANGLE
     human_delay: int = KB_DELAY
@@ -96,6 +101,9 @@ class PlannerConfig:
     view_detour: int = 4
     wrong_hands: float = 0.0
     walk_price: float = 0.05
+    hands_walk: bool = True
+    hands_price: float = 0.5
+    hands_still: float = 2.0
 
     def __post_init__(self) -> None:
         if self.lookahead not in LOOKAHEADS:

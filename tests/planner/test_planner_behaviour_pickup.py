@@ -1,7 +1,10 @@
 """Behaviour 1 of the paper (§VI-C; docs/domain.md §6, "Behaviours") in a small hand-made kitchen: the robot
 takes meat from the crate behind the person, who chops a slow onion at the board facing the wall, so the robot
-can be seen only on the cells left and right of them. The FOV-aware robot steps beside the person on its way
-to the grill and stays there until the person can acknowledge the meat (``kb_delay`` consecutive ticks); the
+can be seen only on the cells left and right of them. The FOV-aware robot (the default planner: the hands walk,
+docs/domain.md §5) steps beside the person on its way to the grill and stays there until the person can
+acknowledge the meat (``kb_delay`` consecutive ticks). Its model of the person expects them to walk off for meat
+or a plate; that they keep standing at the board is what the hands walk's hypothesis of a person who keeps their
+pose brings in (without it the robot waits in the wrong place, then goes unseen); the
 baseline, whose person sees everything, walks the shortest way along the top row, unseen. Checked for several
 planner seeds and with the measure the benchmark uses (:func:`planner.behaviours.measure`)."""
 

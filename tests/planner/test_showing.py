@@ -80,3 +80,19 @@ def test_the_dish_trips_ticks_in_the_persons_view_are_counted_until_the_dish_is_
     assert showing.trip_seen == (2, 3)
     showing.observe(world_with(None, robot_pos=(2, 3)))
     assert showing.trip_seen == (0, 0)
+
+
+def test_a_legs_detour_runs_down_with_its_extra_ticks_and_restarts_with_new_hands_or_cells():
+    """The hands walk's leg (:meth:`planner.showing.Showing.leg_budget`): ``view_detour + kb_delay − 1`` extra ticks
+    in all; a tick spent without coming closer uses one, a tick that comes closer none; other hands or another
+    station start a new leg."""
+    showing = Showing(LAYOUT, PlannerConfig())
+    full = PlannerConfig().view_detour + PlannerConfig().human_delay - 1
+    grill = ((6, 4),)
+    world = world_with(MEAT)
+    assert showing.leg_budget(world, grill, 7) == full
+    assert showing.leg_budget(replace(world, tick=1), grill, 7) == full - 1  # stayed: no closer
+    assert showing.leg_budget(replace(world, tick=2), grill, 6) == full - 1  # one tick closer
+    assert showing.leg_budget(replace(world, tick=20), grill, 6) == 0  # never below nothing
+    assert showing.leg_budget(replace(world_with(None), tick=20), grill, 6) == full  # empty hands: a new leg
+    assert showing.leg_budget(replace(world_with(None), tick=21), ((3, 4),), 3) == full  # another station

@@ -1,0 +1,70 @@
+"""The hands walk: the robot's way to its next station planned so that the person comes to know what it holds
+(behaviour 1, and the robot gap), on the person's predicted views (docs/domain.md §5, "The person's knowing").
+
+While the modelled KB is wrong about the robot's hands (a load the person has not acknowledged, or empty hands
+after a put-down they did not see), the robot takes, among all walks to a cell facing one of ``cells`` at most
+``budget`` ticks longer than the shortest (stays included, so waiting in view, at the station too, is one such
+walk), the one with the fewest expected ticks at which the person's KB is still wrong about its hands, plus
+``price`` per extra tick. The person acknowledges the robot's hands at the tick it has stood ``need`` consecutive
+ticks in their view (docs/domain.md §3); their view at each coming tick is predicted, one sequence of poses per
+hypothesis of what they are doing, weighted by its probability (:meth:`planner.qmdp.QmdpRobot.predicted_worlds`).
+Unlike the dish walk's expected share (:mod:`planner.dish_walk`), an acknowledgement needs consecutive ticks
+under one hypothesis, so the programme keeps each hypothesis's streak: a pure dynamic programme over (tick, pose,
+streaks), the walk never stepping into the cell where the most likely hypothesis puts the person at that tick.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from planner.dish_walk import Future
+from planner.fov import view
+from planner.geometry import Action, Pos
+from planner.layout import Layout
+from planner.paths import UNREACHABLE, Pose, nearest_distances, tick_successors
+
+_State = tuple[Pose, tuple[int, ...]]
+_Layer = dict[_State, tuple[float, tuple[Action, ...]]]
+
+
+def hands_walk(layout: Layout, angle: float, pose: Pose, cells: tuple[Pos, ...], futures: Sequence[Future],
+               need: int, run: int, budget: int, price: float) -> tuple[Action, ...]:
+    """The best walk from ``pose`` to stand facing one of ``cells``: its moves and stays, without the interact
+    that follows. ``run``: the ticks the robot has already stood in the person's view holding what it holds now
+    (its streak in the modelled KB). Empty when the robot already stands there, none of ``cells`` can be reached
+    or there is no prediction."""
+    to_target = nearest_distances(layout, cells)
+    shortest = to_target.get(pose, UNREACHABLE)
+    if not futures or shortest == 0 or shortest >= UNREACHABLE:
+        return ()
+    last = shortest + max(budget, 0)
+    total = sum(p for p, _ in futures) or 1.0
+    weights = [p / total for p, _ in futures]
+    views = [[view(layout, *poses[min(t, len(poses) - 1)], angle).cells if poses else frozenset()
+              for t in range(last)] for _, poses in futures]
+    likeliest = max(futures, key=lambda f: f[0])[1]
+    person = [likeliest[min(t, len(likeliest) - 1)][0] if likeliest else None for t in range(last)]
+    successors = tick_successors(layout)
+    layer: _Layer = {(pose, tuple(min(run, need) for _ in futures)): (0.0, ())}
+    best: tuple[float, int, tuple[Action, ...]] | None = None
+    for frame in range(last + 1):
+        for (p, _), (cost, plan) in layer.items():
+            if frame and to_target.get(p) == 0:
+                extra = frame - shortest
+                key = (cost + price * extra, extra, plan)
+                if best is None or key[:2] < best[:2]:
+                    best = key
+        if frame == last:
+            break
+        nxt: _Layer = {}
+        for (p, streaks), (cost, plan) in layer.items():
+            for action, q in successors[p]:
+                if (q[0] != p[0] and q[0] == person[frame]) or frame + 1 + to_target.get(q, UNREACHABLE) > last:
+                    continue
+                after = tuple(need if s >= need else (s + 1 if q[0] in views[h][frame] else 0)
+                              for h, s in enumerate(streaks))
+                wrong = cost + sum(w for w, s in zip(weights, after, strict=True) if s < need)
+                if (q, after) not in nxt or wrong < nxt[(q, after)][0]:
+                    nxt[(q, after)] = (wrong, plan + (action,))
+        layer = nxt
+    return best[2] if best is not None else ()
