@@ -38,19 +38,23 @@ def hands_walk(layout: Layout, angle: float, pose: Pose, cells: tuple[Pos, ...],
     if not futures or shortest == 0 or shortest >= UNREACHABLE:
         return ()
     last = shortest + max(budget, 0)
-    total = sum(p for p, _ in futures) or 1.0
-    weights = [p / total for p, _ in futures]
-    views = [[view(layout, *poses[min(t, len(poses) - 1)], angle).cells if poses else frozenset()
-              for t in range(last)] for _, poses in futures]
+    total = sum(weight for weight, _ in futures) or 1.0
+    merged: dict[tuple[frozenset[Pos], ...], float] = {}  # hypotheses with the same views are one
+    for weight, poses in futures:
+        seen = tuple(view(layout, *poses[min(t, len(poses) - 1)], angle).cells if poses else frozenset()
+                     for t in range(last))
+        merged[seen] = merged.get(seen, 0.0) + weight / total
+    views, weights = list(merged), list(merged.values())
     likeliest = max(futures, key=lambda f: f[0])[1]
     person = [likeliest[min(t, len(likeliest) - 1)][0] if likeliest else None for t in range(last)]
     successors = tick_successors(layout)
-    layer: _Layer = {(pose, tuple(min(run, need) for _ in futures)): (0.0, ())}
+    layer: _Layer = {(pose, tuple(min(run, need) for _ in views)): (0.0, ())}
     best: tuple[float, int, tuple[Action, ...]] | None = None
     for frame in range(last + 1):
-        for (p, _), (cost, plan) in layer.items():
-            if frame and to_target.get(p) == 0:
-                extra = frame - shortest
+        for (p, streaks), (cost, plan) in layer.items():
+            if frame and (to_target.get(p) == 0 or min(streaks) >= need):
+                # Arrived, or known under every hypothesis: the rest is the shortest way, at no further cost.
+                extra = frame + to_target[p] - shortest
                 key = (cost + price * extra, extra, plan)
                 if best is None or key[:2] < best[:2]:
                     best = key
@@ -58,6 +62,8 @@ def hands_walk(layout: Layout, angle: float, pose: Pose, cells: tuple[Pos, ...],
             break
         nxt: _Layer = {}
         for (p, streaks), (cost, plan) in layer.items():
+            if min(streaks) >= need:
+                continue
             for action, q in successors[p]:
                 if (q[0] != p[0] and q[0] == person[frame]) or frame + 1 + to_target.get(q, UNREACHABLE) > last:
                     continue
@@ -67,4 +73,16 @@ def hands_walk(layout: Layout, angle: float, pose: Pose, cells: tuple[Pos, ...],
                 if (q, after) not in nxt or wrong < nxt[(q, after)][0]:
                     nxt[(q, after)] = (wrong, plan + (action,))
         layer = nxt
-    return best[2] if best is not None else ()
+    return _completed(layout, best[2], pose, to_target) if best is not None else ()
+
+
+def _completed(layout: Layout, plan: tuple[Action, ...], pose: Pose, to_target: dict[Pose, int]) -> tuple[Action, ...]:
+    """``plan`` followed by a shortest way from where it ends to the target."""
+    for action in plan:
+        pose = next(q for a, q in tick_successors(layout)[pose] if a is action)
+    rest: list[Action] = []
+    while to_target[pose]:
+        action, pose = next((a, q) for a, q in tick_successors(layout)[pose]
+                            if to_target.get(q, UNREACHABLE) == to_target[pose] - 1)
+        rest.append(action)
+    return plan + tuple(rest)
