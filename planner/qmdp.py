@@ -25,7 +25,11 @@ Each tick the robot
    what it carries (paper §VI-C). With a dish, or with a plated steak at a ready garnish, it instead plans the
    dish walk on the person's predicted poses (:meth:`QmdpRobot.dish_walk`, :mod:`planner.dish_walk`): the way
    to the serving counter, waits included, whose trip the person is expected to see most, within the trip's
-   detour. The no-rollout robot (depth 0) and the baseline take the direct move.
+   detour. By default (``hands_walk``), while the modelled KB is wrong about what the robot holds, the hands walk
+   (:meth:`QmdpRobot.hands_walk`, :mod:`planner.hands_walk`) replaces the show plan: the way to ``r*``'s station,
+   waits included, on which the person is expected to acknowledge the robot's hands soonest, on the same
+   predicted poses, within the leg's detour. The no-rollout robot (depth 0) and the baseline take the direct
+   move.
 
 The lookahead horizon is ``search_depth`` subtasks × 6 ticks (default 7: 42 ticks).
 ``PlannerConfig(lookahead="abstract")`` replaces steps 2–4 by docs/domain.md §5 as the reference planned

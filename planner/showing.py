@@ -4,7 +4,8 @@ The plans that show the robot to the person and their state: the show plan (:fun
 and the rest of it the robot is following (``pending``, kept while the person neither moves nor turns), the dish
 trip, its detour budget and its ticks in the person's view so far (behaviour 2's dish walk,
 :mod:`planner.dish_walk`), and this decision's value of the person's knowing per (robot subtask, person's
-subtask), kept from the rollouts that valued the subtasks for the direct move (``known``). Which plan the robot
+subtask), kept from the rollouts that valued the subtasks for the direct move (``known``), and the hands walk's
+leg and its detour budget (:meth:`Showing.leg_budget`, :mod:`planner.hands_walk`). Which plan the robot
 takes is the robot's choice (:meth:`planner.qmdp.QmdpRobot.first_move`), not this module's.
 """
 

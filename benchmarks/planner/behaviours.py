@@ -38,7 +38,7 @@ from scipy import stats
 from planner.behaviours import Frame, frame_of
 from planner.experiment import GAP_PARTS, behaviour_columns
 from planner.layout import Layout
-from planner.layout_gen import generate_named
+from planner.layout_gen import GenerationError, KitchenRequest, generate_named, parse_size
 from planner.perception import FOV_ANGLE, KB_DELAY
 from planner.planner_config import PlannerConfig
 from planner.play import TrialResult, TrialSettings, run_trial
@@ -62,9 +62,11 @@ class Spec:
 
 
 def kitchen_layout(name: str) -> Layout:
-    """A shipped kitchen by name, or ``gen_<seed>`` for a generated one."""
+    """A shipped kitchen by name, or ``gen_<seed>`` (``gen_<seed>_<W>x<H>``: of that grid size) for a generated
+    one."""
     if name.startswith("gen_"):
-        return generate_named(int(name.split("_")[1]))
+        _, seed, *size = name.split("_")
+        return generate_named(int(seed), KitchenRequest(size=parse_size(size[0]) if size else None))
     return load_layout(name)
 
 
@@ -97,16 +99,28 @@ def trial_arguments(parser: argparse.ArgumentParser, robots: str) -> None:
     """The trials a benchmark of this folder plays: kitchens, seeds, robots and worker processes."""
     parser.add_argument("--shipped", default="none_3,mid_2", help="shipped kitchens, comma separated ('' for none)")
     parser.add_argument("--generator-seeds", default="", help="generated kitchens, e.g. 1000-1019 (tune on < 1000)")
+    parser.add_argument("--generator-size", default="", metavar="WxH", type=size_text,
+                        help="the generated kitchens' grid size, walls included (default: drawn per kitchen)")
     parser.add_argument("--seeds", type=int, default=30, help="simulation seeds 0..N-1 per kitchen")
     parser.add_argument("--robots", default=robots)
     parser.add_argument("--jobs", type=int, default=2)
+
+
+def size_text(text: str) -> str:
+    """``--generator-size``: a ``WxH`` grid size, as ``steakhouse layout generate --size`` takes it."""
+    try:
+        parse_size(text)
+    except GenerationError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+    return text
 
 
 def kitchens_of(args: argparse.Namespace) -> list[str]:
     """The kitchens :func:`trial_arguments` named: shipped ones by name, generated ones as ``gen_<seed>``."""
     kitchens = [k for k in args.shipped.split(",") if k]
     if args.generator_seeds:
-        kitchens += [f"gen_{s}" for s in seed_range(args.generator_seeds)]
+        size = f"_{args.generator_size}" if args.generator_size else ""
+        kitchens += [f"gen_{s}{size}" for s in seed_range(args.generator_seeds)]
     return kitchens
 
 
