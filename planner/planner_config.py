@@ -51,8 +51,8 @@ class PlannerConfig:
     also, with nothing to do, the robot then walks into view; off by default: it cost ticks for little less KB
     gap); ``wrong_hands`` (off by default: it cost ticks) is lost per tick the modelled KB is wrong about
     what the robot holds (stale or unknown), in the exploration only. ``view_detour``: the most extra ticks of a
-    whole dish trip, and of a showing walk less its ``human_delay − 1`` ticks in view (at most
-    ``view_detour + human_delay − 1``). ``walk_price``: behaviour 2's dish walk (:mod:`planner.dish_walk`) takes
+    whole dish trip and of a hands walk's leg, and of a showing walk less its ``human_delay − 1`` ticks in view (at
+    most ``view_detour + human_delay − 1``). ``walk_price``: behaviour 2's dish walk (:mod:`planner.dish_walk`) takes
     an extra tick only for at least this much more of the dish trip's share in the person's view (0.05: five
     points; at 0.02 the team was 1.4 points of ticks slower on the tuning kitchens, docs/domain.md §5). Tuned
     on generated kitchens of generator seeds 0–29 only. (With ``reuse_rollouts`` the kept rollouts carry no

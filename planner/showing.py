@@ -130,15 +130,16 @@ class Showing:
     def leg_budget(self, world: WorldState, cells: tuple[Pos, ...], shortest: int) -> int:
         """The extra ticks the hands walk (:mod:`planner.hands_walk`) may still take on its leg: the robot's way,
         holding what it holds now, to ``cells`` (``shortest`` ticks from where it stands). A leg gets
-        :attr:`show_detour` extra ticks in all; the ticks it has taken beyond its shortest way so far count
-        against them, so the robot cannot wait in view tick after tick. A new leg begins when the robot's hands
-        or its cells change."""
+        ``view_detour`` extra ticks in all, as a dish trip does; the ticks it has taken beyond its shortest way so
+        far count against them, so the robot cannot wait in view tick after tick. A new leg begins when the robot's
+        hands or its cells change."""
+        allowed = self.cfg.view_detour
         key = (world.robot.held, cells)
         if self.leg is None or self.leg[0] != key:
             self.leg = (key, world.tick, shortest)
         _, began, shortest_then = self.leg
         spent = world.tick - began - (shortest_then - shortest)
-        return max(min(self.show_detour, self.show_detour - spent), 0)
+        return max(min(allowed, allowed - spent), 0)
 
     def trip_detour_left(self, world: WorldState, garnish: bool = False) -> int:
         """The ticks the robot's dish trip (:meth:`begin_trip`) may still spend beyond its shortest way

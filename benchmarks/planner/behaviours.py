@@ -99,7 +99,7 @@ def trial_arguments(parser: argparse.ArgumentParser, robots: str) -> None:
     """The trials a benchmark of this folder plays: kitchens, seeds, robots and worker processes."""
     parser.add_argument("--shipped", default="none_3,mid_2", help="shipped kitchens, comma separated ('' for none)")
     parser.add_argument("--generator-seeds", default="", help="generated kitchens, e.g. 1000-1019 (tune on < 1000)")
-    parser.add_argument("--generator-size", default="", metavar="WxH", type=size_text,
+    parser.add_argument("--generator-size", default=None, metavar="WxH", type=size_text,
                         help="the generated kitchens' grid size, walls included (default: drawn per kitchen)")
     parser.add_argument("--seeds", type=int, default=30, help="simulation seeds 0..N-1 per kitchen")
     parser.add_argument("--robots", default=robots)

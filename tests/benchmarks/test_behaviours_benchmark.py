@@ -29,6 +29,10 @@ def test_generated_kitchens_of_a_given_size():
     assert behaviours.kitchen_layout("gen_3").rows != layout.rows  # without a size, one is drawn
 
 
+def test_without_a_size_each_generated_kitchen_draws_its_own():
+    assert behaviours.kitchens_of(parsed("--shipped", "none_3", "--generator-seeds", "3")) == ["none_3", "gen_3"]
+
+
 def test_a_size_that_is_not_one_is_a_usage_error(capsys):
     with pytest.raises(SystemExit):
         parsed("--generator-size", "ten")

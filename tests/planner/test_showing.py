@@ -83,11 +83,11 @@ def test_the_dish_trips_ticks_in_the_persons_view_are_counted_until_the_dish_is_
 
 
 def test_a_legs_detour_runs_down_with_its_extra_ticks_and_restarts_with_new_hands_or_cells():
-    """The hands walk's leg (:meth:`planner.showing.Showing.leg_budget`): ``view_detour + kb_delay − 1`` extra ticks
-    in all; a tick spent without coming closer uses one, a tick that comes closer none; other hands or another
+    """The hands walk's leg (:meth:`planner.showing.Showing.leg_budget`): ``view_detour`` extra ticks in all, as a
+    dish trip; a tick spent without coming closer uses one, a tick that comes closer none; other hands or another
     station start a new leg."""
     showing = Showing(LAYOUT, PlannerConfig())
-    full = PlannerConfig().view_detour + PlannerConfig().human_delay - 1
+    full = PlannerConfig().view_detour
     grill = ((6, 4),)
     world = world_with(MEAT)
     assert showing.leg_budget(world, grill, 7) == full
