@@ -30,9 +30,12 @@ _Layer = dict[_State, tuple[float, tuple[Action, ...]]]
 def hands_walk(layout: Layout, angle: float, pose: Pose, cells: tuple[Pos, ...], futures: Sequence[Future],
                need: int, run: int, budget: int, price: float) -> tuple[Action, ...]:
     """The best walk from ``pose`` to stand facing one of ``cells``: its moves and stays, without the interact
-    that follows. ``run``: the ticks the robot has already stood in the person's view holding what it holds now
-    (its streak in the modelled KB). Empty when the robot already stands there, none of ``cells`` can be reached
-    or there is no prediction."""
+    that follows. ``futures``: the hypotheses of the person's poses (weights need not sum to 1); ``need``: the
+    consecutive ticks in view that make the person acknowledge the robot's hands (the KB delay); ``run``: the
+    ticks the robot has already stood in the person's view holding what it holds now (its streak in the modelled
+    KB); ``budget``: the most extra ticks over the shortest way; ``price``: what an extra tick costs, in expected
+    ticks of the person's KB being wrong. Empty when the robot already stands there, none of ``cells`` can be
+    reached or there is no prediction."""
     to_target = nearest_distances(layout, cells)
     shortest = to_target.get(pose, UNREACHABLE)
     if not futures or shortest == 0 or shortest >= UNREACHABLE:
