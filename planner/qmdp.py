@@ -55,7 +55,7 @@ from planner.alone import solo_rollout
 from planner.belief import Belief
 from planner.cycle import CycleWatch, broken, watch, without_avoided
 from planner.decision import Decision
-from planner.dish_walk import dish_walk
+from planner.dish_walk import Future, dish_walk
 from planner.events import Event, EventKind
 from planner.geometry import DIRECTIONS, Action, Pos, manhattan, move_action
 from planner.hands_walk import hands_walk
@@ -464,8 +464,7 @@ class QmdpRobot:
         if shortest >= UNREACHABLE:
             return ()
         ticks = shortest + budget + 2  # as far ahead as the walk's programme looks (the garnish's interact too)
-        futures = [(p, [(w.human.pos, w.human.facing) for w in self.predicted_worlds(world, s, subtask, ticks, seed)])
-                   for s, p in likely]
+        futures = self.person_futures(world, subtask, likely, seed, ticks)
         return dish_walk(self.layout, self.cfg.human_angle, pose, futures, budget, self.cfg.walk_price, garnish,
                          self.showing.trip_seen)
 
@@ -481,16 +480,25 @@ class QmdpRobot:
         if shortest == 0 or shortest >= UNREACHABLE:
             return ()
         budget = self.showing.leg_budget(world, cells, shortest)
-        futures = [(p, [(w.human.pos, w.human.facing)
-                        for w in self.predicted_worlds(world, s, subtask, shortest + budget, seed)])
-                   for s, p in likely]
-        if self.human_still:
-            # The longer a person has stood in one cell, the likelier they stay, whatever the model expects next.
-            kept = self.human_still / (self.human_still + self.cfg.hands_still)
-            futures = [(p * (1 - kept), poses) for p, poses in futures] + [(kept, [(world.human.pos,
-                                                                                   world.human.facing)])]
+        futures = self.kept_pose(world, self.person_futures(world, subtask, likely, seed, shortest + budget))
         return hands_walk(self.layout, self.cfg.human_angle, pose, cells, futures, self.cfg.human_delay,
                           self.showing.streak(world, self.kb), budget, self.cfg.hands_price)
+
+    def person_futures(self, world: WorldState, subtask: Subtask, likely: tuple[tuple[Subtask, float], ...], seed: int,
+                       ticks: int) -> list[Future]:
+        """The person's poses over the next ``ticks`` ticks, one hypothesis per likely subtask of theirs (a rollout with
+        the robot going on with ``subtask``, :meth:`predicted_worlds`), weighted by the belief."""
+        return [(p, [(w.human.pos, w.human.facing) for w in self.predicted_worlds(world, s, subtask, ticks, seed)])
+                for s, p in likely]
+
+    def kept_pose(self, world: WorldState, futures: list[Future]) -> list[Future]:
+        """``futures`` and, for a person who has stood in one cell ``n`` ticks, the hypothesis that they keep their
+        pose, weighted ``n / (n + hands_still)``: the longer a person has stood, the likelier they stay, whatever the
+        model expects next (the hands walk's; the dish walk measured no better with it, docs/domain.md §5)."""
+        if not self.human_still:
+            return futures
+        kept = self.human_still / (self.human_still + self.cfg.hands_still)
+        return [(p * (1 - kept), poses) for p, poses in futures] + [(kept, [(world.human.pos, world.human.facing)])]
 
     def predicted_worlds(self, world: WorldState, human_subtask: Subtask, robot_subtask: Subtask, ticks: int,
                          seed: int) -> list[WorldState]:
