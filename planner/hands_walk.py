@@ -52,15 +52,14 @@ def hands_walk(layout: Layout, angle: float, pose: Pose, cells: tuple[Pos, ...],
     person = [likeliest[min(t, len(likeliest) - 1)][0] if likeliest else None for t in range(last)]
     successors = tick_successors(layout)
     layer: _Layer = {(pose, tuple(min(run, need) for _ in views)): (0.0, ())}
-    best: tuple[float, int, tuple[Action, ...]] | None = None
+    best: tuple[float, int, tuple[Action, ...], Pose] | None = None
     for frame in range(last + 1):
         for (p, streaks), (cost, plan) in layer.items():
             if frame and (to_target.get(p) == 0 or min(streaks) >= need):
                 # Arrived, or known under every hypothesis: the rest is the shortest way, at no further cost.
                 extra = frame + to_target[p] - shortest
-                key = (cost + price * extra, extra, plan)
-                if best is None or key[:2] < best[:2]:
-                    best = key
+                if best is None or (cost + price * extra, extra) < best[:2]:
+                    best = (cost + price * extra, extra, plan, p)
         if frame == last:
             break
         nxt: _Layer = {}
@@ -76,16 +75,14 @@ def hands_walk(layout: Layout, angle: float, pose: Pose, cells: tuple[Pos, ...],
                 if (q, after) not in nxt or wrong < nxt[(q, after)][0]:
                     nxt[(q, after)] = (wrong, plan + (action,))
         layer = nxt
-    return _completed(layout, best[2], pose, to_target) if best is not None else ()
+    return best[2] + _shortest_way(layout, best[3], to_target) if best is not None else ()
 
 
-def _completed(layout: Layout, plan: tuple[Action, ...], pose: Pose, to_target: dict[Pose, int]) -> tuple[Action, ...]:
-    """``plan`` followed by a shortest way from where it ends to the target."""
-    for action in plan:
-        pose = next(q for a, q in tick_successors(layout)[pose] if a is action)
-    rest: list[Action] = []
+def _shortest_way(layout: Layout, pose: Pose, to_target: dict[Pose, int]) -> tuple[Action, ...]:
+    """A shortest way from ``pose`` to the target of ``to_target``."""
+    way: list[Action] = []
     while to_target[pose]:
         action, pose = next((a, q) for a, q in tick_successors(layout)[pose]
                             if to_target.get(q, UNREACHABLE) == to_target[pose] - 1)
-        rest.append(action)
-    return plan + tuple(rest)
+        way.append(action)
+    return tuple(way)

@@ -133,13 +133,11 @@ class Showing:
         ``view_detour`` extra ticks in all, as a dish trip does; the ticks it has taken beyond its shortest way so
         far count against them, so the robot cannot wait in view tick after tick. A new leg begins when the robot's
         hands or its cells change."""
-        allowed = self.cfg.view_detour
         key = (world.robot.held, cells)
         if self.leg is None or self.leg[0] != key:
             self.leg = (key, world.tick, shortest)
         _, began, shortest_then = self.leg
-        spent = world.tick - began - (shortest_then - shortest)
-        return max(min(allowed, allowed - spent), 0)
+        return max(self.detour_left(world.tick, began, shortest_then, shortest), 0)
 
     def trip_detour_left(self, world: WorldState, garnish: bool = False) -> int:
         """The ticks the robot's dish trip (:meth:`begin_trip`) may still spend beyond its shortest way
@@ -155,8 +153,13 @@ class Showing:
         if shortest == 0:
             return 0
         began, shortest_then = self.dish_trip
-        return min(self.cfg.view_detour,
-                   self.cfg.view_detour - (world.tick - began - (shortest_then - shortest)))
+        return self.detour_left(world.tick, began, shortest_then, shortest)
+
+    def detour_left(self, tick: int, began: int, shortest_then: int, shortest: int) -> int:
+        """What is left of ``view_detour`` on a way begun at tick ``began`` ``shortest_then`` ticks from its goal and
+        now, at ``tick``, ``shortest`` ticks from it: the ticks since it began less how much closer it has come are
+        the extra ticks taken (never more than ``view_detour``; negative when it has taken more)."""
+        return min(self.cfg.view_detour, self.cfg.view_detour - (tick - began - (shortest_then - shortest)))
 
     def walk_budget(self, world: WorldState, garnish: bool = False) -> int:
         """The extra ticks the dish walk may still take (or, ``garnish``, spend before and after taking a ready
