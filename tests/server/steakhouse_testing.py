@@ -207,12 +207,17 @@ def condition_order(services: Any, public_id: str) -> list[str]:
         return list(found.condition_order) if found is not None else []
 
 
+# Test clients drop idle connections after 1 s, well before uvicorn closes them (its keep-alive is 5 s): with both
+# at 5 s, a request sent on a connection the server is closing at that moment fails with ReadError.
+CLIENT_LIMITS = httpx.Limits(keepalive_expiry=1.0)
+
+
 class Player:
     """A participant: the REST calls of the flow, then websockets to play."""
 
     def __init__(self, base_url: str) -> None:
         self.base = base_url
-        self.http = httpx.AsyncClient(base_url=base_url, timeout=30, verify=TLS)
+        self.http = httpx.AsyncClient(base_url=base_url, timeout=30, verify=TLS, limits=CLIENT_LIMITS)
         self.token = ""
 
     async def close(self) -> None:
