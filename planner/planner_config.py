@@ -51,9 +51,10 @@ class PlannerConfig:
     also, with nothing to do, the robot then walks into view; off by default: it cost ticks for little less KB
     gap); ``wrong_hands`` (off by default: it cost ticks) is lost per tick the modelled KB is wrong about
     what the robot holds (stale or unknown), in the exploration only. ``view_detour``: the most extra ticks of a
-    whole dish trip and of a hands walk's leg, and of a showing walk less its ``human_delay − 1`` ticks in view (at
-    most ``view_detour + human_delay − 1``). ``walk_price``: behaviour 2's dish walk (:mod:`planner.dish_walk`) takes
-    an extra tick only for at least this much more of the dish trip's share in the person's view (0.05: five
+    hands walk's leg, and of a showing walk less its ``human_delay − 1`` ticks in view (at most ``view_detour +
+    human_delay − 1``); ``dish_detour`` the same for a whole dish trip (6: at 4, behaviour 2 was 3.7 points lower
+    on the tuning kitchens, docs/domain.md §5). ``walk_price``: behaviour 2's dish walk (:mod:`planner.dish_walk`)
+    takes an extra tick only for at least this much more of the dish trip's share in the person's view (0.05: five
     points; at 0.02 the team was 1.4 points of ticks slower on the tuning kitchens, docs/domain.md §5). Tuned
     on generated kitchens of generator seeds 0–29 only. (With ``reuse_rollouts`` the kept rollouts carry no
     knowing value, so the direct move is scored without it: not measured.)
@@ -99,6 +100,7 @@ class PlannerConfig:
     shown_value: float = 10.0
     shown_empty: float = 0.0
     view_detour: int = 4
+    dish_detour: int = 6
     wrong_hands: float = 0.0
     walk_price: float = 0.05
     hands_walk: bool = True

@@ -130,9 +130,9 @@ class Showing:
     def leg_budget(self, world: WorldState, cells: tuple[Pos, ...], shortest: int) -> int:
         """The extra ticks the hands walk (:mod:`planner.hands_walk`) may still take on its leg: the robot's way,
         holding what it holds now, to ``cells`` (``shortest`` ticks from where it stands). A leg gets
-        ``view_detour`` extra ticks in all, as a dish trip does; the ticks it has taken beyond its shortest way so
-        far count against them, so the robot cannot wait in view tick after tick. A new leg begins when the robot's
-        hands or its cells change."""
+        ``view_detour`` extra ticks in all (a dish trip ``dish_detour``); the ticks it has taken beyond its shortest
+        way so far count against them, so the robot cannot wait in view tick after tick. A new leg begins when the
+        robot's hands or its cells change."""
         key = (world.robot.held, cells)
         if self.leg is None or self.leg[0] != key:
             self.leg = (key, world.tick, shortest)
@@ -141,7 +141,7 @@ class Showing:
 
     def trip_detour_left(self, world: WorldState, garnish: bool = False) -> int:
         """The ticks the robot's dish trip (:meth:`begin_trip`) may still spend beyond its shortest way
-        (``view_detour`` for the whole trip, docs/domain.md §5, "The person's knowing"): the extra ticks the dish has
+        (``dish_detour`` for the whole trip, docs/domain.md §5, "The person's knowing"): the extra ticks the dish has
         taken so far (ticks since it was taken less how much shorter the way to the serving counter has become)
         count against it, so the robot cannot wait in view tick after tick. ``garnish``: the robot holds a plated
         steak and is about to take a ready garnish; the trip starts there, so the ticks it waits before taking it
@@ -153,13 +153,15 @@ class Showing:
         if shortest == 0:
             return 0
         began, shortest_then = self.dish_trip
-        return self.detour_left(world.tick, began, shortest_then, shortest)
+        return self.detour_left(world.tick, began, shortest_then, shortest, self.cfg.dish_detour)
 
-    def detour_left(self, tick: int, began: int, shortest_then: int, shortest: int) -> int:
-        """What is left of ``view_detour`` on a way begun at tick ``began`` ``shortest_then`` ticks from its goal and
-        now, at ``tick``, ``shortest`` ticks from it: the ticks since it began less how much closer it has come are
-        the extra ticks taken (never more than ``view_detour``; negative when it has taken more)."""
-        return min(self.cfg.view_detour, self.cfg.view_detour - (tick - began - (shortest_then - shortest)))
+    def detour_left(self, tick: int, began: int, shortest_then: int, shortest: int, limit: int | None = None) -> int:
+        """What is left of ``limit`` (``view_detour`` unless given) on a way begun at tick ``began``
+        ``shortest_then`` ticks from its goal and now, at ``tick``, ``shortest`` ticks from it: the ticks since it
+        began less how much closer it has come are the extra ticks taken (never more than ``limit``; negative when
+        it has taken more)."""
+        limit = self.cfg.view_detour if limit is None else limit
+        return min(limit, limit - (tick - began - (shortest_then - shortest)))
 
     def walk_budget(self, world: WorldState, garnish: bool = False) -> int:
         """The extra ticks the dish walk may still take (or, ``garnish``, spend before and after taking a ready

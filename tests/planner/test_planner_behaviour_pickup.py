@@ -113,7 +113,7 @@ def test_the_fov_aware_robot_mostly_carries_the_dish_through_the_persons_view():
         world, frames = delivery("fov_aware", seed)
         b = measure(frames, KB_DELAY)
         assert world.robot.held is None and b.trips == 1
-        assert len(frames) <= distance(LAYOUT, ((1, 2), Direction.NORTH), (7, 4)) + 1 + PlannerConfig().view_detour
+        assert len(frames) <= distance(LAYOUT, ((1, 2), Direction.NORTH), (7, 4)) + 1 + PlannerConfig().dish_detour
         shares.append(b.trip_share_sum)
         world, frames = delivery("baseline", seed)
         b = measure(frames, KB_DELAY)

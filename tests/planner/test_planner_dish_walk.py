@@ -63,7 +63,7 @@ def test_no_wait_once_the_trips_detour_is_spent():
     robot.reset(world)
     scripted(robot, 4)
     robot.showing.begin_trip(world)  # the trip starts at tick 0
-    late = replace(world, tick=PlannerConfig().view_detour)  # as many ticks waited as the detour allows
+    late = replace(world, tick=PlannerConfig().dish_detour)  # as many ticks waited as the detour allows
     assert robot.dish_walk(late, Subtask.DELIVER_DISH, LIKELY, 0, garnish=False)[0] is Action.EAST
 
 
@@ -92,7 +92,7 @@ def test_at_a_ready_garnish_the_wait_counts_against_the_dish_trip():
     robot.reset(world)
     assert robot.at_ready_garnish(world)
     assert not robot.at_ready_garnish(replace(world, boards=(RULES.chop_time - 1,)))
-    detour = PlannerConfig().view_detour
+    detour = PlannerConfig().dish_detour
     robot.showing.begin_trip(world, garnish=True)
     assert robot.showing.walk_budget(world, garnish=True) == detour and robot.showing.walk_budget(world) == 0
     assert robot.showing.walk_budget(replace(world, tick=2), garnish=True) == detour - 1

@@ -52,9 +52,9 @@ def test_the_dish_trip_budget_runs_down_with_the_ticks_beyond_the_shortest_way()
     world = world_with(DISH)
     assert showing.trip_detour_left(world) == 0  # no trip yet: its first decision begins it
     showing.begin_trip(world)
-    assert showing.trip_detour_left(world) == config.view_detour
+    assert showing.trip_detour_left(world) == config.dish_detour
     later = replace(world, tick=world.tick + 3)  # three ticks later, no nearer the serving counter
-    assert showing.trip_detour_left(later) == config.view_detour - 3
+    assert showing.trip_detour_left(later) == config.dish_detour - 3
     assert showing.walk_budget(replace(later, tick=later.tick + 5)) == 0  # spent: no detour, no wait
     showing.observe(world_with(None))
     assert showing.dish_trip is None and showing.trip_detour_left(world_with(None)) == 0
