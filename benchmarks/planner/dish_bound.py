@@ -11,8 +11,8 @@ cell; the trip as played counts among them when it was within ``d``.
 
 Printed per group (each shipped kitchen; generated kitchens together) and robot: trips, the mean share seen, and
 the mean bound per ``d`` over the trips that have one (in brackets: how many have none, the person standing in
-the way of every walk within ``d``). The FOV-aware robot's trips (``view_detour`` 4) are the ones to compare with
-``d`` = 4.
+the way of every walk within ``d``). The FOV-aware robot's trips (``dish_detour``, 6 by default) are the ones to
+compare with ``d`` = 6.
 
     .venv/bin/python benchmarks/planner/dish_bound.py --seeds 30
     .venv/bin/python benchmarks/planner/dish_bound.py --shipped "" --generator-seeds 0-29 --seeds 2
