@@ -28,7 +28,9 @@ Each tick the robot
    detour. By default (``hands_walk``), while the modelled KB is wrong about what the robot holds, the hands walk
    (:meth:`QmdpRobot.hands_walk`, :mod:`planner.hands_walk`) replaces the show plan: the way to ``r*``'s station,
    waits included, on which the person is expected to acknowledge the robot's hands soonest, on the same
-   predicted poses, within the leg's detour. The no-rollout robot (depth 0) and the baseline take the direct
+   predicted poses, within the leg's detour; a move of it off the direct way is taken only when the rollouts
+   that play it score higher than the direct move's (``walk_rollout``, :meth:`QmdpRobot.walk_or_direct`). The
+   no-rollout robot (depth 0) and the baseline take the direct
    move.
 
 The lookahead horizon is ``search_depth`` subtasks × 6 ticks (default 7: 42 ticks).
@@ -108,6 +110,8 @@ class QmdpRobot:
         self.layout, self.rules, self.cfg, self.explore = layout, rules, config, explore
         self.rollout = self.team_rollout = Rollout(layout, rules, config)
         self.solo_rollout = solo_rollout(layout, rules, config)
+        showing_hands = replace(config, shown_empty=config.shown_value)  # a load and empty hands alike
+        self.walk_judges = (Rollout(layout, rules, showing_hands), solo_rollout(layout, rules, showing_hands))
         self.reference = ReferenceLookahead(layout, rules, config) if config.lookahead == "abstract" else None
         self.tasker = RobotTasker(layout, rules)
         self.person = PersonModel(layout, rules, config)
@@ -375,7 +379,7 @@ class QmdpRobot:
         if self.cfg.hands_walk and self.kb.robot is not None and self.kb.robot.held != world.robot.held:
             walk = self.hands_walk(world, subtask, likely, seed, cells)
             if walk:
-                return walk[0], len(likely)
+                return self.walk_or_direct(world, subtask, likely, horizon, seed, deadline, walk, default)
         candidates: dict[Action, tuple[Action, ...]] = {default: ()}
         pose = (world.robot.pos, world.robot.facing)
         if cells:
@@ -402,6 +406,28 @@ class QmdpRobot:
         move, rest = plans[max(scored, key=lambda t: (t[0], t[1]))[2]]
         self.showing.keep(rest, world)
         return move, len(scored)
+
+    def walk_or_direct(self, world: WorldState, subtask: Subtask, likely: tuple[tuple[Subtask, float], ...],
+                       horizon: int, seed: int, deadline: float | None, walk: tuple[Action, ...],
+                       default: Action) -> tuple[Action, int]:
+        """The hands walk's first move, or the direct move when the walk turns off the direct way and its rollouts
+        are worth less (``walk_rollout``; docs/domain.md §5, "The person's knowing"). The hands walk prices an extra
+        tick at ``hands_price`` ticks of the person's KB being wrong, blind to what the robot's delay does to the
+        team; so, like the other candidates of the exploration, the walk and the direct move are scored by rollouts
+        on the same seeds, the walk as their prefix: the team's progress plus ``shown_value`` at the tick the
+        modelled KB acknowledges the robot's hands, a load or empty hands alike (the hands walk shows both), under
+        the hands walk's hypotheses of the person (:meth:`kept_pose`: the likely subtasks, and a person who has
+        stood still keeping their pose, :func:`planner.alone.solo_rollout`). Ties keep the direct move; a passed
+        ``deadline`` the walk (as without ``walk_rollout``). Also answers the candidates explored."""
+        if walk[0] is default or not self.cfg.walk_rollout or (deadline is not None and time.perf_counter() > deadline):
+            return walk[0], len(likely)
+        assert self.kb is not None
+        team, still = self.walk_judges
+        kept = self.human_still / (self.human_still + self.cfg.hands_still) if self.human_still else 0.0
+        hypotheses = [(team, s, p * (1 - kept)) for s, p in likely] + ([(still, likely[0][0], kept)] if kept else [])
+        direct, shown = (sum(p * judge.value(world, self.kb, s, subtask, horizon, seed, plan, self.human_still, True)
+                             for judge, s, p in hypotheses) for plan in ((), walk))
+        return (walk[0] if shown > direct else default), 2 * len(hypotheses)
 
     def sampled(self, world: WorldState, human_subtask: Subtask, robot_subtask: Subtask, horizon: int,
                 seed: int, prefix: tuple[Action, ...] = (), knowing: bool = False) -> float:

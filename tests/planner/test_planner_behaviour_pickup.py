@@ -119,3 +119,44 @@ def test_the_fov_aware_robot_mostly_carries_the_dish_through_the_persons_view():
         b = measure(frames, KB_DELAY)
         assert world.robot.held is None and (b.trips, b.trip_share_sum) == (1, 0.0)
     assert sum(share > 0 for share in shares) >= 6
+
+
+class _Judge:
+    """A rollout stand-in that values the direct move (no prefix) at ``direct`` and any walk at ``walk``."""
+
+    def __init__(self, direct: float, walk: float) -> None:
+        self.direct, self.walk = direct, walk
+
+    def value(self, *args, **kwargs) -> float:
+        return self.walk if args[6] else self.direct
+
+
+def rigged(direct: float, walk: float, walk_rollout: bool = True):
+    """:func:`trial`'s frames for the FOV-aware robot whose rollouts' judges of the hands walk are rigged."""
+    start = replace(initial_state(LAYOUT, RULES), human=PERSON, robot=AgentState((1, 2), Direction.NORTH),
+                    boards=(0,))
+    robot = make_robot("fov_aware", LAYOUT, RULES, PlannerConfig(walk_rollout=walk_rollout))
+    robot.reset(start)
+    robot.walk_judges = (_Judge(direct, walk), _Judge(direct, walk))
+    rng = np.random.default_rng(0)
+    world, events = step(LAYOUT, start, {"human": Action.INTERACT, "robot": Action.INTERACT}, RULES)
+    frames = [frame_of(LAYOUT, world, events, FOV_ANGLE)]
+    for _ in range(20):
+        action = robot.decide(world, events, rng).action
+        world, events = step(LAYOUT, world, {"human": Action.INTERACT, "robot": action}, RULES)
+        frames.append(frame_of(LAYOUT, world, events, FOV_ANGLE))
+        if world.robot.held is None:
+            break
+    return world, frames
+
+
+def test_the_hands_walk_turns_off_the_direct_way_only_when_its_rollouts_are_worth_more():
+    """``walk_rollout`` (docs/domain.md §5): each move of the hands walk off the direct way is judged by the rollouts
+    against the direct move. Worth less, the robot carries the meat the shortest way, unseen; worth more, or without
+    the judging, it shows the meat on the way."""
+    world, frames = rigged(direct=1.0, walk=0.0)
+    assert world.grills[0] is not None and measure(frames, KB_DELAY).shown == 0
+    assert len(frames) == distance(LAYOUT, ((1, 2), Direction.NORTH), (6, 4)) + 2
+    for direct, walk, judged in ((0.0, 1.0, True), (1.0, 0.0, False)):
+        world, frames = rigged(direct, walk, judged)
+        assert world.grills[0] is not None and measure(frames, KB_DELAY).shown == 1
