@@ -28,8 +28,9 @@ Each tick the robot
    detour. By default (``hands_walk``), while the modelled KB is wrong about what the robot holds, the hands walk
    (:meth:`QmdpRobot.hands_walk`, :mod:`planner.hands_walk`) replaces the show plan: the way to ``r*``'s station,
    waits included, on which the person is expected to acknowledge the robot's hands soonest, on the same
-   predicted poses, within the leg's detour; a move of it off the direct way is taken only when the rollouts
-   that play it score higher than the direct move's (``walk_rollout``, :meth:`QmdpRobot.walk_or_direct`). The
+   predicted poses, within the leg's detour; with ``walk_rollout`` (off by default) a move of it off the direct
+   way is taken only when the rollouts that play it score higher than the direct move's
+   (:meth:`QmdpRobot.walk_or_direct`). The
    no-rollout robot (depth 0) and the baseline take the direct
    move.
 
