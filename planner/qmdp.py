@@ -30,9 +30,7 @@ Each tick the robot
    waits included, on which the person is expected to acknowledge the robot's hands soonest, on the same
    predicted poses, within the leg's detour; with ``walk_rollout`` (off by default) a move of it off the direct
    way is taken only when the rollouts that play it score higher than the direct move's
-   (:meth:`QmdpRobot.walk_or_direct`). The
-   no-rollout robot (depth 0) and the baseline take the direct
-   move.
+   (:meth:`QmdpRobot.walk_or_direct`). The no-rollout robot (depth 0) and the baseline take the direct move.
 
 The lookahead horizon is ``search_depth`` subtasks × 6 ticks (default 7: 42 ticks).
 ``PlannerConfig(lookahead="abstract")`` replaces steps 2–4 by docs/domain.md §5 as the reference planned
@@ -112,7 +110,8 @@ class QmdpRobot:
         self.rollout = self.team_rollout = Rollout(layout, rules, config)
         self.solo_rollout = solo_rollout(layout, rules, config)
         showing_hands = replace(config, shown_empty=config.shown_value)  # a load and empty hands alike
-        self.walk_judges = (Rollout(layout, rules, showing_hands), solo_rollout(layout, rules, showing_hands))
+        self.walk_judges = ((Rollout(layout, rules, showing_hands), solo_rollout(layout, rules, showing_hands))
+                            if config.walk_rollout else None)
         self.reference = ReferenceLookahead(layout, rules, config) if config.lookahead == "abstract" else None
         self.tasker = RobotTasker(layout, rules)
         self.person = PersonModel(layout, rules, config)
@@ -422,9 +421,9 @@ class QmdpRobot:
         ``deadline`` the walk (as without ``walk_rollout``). Also answers the candidates explored."""
         if walk[0] is default or not self.cfg.walk_rollout or (deadline is not None and time.perf_counter() > deadline):
             return walk[0], len(likely)
-        assert self.kb is not None
+        assert self.kb is not None and self.walk_judges is not None
         team, still = self.walk_judges
-        kept = self.human_still / (self.human_still + self.cfg.hands_still) if self.human_still else 0.0
+        kept = self.kept_weight()
         hypotheses = [(team, s, p * (1 - kept)) for s, p in likely] + ([(still, likely[0][0], kept)] if kept else [])
         direct, shown = (sum(p * judge.value(world, self.kb, s, subtask, horizon, seed, plan, self.human_still, True)
                              for judge, s, p in hypotheses) for plan in ((), walk))
@@ -518,13 +517,17 @@ class QmdpRobot:
         return [(p, [(w.human.pos, w.human.facing) for w in self.predicted_worlds(world, s, subtask, ticks, seed)])
                 for s, p in likely]
 
+    def kept_weight(self) -> float:
+        """How likely the person keeps their pose: ``n / (n + hands_still)`` after ``n`` ticks standing in one cell."""
+        return self.human_still / (self.human_still + self.cfg.hands_still) if self.human_still else 0.0
+
     def kept_pose(self, world: WorldState, futures: list[Future]) -> list[Future]:
         """``futures`` and, for a person who has stood in one cell ``n`` ticks, the hypothesis that they keep their
         pose, weighted ``n / (n + hands_still)``: the longer a person has stood, the likelier they stay, whatever the
         model expects next (the hands walk's; the dish walk measured no better with it, docs/domain.md §5)."""
         if not self.human_still:
             return futures
-        kept = self.human_still / (self.human_still + self.cfg.hands_still)
+        kept = self.kept_weight()
         return [(p * (1 - kept), poses) for p, poses in futures] + [(kept, [(world.human.pos, world.human.facing)])]
 
     def predicted_worlds(self, world: WorldState, human_subtask: Subtask, robot_subtask: Subtask, ticks: int,

@@ -137,7 +137,7 @@ class Showing:
         if self.leg is None or self.leg[0] != key:
             self.leg = (key, world.tick, shortest)
         _, began, shortest_then = self.leg
-        return max(self.detour_left(world.tick, began, shortest_then, shortest), 0)
+        return max(self.detour_left(world.tick, began, shortest_then, shortest, self.cfg.view_detour), 0)
 
     def trip_detour_left(self, world: WorldState, garnish: bool = False) -> int:
         """The ticks the robot's dish trip (:meth:`begin_trip`) may still spend beyond its shortest way
@@ -155,12 +155,11 @@ class Showing:
         began, shortest_then = self.dish_trip
         return self.detour_left(world.tick, began, shortest_then, shortest, self.cfg.dish_detour)
 
-    def detour_left(self, tick: int, began: int, shortest_then: int, shortest: int, limit: int | None = None) -> int:
-        """What is left of ``limit`` (``view_detour`` unless given) on a way begun at tick ``began``
-        ``shortest_then`` ticks from its goal and now, at ``tick``, ``shortest`` ticks from it: the ticks since it
-        began less how much closer it has come are the extra ticks taken (never more than ``limit``; negative when
-        it has taken more)."""
-        limit = self.cfg.view_detour if limit is None else limit
+    @staticmethod
+    def detour_left(tick: int, began: int, shortest_then: int, shortest: int, limit: int) -> int:
+        """What is left of ``limit`` extra ticks on a way begun at tick ``began`` ``shortest_then`` ticks from its
+        goal and now, at ``tick``, ``shortest`` ticks from it: the ticks since it began less how much closer it has
+        come are the extra ticks taken (never more than ``limit``; negative when it has taken more)."""
         return min(limit, limit - (tick - began - (shortest_then - shortest)))
 
     def walk_budget(self, world: WorldState, garnish: bool = False) -> int:

@@ -8,13 +8,12 @@ from __future__ import annotations
 import asyncio
 import random
 
-import httpx
 import numpy as np
 import pandas as pd
 import pingouin as pg
 import pytest
 from steakhouse_store_study import study_robots
-from steakhouse_testing import CLIENT_LIMITS, Player
+from steakhouse_testing import Player, http_client
 from websockets.exceptions import ConnectionClosed
 
 from analysis.apa import apa_f_sentence
@@ -83,7 +82,7 @@ def played(live_server, study_2x2):
         names = [f"p{n}" for n in range(FULL)] + ["excluded"]
         full = await asyncio.gather(*(take_part(server.url, name, n) for n, name in enumerate(names)),
                                     take_part(server.url, "partial", 40, main_trials=2))
-        async with httpx.AsyncClient(base_url=server.url, timeout=30, limits=CLIENT_LIMITS) as client:
+        async with http_client(server.url) as client:
             tester = (await client.post("/api/studies/two_by_two/join", json={"test_run": True})).json()
             flagged = await client.post(f"/api/admin/participants/{full[FULL]}/flags", headers=ADMIN,
                                         json={"excluded": True, "reason": "did not follow the instructions"})

@@ -207,9 +207,12 @@ def condition_order(services: Any, public_id: str) -> list[str]:
         return list(found.condition_order) if found is not None else []
 
 
-# Test clients drop idle connections after 1 s, well before uvicorn closes them (its keep-alive is 5 s): with both
-# at 5 s, a request sent on a connection the server is closing at that moment fails with ReadError.
-CLIENT_LIMITS = httpx.Limits(keepalive_expiry=1.0)
+def http_client(base_url: str, **kwargs: Any) -> httpx.AsyncClient:
+    """The tests' HTTP client. It drops idle connections after 1 s, well before uvicorn closes them (its keep-alive
+    is 5 s): with both at 5 s, a request sent on a connection the server is closing at that moment fails with
+    ReadError."""
+    return httpx.AsyncClient(base_url=base_url, timeout=30, verify=TLS, limits=httpx.Limits(keepalive_expiry=1.0),
+                             **kwargs)
 
 
 class Player:
@@ -217,7 +220,7 @@ class Player:
 
     def __init__(self, base_url: str) -> None:
         self.base = base_url
-        self.http = httpx.AsyncClient(base_url=base_url, timeout=30, verify=TLS, limits=CLIENT_LIMITS)
+        self.http = http_client(base_url)
         self.token = ""
 
     async def close(self) -> None:

@@ -8,7 +8,7 @@ import asyncio
 
 import httpx
 import pytest
-from steakhouse_testing import CLIENT_LIMITS, Player, play_to_end
+from steakhouse_testing import Player, http_client, play_to_end
 
 from planner.fov import view
 from planner.geometry import Direction
@@ -60,7 +60,7 @@ def test_a_played_trial_live_its_replay_frames_and_the_answers(server):
     layout = load_layout("practice")
 
     async def scenario():
-        admin = httpx.AsyncClient(base_url=server.url, headers=ADMIN, timeout=30, limits=CLIENT_LIMITS)
+        admin = http_client(server.url, headers=ADMIN)
         player = Player(server.url)
         await player.ready(PROLIFIC_PID="p-dash")
         session = await player.session()

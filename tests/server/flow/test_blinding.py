@@ -13,7 +13,7 @@ import httpx
 import pytest
 from steakhouse_blinding import Recorder, forbidden_names, hits
 from steakhouse_test_robots import simulated_partner
-from steakhouse_testing import CLIENT_LIMITS, REPO
+from steakhouse_testing import REPO, http_client
 from websockets.asyncio.client import connect
 
 from study_config.study import load_study
@@ -59,7 +59,7 @@ async def play_trial(base: str, token: str, record: Recorder) -> None:
 
 
 async def probe(base: str, record: Recorder) -> dict[str, Any]:
-    async with httpx.AsyncClient(base_url=base, timeout=30, limits=CLIENT_LIMITS) as http:
+    async with http_client(base) as http:
         async def call(method: str, path: str, token: str | None = None, **kwargs: Any) -> httpx.Response:
             headers = {"Authorization": f"Bearer {token}"} if token else {}
             response = await http.request(method, path, headers=headers, **kwargs)

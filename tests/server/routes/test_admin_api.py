@@ -7,7 +7,7 @@ import asyncio
 
 import httpx
 import pytest
-from steakhouse_testing import CLIENT_LIMITS, Player, play_to_end
+from steakhouse_testing import Player, http_client, play_to_end
 
 from store.tables import TrialRow
 
@@ -39,7 +39,7 @@ def test_without_the_admin_token_nothing_is_shown(server, headers):
 
 def test_with_the_token_the_live_trial_and_its_replay_are_listed(server):
     async def scenario():
-        admin = httpx.AsyncClient(base_url=server.url, headers=ADMIN, timeout=30, limits=CLIENT_LIMITS)
+        admin = http_client(server.url, headers=ADMIN)
         player = Player(server.url)
         await player.ready(PROLIFIC_PID="p-1")
         sock = await player.socket()

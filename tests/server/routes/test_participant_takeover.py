@@ -10,7 +10,7 @@ import time
 from typing import Any
 
 import httpx
-from steakhouse_testing import CLIENT_LIMITS, Player, eventually
+from steakhouse_testing import Player, eventually, http_client
 
 from server.admin.resume import link_secret, make_code, read_code
 from server.flow.service import ALREADY_STARTED
@@ -45,7 +45,7 @@ def test_a_takeover_leaves_the_victims_session_and_token_untouched(live_server, 
         other = Player(server.url)
         await other.join(PROLIFIC_PID="someone-else")
         attempts = []
-        async with httpx.AsyncClient(base_url=server.url, timeout=30, limits=CLIENT_LIMITS) as attacker:
+        async with http_client(server.url) as attacker:
             for headers in ({}, {"Authorization": "Bearer forged"}, other.headers):
                 attempts.append(await attacker.post("/api/studies/tiny/join", headers=headers,
                                                     json={"recruiting": {"PROLIFIC_PID": "victim"}}))
