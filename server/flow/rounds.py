@@ -37,12 +37,15 @@ class RoundFacts:
 
 
 def round_facts(session: Session, participant_id: int, progress: Progress, now: datetime,
-                reconnect: Reconnect) -> RoundFacts:
+                reconnect: Reconnect, connected: frozenset[int] = frozenset()) -> RoundFacts:
+    """``connected``: the trials a participant is connected to in this process. Such a round is in progress
+    whatever its stored last activity says: the sweep refreshes that only every ``sweep_interval_s``, which can be
+    longer than the grace window."""
     step = progress.current
     current: RoundStatus | None = None
     if step.kind == "trial" and step.trial_kind is not None and step.index is not None and not progress.screened_out:
         row = trials.latest_attempt(session, participant_id, step.trial_kind, step.index)
-        current = _status(row, now, reconnect)
+        current = "in_progress" if row is not None and row.id in connected else _status(row, now, reconnect)
     before = _previous_trial(progress)
     away = False
     if before is not None and before.trial_kind is not None and before.index is not None:

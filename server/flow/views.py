@@ -29,13 +29,15 @@ from study_config.study.questionnaire import Item
 from study_config.study.views import DEFAULT_VIEW
 
 
-def load_session_view(session: Session, loaded: LoadedStudy, participant_id: int) -> dict[str, Any]:
-    """The session view of the participant, read in ``session``'s transaction."""
+def load_session_view(session: Session, loaded: LoadedStudy, participant_id: int,
+                      connected: frozenset[int] = frozenset()) -> dict[str, Any]:
+    """The session view of the participant, read in ``session``'s transaction; ``connected``: the trials a
+    participant is connected to in this process (:func:`server.flow.rounds.round_facts`)."""
     row = session.get(ParticipantRow, participant_id)
     if row is None:
         raise LookupError(participant_id)
     progress = progress_of(row)
-    facts = round_facts(session, participant_id, progress, utcnow(), loaded.study.reconnect)
+    facts = round_facts(session, participant_id, progress, utcnow(), loaded.study.reconnect, connected)
     attempts = quiz_attempts(session, participant_id) if progress.phase is Phase.QUIZ else 0
     return session_view(loaded, row, facts, attempts)
 

@@ -233,6 +233,10 @@ class GameRegistry:
     def live(self) -> list[LiveGame]:
         return sorted(self.games.values(), key=lambda g: g.meta.trial_id)
 
+    def connected(self) -> frozenset[int]:
+        """The trials a participant is connected to in this process now (call it on the event loop)."""
+        return frozenset(tid for tid, g in self.games.items() if g.connection is not None)
+
     # -- sweeping -------------------------------------------------------------------------------------
 
     async def _sweep_forever(self) -> None:

@@ -92,8 +92,9 @@ def _joined(loaded: LoadedStudy, joined: service.Joined) -> JoinResponse:
 
 
 def _view(services: Services, loaded: LoadedStudy, participant_id: int) -> dict[str, Any]:
+    connected = from_thread.run_sync(services.registry.connected)
     with services.store.transaction() as session:
-        return load_session_view(session, loaded, participant_id)
+        return load_session_view(session, loaded, participant_id, connected)
 
 
 @router.get("/session")

@@ -5,14 +5,16 @@ answers, durations filled into the texts, and what the pages are told about a ro
 from __future__ import annotations
 
 import asyncio
+from datetime import timedelta
 
 import httpx
 import pytest
-from sqlalchemy import select
+from sqlalchemy import select, update
 from steakhouse_testing import Player, play_to_end
 
 from server.flow.answers import check_answers, stored_answer
-from store.tables import AnswerRow, EventRow, ParticipantRow, QuizAttemptRow
+from store.tables import AnswerRow, EventRow, ParticipantRow, QuizAttemptRow, TrialRow
+from store.types import utcnow
 from study_config.study.questionnaire import Questionnaire
 
 QUIZ = {"max_attempts": 2, "questions": [
@@ -171,7 +173,13 @@ def test_a_round_in_progress_and_a_round_that_ended_while_away_are_told_apart(li
         await player.ready()
         before = (await player.session())["trial"]["status"]
         sock = await player.socket()
+        hello = await sock.recv()
         await sock.until(lambda m: m["type"] == "state")
+        # The stored last activity of a connected round is refreshed only by the periodic sweep: make it older than
+        # the grace window, as a busy machine or a long sweep interval does. The round is still in progress.
+        with server.services.store.transaction() as session:
+            session.execute(update(TrialRow).where(TrialRow.id == int(hello["trial"]["id"]))
+                            .values(last_active_at=utcnow() - timedelta(seconds=10)))
         during = (await player.session())["trial"]["status"]
         await sock.close()
         after = await player.session()
