@@ -22,23 +22,35 @@ APPROXIMATE = {"source", "as_of", "lateness_ms", "decision_ms"}
 def test_a_paused_trial_looks_the_same_from_memory_and_from_the_store(live_server, study_file):
     server = live_server([study_file(world={"orders": 1, "horizon": 300, "kb_delay": 1})])
 
-    async def play() -> int:
+    async def pause_inside_a_subtask() -> Any:
+        """Play to tick 12 or later and leave while the cook has a subtask under way. The world runs on at
+        30 Hz between the last state read and the close, so the subtask may end first: then come back (the
+        paused trial resumes) and leave again, until the paused game holds a subtask."""
         player = Player(server.url)
         await player.ready(PROLIFIC_PID="watched")
-        sock = await player.socket()
-        hello = await sock.recv()
-        state = await play_until(sock, 12)
-        for _ in range(50):  # a subtask chosen on the last state read takes effect at a tick, and so is stored
-            if state["subtask"] is not None or not state["available"]:
-                break
-            state = await play_until(sock, state["tick"] + 1)
-        await sock.close()
-        await player.close()
-        return int(hello["trial"]["id"])
+        try:
+            for _ in range(20):
+                sock = await player.socket()
+                hello = await sock.recv()
+                trial_id = int(hello["trial"]["id"])
+                state = await play_until(sock, 12)
+                for _ in range(50):  # a subtask chosen on the last state read takes effect at a tick, and so is stored
+                    if state["subtask"] is not None or not state["available"]:
+                        break
+                    state = await play_until(sock, state["tick"] + 1)
+                await sock.close()
+                game = await asyncio.to_thread(
+                    eventually, lambda key=trial_id: services.registry.games.get(key),
+                    lambda g: g is not None and g.connection is None)
+                if game.connection is None and game.engine.controller.subtask is not None:
+                    return game
+        finally:
+            await player.close()
+        pytest.fail("the cook never left with a subtask under way")
 
-    trial_id = asyncio.run(play())
     services = server.services
-    game = eventually(lambda: services.registry.games.get(trial_id), lambda g: g is not None and g.connection is None)
+    game = asyncio.run(pause_inside_a_subtask())
+    trial_id = game.meta.trial_id
 
     def stored_tick() -> int | None:
         with services.store.transaction() as session:
