@@ -214,7 +214,7 @@ class QmdpRobot:
         options = without_avoided(around, self.cycle, world.tick)
         if world.robot.held is None and options == NOTHING_NEEDED:  # planner.subtasks.beyond_orders
             self.current = None
-            action = out_of_the_way(self.layout, world, self.human_targets(world))
+            action = out_of_the_way(self.layout, world, self.human_targets(world), self.human_still >= 1)
             if action is Action.STAY and self.shows_itself and self.cfg.shown_empty:
                 # Nothing to do: show the person the empty hands their KB does not know of (no tick lost).
                 action = next(iter(self.showing.show_plan(world, self.kb, ())), Action.STAY)

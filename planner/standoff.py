@@ -194,11 +194,17 @@ def take_over(human_subtask: Subtask | None, choices: tuple[Subtask, ...]) -> Su
     return human_subtask if human_subtask in choices else None
 
 
-def out_of_the_way(layout: Layout, world: WorldState, human_cells: tuple[Pos, ...]) -> Action:
+def out_of_the_way(layout: Layout, world: WorldState, human_cells: tuple[Pos, ...], person_still: bool) -> Action:
     """With nothing to do (:data:`planner.subtasks.NOTHING_NEEDED`): stay, or step aside when every way from the
-    person to ``human_cells`` (the targets of its most likely subtask) passes the robot's cell."""
-    return step_aside(layout, world, human_cells) if _blocked(layout, world.human, world.robot.pos, human_cells) \
-        else Action.STAY
+    person to ``human_cells`` (the targets of its most likely subtask) passes the robot's cell, or when the
+    robot stands next to a person who stands still (``person_still``: e.g. waiting at the grill). An idle robot
+    parked beside a waiting person reads as wanting the spot: the simulated person yields it
+    (:meth:`planner.human.HumanModel.act`), comes back once the robot is still, and yields again, for as long as
+    the robot idles there (docs/domain.md §5, "Never more than the orders need"). A person walking past is let pass."""
+    crowding = person_still and manhattan(world.robot.pos, world.human.pos) == 1
+    if crowding or _blocked(layout, world.human, world.robot.pos, human_cells):
+        return step_aside(layout, world, human_cells)
+    return Action.STAY
 
 
 def step_aside(layout: Layout, world: WorldState, human_cells: tuple[Pos, ...]) -> Action:

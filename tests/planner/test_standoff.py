@@ -9,6 +9,7 @@ from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
+import pytest
 
 from planner.geometry import Action, Direction
 from planner.human import HumanMemory, HumanModel
@@ -74,6 +75,15 @@ X  XXXX  X
 P  MXXB  X
 XXXXXXXXXX
 """, name="nook")
+# A two-row room: the grill (3,4) is reached from (3,3), the board (1,4) from (1,3), the serving counter (7,4)
+# from (7,3).
+ROOM = parse_layout("""XXXXXXXXX
+XOXMXXDXX
+X2     1X
+X       X
+XBXPXWXSX
+XXXXXXXXX
+""", name="room")
 Human = Callable[[WorldState], Action]
 
 
@@ -167,9 +177,11 @@ def test_a_target_only_the_person_s_cell_gives_on_to_is_not_within_reach():
 
 
 def play_with_person(layout: Layout, world: WorldState, kb: KnowledgeBase, config: PlannerConfig,
-                     ticks: int) -> WorldState:
-    """The baseline robot with the simulated person (docs/domain.md §4), whose KB starts as ``kb``."""
-    robot = make_robot("baseline", layout, RULES, config)
+                     ticks: int, robot_name: str = "baseline",
+                     seen: Callable[[WorldState], None] | None = None) -> WorldState:
+    """The robot (by default the baseline) with the simulated person (docs/domain.md §4), whose KB starts as
+    ``kb``; ``seen`` is shown every world reached."""
+    robot = make_robot(robot_name, layout, RULES, config)
     robot.reset(world)
     person, memory = HumanModel(layout, RULES), HumanMemory()
     person_rng, robot_rng = np.random.default_rng(0).spawn(2)
@@ -180,6 +192,8 @@ def play_with_person(layout: Layout, world: WorldState, kb: KnowledgeBase, confi
         world, events = step(layout, world, {"human": human_action, "robot": action}, RULES)
         kb = update_kb(kb, layout, world, angle=FOV_ANGLE, kb_delay=KB_DELAY,
                        own_events=[e for e in events if e.agent == "human"])
+        if seen is not None:
+            seen(world)
         if world.orders_left == 0:
             break
     return world
@@ -217,3 +231,27 @@ def test_the_robot_visits_a_person_who_stands_still_so_the_team_finishes():
     no_visit = replace(ON, visit_ticks=10**6, cycle_returns=10**6)
     stalled = run_trial(NOOK, 0, robot=make_robot("baseline", NOOK, RULES, no_visit))
     assert not stalled.finished and stalled.final.human.pos == (8, 1)
+
+
+@pytest.mark.parametrize("robot", ["baseline", "fov_aware"])
+def test_an_idle_robot_does_not_crowd_a_person_waiting_at_the_grill(robot):
+    # none_2 seed 2 (107 ticks with the FOV-aware robot against the baseline's 80): the robot, with nothing left
+    # to do, stood still beside the person waiting at the grill with a plate. The person takes a partner
+    # standing still beside it for one that wants the spot: it stepped aside, came back once the robot was
+    # still, and stepped aside again, while the steak was ready. An idle robot now steps away from a person
+    # standing still, and the person waits at the grill until the steak is ready.
+    ready_in = 12
+    start = initial_state(ROOM, RULES)
+    world = replace(start, human=AgentState((3, 3), Direction.SOUTH, "clean_plate"),
+                    robot=AgentState((4, 3), Direction.WEST), grills=(RULES.cook_time - ready_in,),
+                    boards=(RULES.chop_time,), orders_left=1)
+    cells: list[tuple[int, int]] = []
+
+    def watch(w: WorldState) -> None:
+        if w.human.held == "clean_plate":
+            cells.append(w.human.pos)
+
+    served = play_with_person(ROOM, world, initial_kb(world), ON, ticks=60, robot_name=robot, seen=watch)
+    assert set(cells) == {(3, 3)}, "the person should not have left the grill before the steak was ready"
+    assert len(cells) == ready_in, "the person should have picked the steak up as soon as it was ready"
+    assert served.orders_left == 0
