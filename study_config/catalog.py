@@ -6,7 +6,7 @@ For each study: the validated :class:`~study_config.study.Study`, its condition 
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
@@ -56,7 +56,7 @@ class Catalog:
     def get(self, study_id: str) -> LoadedStudy | None:
         return self.studies.get(study_id)
 
-    def __iter__(self):  # type: ignore[no-untyped-def]
+    def __iter__(self) -> Iterator[LoadedStudy]:
         return iter(self.studies.values())
 
 

@@ -39,8 +39,9 @@ class RoundFacts:
 def round_facts(session: Session, participant_id: int, progress: Progress, now: datetime,
                 reconnect: Reconnect, connected: frozenset[int] = frozenset()) -> RoundFacts:
     """``connected``: the trials a participant is connected to in this process. Such a round is in progress
-    whatever its stored last activity says: the sweep refreshes that only every ``sweep_interval_s``, which can be
-    longer than the grace window."""
+    whatever its stored last activity says. A round connected in another process is judged by that stored
+    activity, which its process refreshes at least twice per grace window (down to a second:
+    ``GameRegistry.touch_interval``)."""
     step = progress.current
     current: RoundStatus | None = None
     if step.kind == "trial" and step.trial_kind is not None and step.index is not None and not progress.screened_out:

@@ -10,8 +10,10 @@
   free the participant waits in the :class:`~server.game.lobby.Lobby` (docs/operations.md, "Admission
   control"). A slot is freed when its trial leaves this process (ended, suspended or unloaded).
 - A periodic sweep keeps connected trials' ``last_active_at`` fresh (other server processes judge
-  staleness by it) and abandons trials left running by a crash (``abandon`` studies only) once they have
-  been idle longer than both the grace window and three sweep intervals.
+  staleness by it; flushed ticks refresh it too, but on the paper's clock a thinking participant makes no
+  tick), at least twice per reconnect grace window (:meth:`GameRegistry.touch_interval`), and abandons trials
+  left running by a crash (``abandon`` studies only) once they have been idle longer than both the grace window
+  and three sweep intervals.
 """
 
 from __future__ import annotations
@@ -63,6 +65,8 @@ class TrialAbandoned(Exception):
 
 
 UNLIMITED = 1_000_000
+MIN_TOUCH_S = 1.0
+"""The shortest interval at which the connected trials' stored activity is refreshed (``touch_interval``)."""
 
 
 class GameRegistry:
@@ -239,18 +243,37 @@ class GameRegistry:
 
     # -- sweeping -------------------------------------------------------------------------------------
 
+    def touch_interval(self) -> float:
+        """How often the stored last activity of the connected trials is refreshed: every sweep, and at least twice
+        per the shortest reconnect grace window served (never more often than :data:`MIN_TOUCH_S`). Another server
+        process judges a round it does not run by that stored activity (a participant's page, loaded through it,
+        says whether the round is in progress or ended while away): it must never look older than the grace
+        window while the participant is connected."""
+        graces = [loaded.study.reconnect.grace_seconds / 2 for loaded in self.catalog]
+        return max(min([self.sweep_interval, *graces]), MIN_TOUCH_S)
+
     async def _sweep_forever(self) -> None:
+        since_sweep = 0.0
         while True:
-            await asyncio.sleep(self.sweep_interval)
+            interval = min(self.touch_interval(), self.sweep_interval)
+            await asyncio.sleep(interval)
+            since_sweep += interval
             try:
-                await self.sweep()
+                if since_sweep >= self.sweep_interval:
+                    since_sweep = 0.0
+                    await self.sweep()
+                else:
+                    await self._touch_connected()
             except Exception:
                 log.exception("trial sweep failed")
 
-    async def sweep(self) -> None:
+    async def _touch_connected(self) -> None:
         connected = [g.meta.trial_id for g in self.games.values() if g.connection is not None]
         if connected:
             await asyncio.to_thread(self._touch, connected)
+
+    async def sweep(self) -> None:
+        await self._touch_connected()
         live = set(self.games)
         for loaded in self.catalog:
             idle = max(loaded.study.reconnect.grace_seconds, 3 * self.sweep_interval)

@@ -10,7 +10,7 @@ from datetime import timedelta
 import httpx
 import pytest
 from sqlalchemy import select, update
-from steakhouse_testing import Player, play_to_end
+from steakhouse_testing import Player, eventually, http_client, play_to_end
 
 from server.flow.answers import check_answers, stored_answer
 from store.tables import AnswerRow, EventRow, ParticipantRow, QuizAttemptRow, TrialRow
@@ -223,3 +223,42 @@ def test_a_round_never_opens_on_a_device_the_check_refused(live_server, study_fi
     refused, code, hello, end = asyncio.run(scenario())
     assert refused["type"] == "error" and refused["code"] == "device_refused" and code == 4403
     assert hello["type"] == "hello" and end["status"] == "finished"
+
+
+def test_a_round_played_through_another_server_process_reads_as_in_progress(live_server, study_file):
+    # Two server processes on one store (docs/deploy.md): the participant plays through the first, and their page
+    # is loaded through the second, which does not run the round and judges it by its stored last activity. On the
+    # paper's clock nothing is stored while the participant thinks (no tick), and the grace window (4 s) is far
+    # shorter than the sweep (30 s): the first process refreshes that activity at least twice per window, so the
+    # round never reads as ended while the participant is connected.
+    study = study_file(reconnect={"grace_seconds": 4, "after_grace": "abandon"},
+                       timing={"mode": "wait_for_participant", "tick_rate_hz": 30},
+                       world={"orders": 1, "horizon": 100000, "kb_delay": 1})
+    playing, other = live_server([study], sweep_interval_s=30), live_server([study], sweep_interval_s=30)
+    assert playing.services.registry.touch_interval() == 2.0
+
+    def stored_activity(trial_id: int):
+        with playing.services.store.transaction() as session:
+            return session.get(TrialRow, trial_id).last_active_at
+
+    async def scenario():
+        player = Player(playing.url)
+        await player.ready()
+        sock = await player.socket()
+        hello = await sock.recv()
+        await sock.until(lambda m: m["type"] == "state")
+        trial_id = int(hello["trial"]["id"])
+        first = await asyncio.to_thread(stored_activity, trial_id)
+        # The participant thinks, and the world waits: wait (on the store) until the activity has been refreshed
+        # past the grace window's length.
+        refreshed = await asyncio.to_thread(
+            eventually, lambda: stored_activity(trial_id), lambda t: t - first > timedelta(seconds=4.5), 20)
+        async with http_client(other.url) as through_other:
+            view = (await through_other.get("/api/session", headers=player.headers)).json()
+        await sock.close()
+        await player.close()
+        return first, refreshed, view
+
+    first, refreshed, view = asyncio.run(scenario())
+    assert refreshed - first > timedelta(seconds=4.5), "the connected round's activity is refreshed within the grace"
+    assert view["trial"]["status"] == "in_progress"
