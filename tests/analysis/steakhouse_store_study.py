@@ -32,6 +32,7 @@ from store.tables import ParticipantRow
 from store.types import utcnow
 from store.writer import write_batch
 from study_config.catalog import LoadedStudy
+from study_config.study.questionnaire import Item
 
 INTERRUPTS = tuple(Interrupt)
 
@@ -147,7 +148,8 @@ def answer(store: Store, loaded: LoadedStudy, participant_id: int, values: dict[
 def play_participant(store: Store, loaded: LoadedStudy, participant_id: int, who: Participant,
                      main_trials: int | None = None) -> list[int]:
     """Play practice, then ``main_trials`` main trials (all by default) with their questionnaires."""
-    played, mains = [], 0
+    played: list[int] = []
+    mains = 0
     while True:
         progress = current_step(store, participant_id)
         step = progress.current
@@ -159,10 +161,15 @@ def play_participant(store: Store, loaded: LoadedStudy, participant_id: int, who
             played.append(play_stored_trial(store, loaded, participant_id, who))
         elif step.kind == "questionnaire":
             items = next(q for q in loaded.study.questionnaires if q.id == step.questionnaire).items
-            answer(store, loaded, participant_id,
-                   {item.id: int(who.rng.integers(item.scale.min, item.scale.max + 1)) for item in items})
+            answer(store, loaded, participant_id, {item.id: _rating(item, who.rng) for item in items})
         else:
             return played
+
+
+def _rating(item: Item, rng: np.random.Generator) -> int:
+    """A random answer to a rating item (the test studies ask only rating items)."""
+    assert item.scale is not None, f"item {item.id!r} is not a rating item"
+    return int(rng.integers(item.scale.min, item.scale.max + 1))
 
 
 def _event(participant_id: int, trial_id: int, tick: int, kind: str, payload: dict[str, Any]) -> dict[str, Any]:

@@ -69,7 +69,8 @@ async def take_part(url: str, name: str, seed: int, main_trials: int | None = No
                 response.raise_for_status()
             else:
                 break
-        return view["participant_id"]
+        public_id: str = view["participant_id"]
+        return public_id
     finally:
         await player.close()
 

@@ -32,16 +32,25 @@ def test_maxwell_delaney_two_way_matches_r() -> None:
     assert list(table.columns) == ANOVA_COLUMNS
     assert table["effect"].tolist() == ["noise", "deg", "noise * deg"]
     noise, deg, both = (effect(table, e) for e in ("noise", "deg", "noise * deg"))
-    check(noise["F"], "33.766"), check(noise["p"], "0.00025597")
+    check(noise["F"], "33.766")
+    check(noise["p"], "0.00025597")
     assert (noise["df1"], noise["df2"], noise["correction"]) == (1, 9, "none")
-    check(deg["F"], "40.719"), check(deg["p"], "2.0868e-07")
+    check(deg["F"], "40.719")
+    check(deg["p"], "2.0868e-07")
     assert (deg["df1"], deg["df2"]) == (2, 18)
-    check(deg["eps_gg"], "0.9616"), check(deg["eps_hf"], "1.2176"), check(deg["p_gg"], "3.4017e-07")
+    check(deg["eps_gg"], "0.9616")
+    check(deg["eps_hf"], "1.2176")
+    check(deg["p_gg"], "3.4017e-07")
     check(deg["p_hf"], "2.0868e-07")  # ε_HF > 1 is used as 1: the uncorrected p
-    check(deg["mauchly_W"], "0.9601"), check(deg["mauchly_p"], "0.8497")
-    check(both["F"], "45.31"), check(both["p"], "9.4241e-08")
-    check(both["eps_gg"], "0.904"), check(both["eps_hf"], "1.118"), check(both["p_gg"], "3.4539e-07")
-    check(both["mauchly_W"], "0.8938"), check(both["mauchly_p"], "0.6381")
+    check(deg["mauchly_W"], "0.9601")
+    check(deg["mauchly_p"], "0.8497")
+    check(both["F"], "45.31")
+    check(both["p"], "9.4241e-08")
+    check(both["eps_gg"], "0.904")
+    check(both["eps_hf"], "1.118")
+    check(both["p_gg"], "3.4539e-07")
+    check(both["mauchly_W"], "0.8938")
+    check(both["mauchly_p"], "0.6381")
     assert deg["correction"] == both["correction"] == "HF"
     assert (deg["df1_read"], deg["df2_read"], deg["p_read"]) == (2, 18, deg["p"])
 
@@ -51,10 +60,14 @@ def test_maxwell_delaney_six_conditions_one_way_matches_r() -> None:
     # six levels, where Mauchly's p needs the second-order term (d = 5).
     table = anova_table(REACTTIME, [6], ["condition"])
     row = table.iloc[0]
-    check(row["F"], "38.028"), check(row["p"], "4.4711e-15")
-    check(row["eps_gg"], "0.4855"), check(row["eps_hf"], "0.6778")
-    check(row["p_gg"], "2.532e-08"), check(row["p_hf"], "7.393e-11")
-    check(row["mauchly_W"], "0.0311"), check(row["mauchly_p"], "0.04765")
+    check(row["F"], "38.028")
+    check(row["p"], "4.4711e-15")
+    check(row["eps_gg"], "0.4855")
+    check(row["eps_hf"], "0.6778")
+    check(row["p_gg"], "2.532e-08")
+    check(row["p_hf"], "7.393e-11")
+    check(row["mauchly_W"], "0.0311")
+    check(row["mauchly_p"], "0.04765")
     assert row["correction"] == "GG" and row["mauchly_df"] == 14
     assert row["df1_read"] == pytest.approx(5 * row["eps_gg"]) and row["p_read"] == row["p_gg"]
 
@@ -67,7 +80,8 @@ def test_rm_anova2_sphericity_matches_ez() -> None:
     metric, both = effect(table, "Metric"), effect(table, "Time * Metric")
     assert [metric["eps_gg"], min(metric["eps_hf"], 1)] == pytest.approx([0.9691030, 1.0], rel=1e-6)
     assert [both["eps_gg"], both["eps_hf"]] == pytest.approx([0.7271664, 0.831161], rel=1e-6)
-    check(metric["mauchly_W"], "0.968"), check(both["mauchly_W"], "0.625")
+    check(metric["mauchly_W"], "0.968")
+    check(both["mauchly_W"], "0.625")
     assert [metric["mauchly_p"], both["mauchly_p"]] == pytest.approx([0.8784418, 0.1523917], rel=1e-6)
 
 

@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from analysis.document import BulletList, Heading, Image, Paragraph, render_html, render_markdown, table
+from analysis.document import Block, BulletList, Heading, Image, Paragraph, render_html, render_markdown, table
 
-BLOCKS = [
+BLOCKS: list[Block] = [
     Heading(2, "ticks"),
     Paragraph("n used = 3 <of> 4 & more"),
     BulletList(("one", "two")),

@@ -12,6 +12,7 @@ import zipfile
 import httpx
 import pandas as pd
 import pytest
+from pydantic import SecretStr
 from steakhouse_store_study import Participant, current_step, join, play_stored_trial
 from steakhouse_testing import ThreadServer, write_study
 
@@ -116,7 +117,8 @@ def test_spss_users_get_wide_sav_with_variable_and_value_labels(stored, tmp_path
     assert meta.variable_value_labels["end.device"] == {0.0: "Mouse", 1.0: "Trackpad", 2.0: "Other"}
     assert meta.variable_value_labels["complete"] == {0.0: "no", 1.0: "yes"}
     labels = dict(zip(meta.column_names, meta.column_labels, strict=True))
-    assert labels["end.experience"].startswith("scale score “Experience”")
+    label = labels["end.experience"]
+    assert label is not None and label.startswith("scale score “Experience”")
 
 
 def test_analyze_runs_on_the_study_and_analyses_the_after_trial_scale(stored, tmp_path, capsys):
@@ -133,8 +135,8 @@ def test_the_admin_zip_holds_the_same_export(stored, tmp_path):
     from server.settings import Settings
 
     url, path = stored
-    app = create_app(Settings(database_url=url, study_files=(path,), robot_workers=0, admin_token="admin-secret",
-                              static_dir=tmp_path / "no-static"))
+    app = create_app(Settings(database_url=url, study_files=(path,), robot_workers=0,
+                              admin_token=SecretStr("admin-secret"), static_dir=tmp_path / "no-static"))
     with ThreadServer(app) as server, httpx.Client(base_url=server.url, timeout=60) as client:
         response = client.get(f"/api/admin/studies/{STUDY}/export.zip",
                               headers={"Authorization": "Bearer admin-secret"})

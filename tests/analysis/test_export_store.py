@@ -53,7 +53,7 @@ def stored(module_db_url, tmp_path_factory):
     with store.transaction() as session:
         participants.set_flags(session, ids["excluded"], test_run=None, excluded=True, reason="fell asleep")
     with store.transaction() as session:
-        public = {name: session.get(ParticipantRow, pid).public_id for name, pid in ids.items()}
+        public = {name: session.get_one(ParticipantRow, pid).public_id for name, pid in ids.items()}
     store.dispose()
     return module_db_url, public
 

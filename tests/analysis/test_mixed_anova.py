@@ -51,7 +51,8 @@ def test_pingouins_documented_mixed_anova_example() -> None:
     assert table["ges"].to_numpy() == pytest.approx(direct["ng2"].to_numpy(), rel=1e-10)
 
 
-def textbook(long: pd.DataFrame, dv: str, between: str, within: list[str], subject: str) -> dict[str, tuple]:
+def textbook(long: pd.DataFrame, dv: str, between: str, within: list[str],
+             subject: str) -> dict[str, tuple[float, float, int, int]]:
     """Split-plot sums of squares from marginal means (each effect's inclusion–exclusion residual, summed over all
     observations); subject ids are unique, so S/A = S − A and S/A × W = S × W − A × W (equal groups)."""
     def ss(term: tuple[str, ...]) -> float:
@@ -84,9 +85,9 @@ def test_the_textbook_split_plot_computation_for_three_groups_and_two_within_fac
         person = rng.normal(0, 2)
         for robot, shift in (("fov", 0.0), ("base", 0.8), ("stay", 2.0)):
             for kitchen in ("k1", "k2"):
-                effect = shift * (1.5 if group == "wide" else 1.0) + (0.5 if kitchen == "k2" else 0.0)
+                true_effect = shift * (1.5 if group == "wide" else 1.0) + (0.5 if kitchen == "k2" else 0.0)
                 rows.append({"p": f"s{s}", "view": group, "robot": robot, "kitchen": kitchen,
-                             "y": 10 + person + effect + rng.normal(0, 1 + (robot == "stay"))})
+                             "y": 10 + person + true_effect + rng.normal(0, 1 + (robot == "stay"))})
     long = pd.DataFrame(rows)
     values, groups, n_groups, levels = wide_of(long, "y", "view", ["robot", "kitchen"], "p")
     table = mixed_anova_table(values, groups, n_groups, levels, ["robot", "kitchen"], "view").set_index("effect")

@@ -20,7 +20,9 @@ def test_friedman_matches_r() -> None:
 def test_wilcoxon_matches_r_and_jasp() -> None:
     # R's ?wilcox.test: V = 40, p-value = 0.01953 one-sided (exact, 9 pairs: 10/512), so 20/512 two-sided.
     out = wilcoxon_signed_rank(DEPRESSION_X, DEPRESSION_Y)
-    assert out["statistic"] == 40 and agrees(out["p"] / 2, "0.01953") and out["p"] == pytest.approx(20 / 512)
+    p = out["p"]
+    assert isinstance(p, float)
+    assert out["statistic"] == 40 and agrees(p / 2, "0.01953") and p == pytest.approx(20 / 512)
     # JASP (jaspTTests test-ttestonesample.R): W = 61, p = 0.73267192272089 with zeros and ties (normal
     # approximation with continuity correction, as R's wilcox.test).
     jasp = wilcoxon_signed_rank(JASP_PROPORTIONS, np.full(len(JASP_PROPORTIONS), 0.5))
@@ -42,8 +44,10 @@ def test_one_row_per_factor_and_one_for_all_conditions() -> None:
 
 def test_no_difference_is_not_testable() -> None:
     same = wilcoxon_signed_rank(np.ones(5), np.ones(5))
+    assert isinstance(same["note"], str) and isinstance(same["p"], float)
     assert same["note"].startswith("not testable") and np.isnan(same["p"])
     flat = friedman(pd.DataFrame(np.full((4, 3), 2.0)))
+    assert isinstance(flat["note"], str) and isinstance(flat["statistic"], float)
     assert flat["note"].startswith("not testable") and np.isnan(flat["statistic"])
 
 

@@ -16,7 +16,7 @@ def test_residuals_remove_participant_and_cell_means() -> None:
     assert e.mean(axis=1) == pytest.approx(np.zeros(10), abs=1e-9)
     result = residual_normality(REACTTIME)
     ref = stats.shapiro(e.ravel())
-    assert (result.w, result.p, result.n_residuals) == (pytest.approx(ref.statistic), pytest.approx(ref.pvalue), 60)
+    assert (result.w, result.p) == pytest.approx((ref.statistic, ref.pvalue)) and result.n_residuals == 60
 
 
 def test_additive_data_have_no_residuals_to_test() -> None:

@@ -52,7 +52,7 @@ def test_power_agrees_with_pingouins_analytic_power_for_a_two_level_effect() -> 
     means, sd = values.mean(axis=0), values.std(axis=0)
     sigma2 = float(np.mean(sd ** 2))
     f2 = ((means[1] - means[0]) / 2) ** 2 / sigma2
-    corr = float(np.corrcoef(values.T)[0, 1])
+    corr = float(np.asarray(np.corrcoef(values.T))[0, 1])
     simulations = 4000
     table = measure_power(MeasureData("y", values, ("robot",), (("a", "b"),)), [10, 20, 30], simulations, 0.05,
                           np.random.default_rng(12))
@@ -130,6 +130,7 @@ def test_a_chosen_effect_size_sets_that_effects_generalized_eta_squared_and_noth
     before = anova_table(values, counts, within).set_index("effect")
     robot = planned_tests(within, [["a", "b", "c"], ["k", "l"]])[0]
     scaled = with_effect_size(values, counts, within, robot.effect, robot.contrast, 0.1)
+    assert scaled is not None
     after = anova_table(scaled, counts, within).set_index("effect")
     assert after.loc["robot", "ges"] == pytest.approx(0.1, rel=1e-9)
     assert after["SS_error"].to_numpy() == pytest.approx(before["SS_error"].to_numpy(), rel=1e-9)

@@ -8,6 +8,7 @@ import json
 import math
 import sys
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -33,7 +34,7 @@ def step(robot_xy, robot_held, person_xy, yaw, orders=2):
 SOUTH, NORTH = 0.0, math.pi
 
 
-def log(person_yaw: float) -> dict:
+def log(person_yaw: float) -> dict[str, Any]:
     """The robot picks up a dish below the person and holds it three steps, then delivers it."""
     steps = [step([5, 3], None, [5, 1], person_yaw)] + [step([5, 3], "dish", [5, 1], person_yaw)] * 3 + \
         [step([5, 3], None, [5, 1], person_yaw, orders=1)]

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 
+from planner.events import Event
 from planner.geometry import Action, Pos
 from planner.kb import initial_kb, update_kb
 from planner.layout import Layout
@@ -39,7 +40,8 @@ def carry_onion_to_board(layout: Layout, rules: Rules, name: str, seed: int, bef
     cells: list[Pos] = []
     actions: list[Action] = []
     acknowledged = None
-    world, events = now, ()
+    world = now
+    events: tuple[Event, ...] = ()
     for tick in range(max_ticks):
         action = robot.decide(world, events, rng).action
         actions.append(action)

@@ -23,7 +23,13 @@ from planner.state import initial_state
 from planner.step import step
 from study_config import load_layout
 
-ONLY = {mode: tuple(1.0 if m is mode else 0.0 for m in Mode) for mode in Mode}
+
+def _only(mode: Mode) -> tuple[float, float, float, float, float]:
+    random_task, block, interrupt, idle, cooperate = (1.0 if m is mode else 0.0 for m in Mode)
+    return random_task, block, interrupt, idle, cooperate
+
+
+ONLY = {mode: _only(mode) for mode in Mode}
 """Weights that draw a single mode."""
 
 

@@ -8,7 +8,7 @@ import random
 import pytest
 
 from planner.geometry import DIRECTIONS, Action, move_action
-from planner.paths import detour_moves, distances_to, next_pose
+from planner.paths import Pose, detour_moves, distances_to, next_pose
 from study_config import load_layout
 
 
@@ -18,10 +18,10 @@ def first_moves_by_search(layout, pose, target, blocked):
     goal = distances_to(layout, target)
     if goal.get(pose) == 0:
         return ()
-    layer = {pose: set()}
+    layer: dict[Pose, set[Action]] = {pose: set()}
     seen = {pose}
     while layer:
-        nxt: dict = {}
+        nxt: dict[Pose, set[Action]] = {}
         for here, firsts in layer.items():
             for d in DIRECTIONS:
                 after = next_pose(layout, here, d)

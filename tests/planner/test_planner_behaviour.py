@@ -19,6 +19,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from planner.events import Event
 from planner.fov import visible_cells
 from planner.geometry import Action, Direction
 from planner.objects import CLEAN_PLATE, DIRTY_PLATE, STEAK_PLATE
@@ -79,7 +80,7 @@ def test_it_stays_until_the_human_can_know_then_goes_on():
     robot, world, decision = first_decision("fov_aware")
     rng = np.random.default_rng(0)
     actions = [decision.action]
-    events = ()
+    events: tuple[Event, ...] = ()
     for _ in range(6):
         world, events = step(LAYOUT, world, {"human": Action.STAY, "robot": actions[-1]}, RULES)
         actions.append(robot.decide(world, events, rng).action)

@@ -87,7 +87,8 @@ def passing_the_island(cells) -> list[int]:
 def test_the_onion_is_out_of_view_and_both_ways_round_are_equally_short():
     _, now = situation()
     assert now.robot.pos not in visible_cells(LAYOUT, HUMAN.pos, HUMAN.facing, 120)
-    assert initial_kb(situation()[0]).robot.held is None
+    known = initial_kb(situation()[0]).robot
+    assert known is not None and known.held is None
     pose = (ROBOT.pos, ROBOT.facing)
     west = (ISLAND_WEST - 1, ROBOT.pos[1])
     east = (ISLAND_EAST + 1, ROBOT.pos[1])

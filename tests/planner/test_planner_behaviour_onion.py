@@ -56,7 +56,8 @@ def play_until_the_onion_is_on_the_board(name: str, seed: int, max_ticks: int = 
 def test_the_onion_is_out_of_view_and_unknown_to_the_human():
     _, now = situation()
     assert now.robot.pos not in visible_cells(LAYOUT, HUMAN.pos, HUMAN.facing, 120)
-    assert initial_kb(situation()[0]).robot.held is None
+    known = initial_kb(situation()[0]).robot
+    assert known is not None and known.held is None
 
 
 @pytest.mark.parametrize("seed", SEEDS)

@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 from planner.behaviours import frame_of, measure
+from planner.events import Event
 from planner.fov import visible_cells
 from planner.geometry import Action, Direction
 from planner.layout import parse_layout
@@ -23,6 +24,7 @@ from planner.objects import DISH, MEAT, ONION
 from planner.paths import distance
 from planner.perception import FOV_ANGLE, KB_DELAY
 from planner.planner_config import PlannerConfig
+from planner.qmdp import QmdpRobot
 from planner.robots import make_robot
 from planner.rules import Rules
 from planner.state import AgentState, initial_state
@@ -87,8 +89,9 @@ def delivery(robot_name: str, seed: int):
     world = replace(initial_state(LAYOUT, RULES), human=replace(PERSON, held=ONION),
                     robot=AgentState((1, 2), Direction.NORTH, DISH))
     robot = make_robot(robot_name, LAYOUT, RULES)
+    assert isinstance(robot, QmdpRobot)
     robot.reset(world)
-    events: tuple = ()
+    events: tuple[Event, ...] = ()
     robot.observe(world, events)
     for _ in range(2):
         world, events = step(LAYOUT, world, {"human": Action.INTERACT, "robot": Action.STAY}, RULES)
@@ -136,8 +139,9 @@ def rigged(direct: float, walk: float, walk_rollout: bool = True):
     start = replace(initial_state(LAYOUT, RULES), human=PERSON, robot=AgentState((1, 2), Direction.NORTH),
                     boards=(0,))
     robot = make_robot("fov_aware", LAYOUT, RULES, PlannerConfig(walk_rollout=walk_rollout))
+    assert isinstance(robot, QmdpRobot)
     robot.reset(start)
-    robot.walk_judges = (_Judge(direct, walk), _Judge(direct, walk))
+    robot.walk_judges = (_Judge(direct, walk), _Judge(direct, walk))  # type: ignore[assignment]  # stand-ins: value() only
     rng = np.random.default_rng(0)
     world, events = step(LAYOUT, start, {"human": Action.INTERACT, "robot": Action.INTERACT}, RULES)
     frames = [frame_of(LAYOUT, world, events, FOV_ANGLE)]

@@ -37,7 +37,7 @@ def scripted(robot: QmdpRobot, turn_at: int | None) -> None:
     """The rollout's predicted person: at (4, 5) facing south, and north from tick ``turn_at`` on (never: None)."""
     original = robot.predicted_worlds
 
-    def predicted(*args, **kwargs):  # type: ignore[no-untyped-def]
+    def predicted(*args, **kwargs):
         worlds = original(*args, **kwargs)
         return [replace(w, human=replace(PERSON, facing=Direction.NORTH if turn_at is not None and t >= turn_at
                                          else Direction.SOUTH))

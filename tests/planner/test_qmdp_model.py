@@ -5,9 +5,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from planner.events import Event
 from planner.human import HumanMemory, HumanModel
 from planner.kb import initial_kb, update_kb
 from planner.planner_config import PlannerConfig
+from planner.qmdp import QmdpRobot
 from planner.robots import make_robot
 from planner.rules import Rules
 from planner.state import initial_state, is_done
@@ -23,9 +25,11 @@ def test_modelled_kb_is_the_simulated_humans_kb_every_tick(kitchen, seed):
     the first tick (the world the robot was reset with counts once, as it does for the person)."""
     layout = load_layout(kitchen)
     robot = make_robot("fov_aware", layout, RULES, PlannerConfig())
+    assert isinstance(robot, QmdpRobot)
     human_rng, robot_rng = np.random.default_rng(seed).spawn(2)
     world = initial_state(layout, RULES)
-    kb, memory, events = initial_kb(world), HumanMemory(), ()
+    kb, memory = initial_kb(world), HumanMemory()
+    events: tuple[Event, ...] = ()
     human = HumanModel(layout, RULES)
     robot.reset(world)
     differing = []

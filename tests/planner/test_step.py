@@ -6,7 +6,7 @@ from dataclasses import replace
 
 import pytest
 
-from planner.events import EventKind
+from planner.events import Event, EventKind
 from planner.geometry import Action, Direction
 from planner.layout import Layout
 from planner.objects import CLEAN_PLATE, DIRTY_PLATE, DISH, MEAT, ONION, STEAK_PLATE
@@ -27,7 +27,7 @@ def world(kitchen: Layout, held: str | None = None, at: str = "grill", **changes
     return replace(base, human=human, **changes)
 
 
-def interact(kitchen: Layout, state: WorldState) -> tuple[WorldState, tuple]:
+def interact(kitchen: Layout, state: WorldState) -> tuple[WorldState, tuple[Event, ...]]:
     return step(kitchen, state, {"human": Action.INTERACT, "robot": STAY}, RULES)
 
 

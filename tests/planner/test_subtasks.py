@@ -7,8 +7,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from planner.events import EventKind
-from planner.geometry import Action, Direction
+from planner.events import Event, EventKind
+from planner.geometry import Action, Direction, Pos
 from planner.layout import parse_layout
 from planner.objects import DISH, STEAK_PLATE
 from planner.planner_config import PlannerConfig
@@ -43,7 +43,8 @@ def test_the_walkthrough_robot_grills_no_more_steaks_than_the_orders_left():
     for name in ("baseline", "fov_aware"):
         robot = make_robot(name, WALKTHROUGH, RULES, PlannerConfig())
         robot.reset(world)
-        rng, events, now, started = np.random.default_rng(0), (), world, 0
+        rng, now, started = np.random.default_rng(0), world, 0
+        events: tuple[Event, ...] = ()
         for _ in range(250):
             action = robot.decide(now, events, rng).action
             before = steaks_in_play(now)
@@ -56,7 +57,7 @@ def test_the_walkthrough_robot_grills_no_more_steaks_than_the_orders_left():
 
 
 def test_what_is_in_progress_anywhere_counts():
-    none: tuple = ()
+    none: tuple[tuple[Pos, str], ...] = ()
     assert beyond_orders(None, None, 2, none, (None,), (None,), (None,)) == frozenset()
     # One steak on the grill, one plated on a counter: no more meat; the grill's steak still needs a plate.
     full = beyond_orders(None, None, 2, (((3, 1), STEAK_PLATE),), (4,), (None,), (None,))

@@ -19,7 +19,7 @@ import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import IO, Any
 
 import httpx
 import uvicorn
@@ -145,6 +145,7 @@ class ProcessServer:
         self.env["PYTHONPATH"] = os.pathsep.join([str(REPO), str(Path(__file__).parent)])
         self.log = log
         self.process: subprocess.Popen[bytes] | None = None
+        self._out: IO[bytes] | int | None = None  # the log file while running, or subprocess.DEVNULL
 
     def start(self) -> ProcessServer:
         return self.launch().wait_ready()

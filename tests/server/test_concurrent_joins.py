@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import asyncio
 from collections import Counter
+from typing import Any
 
 import httpx
 import pytest
@@ -21,10 +22,10 @@ JOINS = 200
 REPEATS = 20
 
 
-async def join_all(urls: list[str]) -> list[dict]:
+async def join_all(urls: list[str]) -> list[dict[str, Any]]:
     limits = httpx.Limits(max_connections=JOINS + REPEATS, max_keepalive_connections=0)
     async with httpx.AsyncClient(timeout=120, limits=limits) as client:
-        async def join(i: int) -> dict:
+        async def join(i: int) -> dict[str, Any]:
             pid = f"P{i % JOINS:04d}"
             response = await client.post(f"{urls[i % len(urls)]}/api/studies/paper_study/join",
                                          json={"recruiting": {"PROLIFIC_PID": pid, "STUDY_ID": "s"}})

@@ -150,7 +150,7 @@ def recipes(draw: st.DrawFn) -> Recipe:
             value = draw(st.sampled_from([math.inf, -math.inf, math.nan, 1e308, -0.0, 5e-324]))
             body = {"type": "heartbeat", "client_time": value}
             expect = frozenset({"accept"} if math.isfinite(value) else {"invalid_message"})
-        message = {"v": 1, **body}
+        message: dict[str, Any] = {"v": 1, **body}
         if kind == "version":
             bad = draw(st.one_of(st.sampled_from([0, 2, -1, "1", True, None, [1], 1.5]), json_value)
                        .filter(lambda v: v != 1 or isinstance(v, bool)))
@@ -172,8 +172,8 @@ def recipes(draw: st.DrawFn) -> Recipe:
                 st.floats(allow_nan=False, allow_infinity=False)))
         return Recipe(frozenset({"invalid_message"}), message)
     if kind == "json":
-        value = draw(json_value)
-        return Recipe(ANY if isinstance(value, dict) else frozenset({"invalid_message"}), raw=json.dumps(value))
+        document = draw(json_value)
+        return Recipe(ANY if isinstance(document, dict) else frozenset({"invalid_message"}), raw=json.dumps(document))
     if kind == "text":
         return Recipe(ANY, raw=draw(st.text(max_size=200)))
     if kind == "binary":
@@ -212,7 +212,7 @@ class Session:
         self.sent = 0
 
     async def next_message(self) -> dict[str, Any]:
-        message = await self.sock.recv()
+        message: dict[str, Any] = await self.sock.recv()
         server_adapter.validate_python(message)
         self.server_seq += 1
         assert message["seq"] == self.server_seq, f"server seq gap: {message}"
@@ -324,7 +324,7 @@ def test_a_burst_of_fuzzed_frames_without_waiting_is_answered_frame_for_frame(li
             first = await sock.recv()
             for i, recipe in enumerate(burst):
                 await sock.send_raw(recipe.frame(i).data)
-            replies = []
+            replies: list[dict[str, Any]] = []
             while len(replies) < len(burst):
                 message = await sock.recv()
                 server_adapter.validate_python(message)

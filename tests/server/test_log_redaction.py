@@ -49,7 +49,8 @@ def test_a_served_websocket_and_a_query_token_leave_no_token_in_the_log(study_fi
             assert (await sock.recv())["type"] == "hello"
             await sock.close()
             await player.close()
-            return player.token
+            token: str = player.token
+            return token
 
         token = asyncio.run(scenario())
         assert httpx.get(f"{server.url}/api/session", params={"token": token}).status_code == 200

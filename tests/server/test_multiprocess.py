@@ -63,7 +63,7 @@ def test_two_processes_share_assignment_and_admin_views(db_url, study_file, tmp_
         urls = [s.url for s in servers]
         joined = asyncio.run(join_all(urls))
 
-        async def live_pair() -> tuple[dict[str, Any], ...]:
+        async def live_pair() -> dict[str, Any]:
             started = [await start_trial(url, f"live-{i}") for i, url in enumerate(urls)]
             # The other process's trial is listed from the store: its ticks and connection event arrive there
             # within a flush interval.

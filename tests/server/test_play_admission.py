@@ -4,6 +4,7 @@ line, nothing about their round), then plays; one who waits too long is screened
 from __future__ import annotations
 
 import asyncio
+from typing import Any
 
 from steakhouse_testing import Player, eventually, play_to_end
 
@@ -12,7 +13,7 @@ from store.tables import EventRow
 STUDY = {"world": {"orders": 1, "horizon": 60, "kb_delay": 1}}
 
 
-def admission_events(server) -> list[dict]:
+def admission_events(server) -> list[dict[str, Any]]:
     with server.services.store.transaction() as session:
         return [e.payload for e in session.query(EventRow).filter_by(kind="admission_wait").order_by(EventRow.id)]
 

@@ -6,6 +6,7 @@ admin's replay draws it, the export carries it, and the participant is told the 
 from __future__ import annotations
 
 import asyncio
+from typing import Any
 
 import httpx
 from steakhouse_testing import Player, condition_order, play_every_trial
@@ -32,7 +33,7 @@ def test_each_group_plays_practises_and_is_modelled_at_its_own_angle(live_server
 
     server = live_server([study_file(**STUDY)], robot_factory=factory)
 
-    async def participant() -> tuple[str, list[float], list[dict], dict]:
+    async def participant() -> tuple[str, list[float], list[dict[str, Any]], dict[str, Any]]:
         player = Player(server.url)
         joined = await player.join()
         told = (await player.session())["fov_angle"]

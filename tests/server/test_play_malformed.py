@@ -90,7 +90,8 @@ def test_each_malformed_message_gets_a_typed_error_and_changes_nothing(live_serv
 
 
 def end_trial_id(received) -> int:
-    return next(m for m in received if m["type"] == "hello")["trial"]["id"]
+    trial_id: int = next(m for m in received if m["type"] == "hello")["trial"]["id"]
+    return trial_id
 
 
 def test_a_frame_above_the_socket_limit_drops_only_the_connection(live_server, study_file):

@@ -6,6 +6,7 @@ by a clock the test moves by hand, never by sleeping."""
 from __future__ import annotations
 
 import asyncio
+from typing import Any
 
 import httpx
 import pytest
@@ -27,24 +28,26 @@ def two_round_study(study_file, mode: str, **extra):
                       recruiting=CODES, **extra)
 
 
-def admin_participant(server, public_id: str) -> dict:
-    rows = httpx.get(f"{server.url}/api/admin/participants", headers=ADMIN, timeout=10).json()
+def admin_participant(server, public_id: str) -> dict[str, Any]:
+    rows: list[dict[str, Any]] = httpx.get(f"{server.url}/api/admin/participants", headers=ADMIN, timeout=10).json()
     return next(p for p in rows if p["participant_id"] == public_id)
 
 
-def admin_trials(server, public_id: str) -> list[dict]:
-    return httpx.get(f"{server.url}/api/admin/trials", params={"participant_id": public_id}, headers=ADMIN,
-                     timeout=10).json()
+def admin_trials(server, public_id: str) -> list[dict[str, Any]]:
+    rows: list[dict[str, Any]] = httpx.get(f"{server.url}/api/admin/trials", params={"participant_id": public_id},
+                                           headers=ADMIN, timeout=10).json()
+    return rows
 
 
 async def next_joiner_order(server) -> list[str]:
     other = Player(server.url)
     joined = await other.join()
     await other.close()
-    return condition_order(server.services, joined["participant_id"])
+    order: list[str] = condition_order(server.services, joined["participant_id"])
+    return order
 
 
-async def idle_round(sock, clock: ManualClock, mode: str, limit: float) -> tuple[list[dict], dict]:
+async def idle_round(sock, clock: ManualClock, mode: str, limit: float) -> tuple[list[dict[str, Any]], dict[str, Any]]:
     """Connect and never act; on the waiting clock, move the wall clock past the nudge and then the limit."""
     hello = await sock.recv()
     assert hello["type"] == "hello"

@@ -50,7 +50,10 @@ def test_scripted_client_plays_a_whole_trial_to_the_end(live_server, study_file)
         row = session_.get(TrialRow, trial_id)
         assert (row.status, row.end_reason, row.ticks, row.delivered, row.score) == (
             "finished", "delivered", end["ticks"], 1, 20)
-        steps = [t.world_events for t in trials.ticks(session_, trial_id)]
+        steps = []
+        for t in trials.ticks(session_, trial_id):
+            assert t.world_events is not None, f"tick {t.tick} keeps no events"
+            steps.append(t.world_events)
     # Every tick keeps what its step did: the one dish was plated, garnished and delivered by somebody.
     kinds = [e["kind"] for events in steps for e in events]
     assert all(set(e) == {"agent", "kind", "pos", "obj"} for events in steps for e in events)

@@ -27,7 +27,7 @@ def check_store(db_url: str, trial_id: int) -> tuple[TrialRow, list[int]]:
         with store.transaction() as session:
             if store.dialect == "sqlite":
                 assert session.execute(text("PRAGMA integrity_check")).scalar() == "ok"
-            row = session.get(TrialRow, trial_id)
+            row = session.get_one(TrialRow, trial_id)
             rows = trials.ticks(session, trial_id)
             for tick in rows:
                 world = WorldState.from_dict(tick.world_state)

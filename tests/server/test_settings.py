@@ -6,7 +6,7 @@ import logging
 import os
 
 import pytest
-from pydantic import ValidationError
+from pydantic import SecretStr, ValidationError
 
 from server.app import _admin_token
 from server.settings import DEFAULT_DATABASE_URL, Settings
@@ -52,4 +52,4 @@ def test_a_missing_admin_token_is_generated_and_logged(caplog):
     with caplog.at_level(logging.WARNING, logger="server"):
         token = _admin_token(Settings())
     assert len(token) >= 24 and token in caplog.text
-    assert _admin_token(Settings(admin_token="fixed")) == "fixed"
+    assert _admin_token(Settings(admin_token=SecretStr("fixed"))) == "fixed"

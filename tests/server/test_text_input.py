@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+from typing import Any
 
 import httpx
 from steakhouse_testing import Player, play_to_end
@@ -20,15 +21,18 @@ QUIZ = {"questions": [{"id": "seen", "text": "?", "options": ["a", "b"], "answer
 
 def test_the_checker_finds_the_first_unstorable_string_at_any_depth():
     assert text_problem("ordinary ü 😀") is None
-    assert "surrogate" in text_problem("\udc80") and "NUL" in text_problem("\x00")
+    surrogate, nul = text_problem("\udc80"), text_problem("\x00")
+    assert surrogate is not None and "surrogate" in surrogate and nul is not None and "NUL" in nul
     assert first_problem({"a": [1, "ok", {"b": "\ud800"}]}) == (("body", "a", 2, "b"), text_problem("\ud800"))
-    loc, reason = first_problem({"ok": 1, "\x00key": 2})
+    problem = first_problem({"ok": 1, "\x00key": 2})
+    assert problem is not None
+    loc, reason = problem
     assert loc == ("body", "\\x00key") and reason.startswith("a field name")
     assert first_problem({"a": ["fine", None, 1.5, True]}) is None
     assert safe("a\ud800\x00").encode("utf-8") == b"a\\ud800\\x00"
 
 
-def _post(client: httpx.Client, path: str, body: dict, token: str | None = None) -> httpx.Response:
+def _post(client: httpx.Client, path: str, body: dict[str, Any], token: str | None = None) -> httpx.Response:
     headers = {"Content-Type": "application/json"}
     if token:
         headers["Authorization"] = f"Bearer {token}"
@@ -44,7 +48,8 @@ def _at_questionnaire(url: str) -> str:
         await play_to_end(sock)
         await sock.close()
         await player.close()
-        return player.token
+        token: str = player.token
+        return token
 
     return asyncio.run(run())
 
@@ -58,7 +63,7 @@ def test_every_route_with_text_answers_422_naming_the_field_and_stores_nothing(l
         _post(client, "/api/session/consent", {"accept": True}, fresh)
         _post(client, "/api/session/instructions_done", {}, fresh)
         public_id = client.get("/api/session", headers={"Authorization": f"Bearer {played}"}).json()["participant_id"]
-        cases = []
+        cases: list[tuple[str, dict[str, Any], str | None, list[str]]] = []
         for bad in UNSTORABLE:
             cases += [
                 ("/api/studies/tiny/join", {"recruiting": {"PROLIFIC_PID": bad}}, None, ["recruiting", "PROLIFIC_PID"]),

@@ -102,7 +102,7 @@ class StudyServer:
         return response.json()
 
     def participant(self, public_id: str) -> dict[str, Any]:
-        found = [p for p in self.get("/api/admin/participants") if p["participant_id"] == public_id]
+        found: list[dict[str, Any]] = [p for p in self.get("/api/admin/participants") if p["participant_id"] == public_id]
         assert len(found) == 1, found
         return found[0]
 
@@ -126,13 +126,15 @@ class StudyServer:
 
 @pytest.fixture(scope="module")
 def study_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[StudyServer]:
+    from pydantic import SecretStr
+
     from server.app import create_app
     from server.settings import Settings
 
     folder = tmp_path_factory.mktemp("browser-store")
     settings = Settings(database_url=f"sqlite:///{folder / 'store.sqlite3'}",
                         study_files=tuple(sorted(STUDIES.glob("*.yaml"))), robot_workers=0,
-                        admin_token=ADMIN_TOKEN, flush_interval_s=0.1, static_dir=REPO / "static",
+                        admin_token=SecretStr(ADMIN_TOKEN), flush_interval_s=0.1, static_dir=REPO / "static",
                         join_rate_per_minute=0)
     with ThreadServer(create_app(settings)) as thread:
         server = StudyServer(thread)

@@ -84,7 +84,8 @@ class AdminServer:
             await player.close()
             return joined["participant_id"], int(hello["trial"]["id"])
 
-        return in_thread(scenario)
+        finished: tuple[str, int] = in_thread(scenario)
+        return finished
 
     def live_trial(self, prolific_pid: str) -> BackgroundPlayer:
         player = BackgroundPlayer(self.url, prolific_pid)
@@ -171,13 +172,15 @@ class BackgroundPlayer:
 
 @pytest.fixture(scope="module")
 def admin_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[AdminServer]:
+    from pydantic import SecretStr
+
     from server.app import create_app
     from server.settings import Settings
 
     folder = tmp_path_factory.mktemp("dashboard")
     settings = Settings(database_url=f"sqlite:///{folder / 'store.sqlite3'}", study_files=tuple(write_studies(folder)),
-                        robot_workers=0, admin_token=ADMIN_TOKEN, flush_interval_s=0.1, static_dir=REPO / "static",
-                        join_rate_per_minute=0)
+                        robot_workers=0, admin_token=SecretStr(ADMIN_TOKEN), flush_interval_s=0.1,
+                        static_dir=REPO / "static", join_rate_per_minute=0)
     with ThreadServer(create_app(settings)) as thread:
         server = AdminServer(thread, thread.url, httpx.Client(base_url=thread.url, timeout=10,
                                                               headers={"Authorization": f"Bearer {ADMIN_TOKEN}"}))

@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from planner.fov import visible_cells
-from planner.geometry import Direction
+from planner.geometry import Direction, Pos
 from planner.layout import Layout, parse_layout
 from study_config import STUDY_DIR
 
@@ -154,7 +154,7 @@ def is_black(pixel: tuple[int, int, int]) -> bool:
     return max(pixel) <= 8
 
 
-def check_mask(page: Any, layout: Layout, angle: float = 120.0) -> tuple[set, set]:
+def check_mask(page: Any, layout: Layout, angle: float = 120.0) -> tuple[set[Pos], set[Pos]]:
     """Check every cell of the drawn canvas against the FOV of the pose the canvas says it drew."""
     before = drawn(page)
     image, origin = canvas_image(page)

@@ -34,7 +34,8 @@ def sent_choices(page) -> list[str]:
 
 
 def hud_height(page) -> float:
-    return page.eval_on_selector(".hud", "el => el.getBoundingClientRect().height")
+    height: float = page.eval_on_selector(".hud", "el => el.getBoundingClientRect().height")
+    return height
 
 
 def wait_idle(page) -> None:

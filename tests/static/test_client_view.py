@@ -4,12 +4,16 @@ function), interrupt keys moving the avatar, refresh and dropped connections res
 from __future__ import annotations
 
 import time
+from typing import TYPE_CHECKING
 
 import pytest
 from steakhouse_browser import check_mask, drawn, kitchen, press_until_focused, start_first_round, wait_drawn
 
 from steakhouse_browser import screenshot
 from server.game.view import drawn_bounds
+
+if TYPE_CHECKING:
+    from playwright.sync_api import WebSocketRoute
 
 pytestmark = pytest.mark.browser
 
@@ -117,7 +121,7 @@ def test_refresh_resumes_the_same_trial_at_a_later_tick(study_server, new_page):
 def test_a_dropped_connection_reconnects_with_backoff(study_server, new_page):
     page, _ = new_page()
     attempts: list[float] = []
-    routes: list = []
+    routes: list[tuple[WebSocketRoute, WebSocketRoute]] = []  # (page side, server side)
 
     def handle(ws):
         attempts.append(time.monotonic())

@@ -8,6 +8,7 @@ import asyncio
 import threading
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 import yaml
@@ -24,7 +25,9 @@ STUDY = {
 CONDITION_WORDS = ("stay", "none_3", "busy server test study")
 
 
-def serve(tmp_path_factory: pytest.TempPathFactory, **settings: float) -> Iterator[ThreadServer]:
+def serve(tmp_path_factory: pytest.TempPathFactory, **settings: Any) -> Iterator[ThreadServer]:
+    from pydantic import SecretStr
+
     from server.app import create_app
     from server.settings import Settings
 
@@ -32,7 +35,7 @@ def serve(tmp_path_factory: pytest.TempPathFactory, **settings: float) -> Iterat
     study = folder / "busy.yaml"
     study.write_text(yaml.safe_dump(STUDY), encoding="utf-8")
     config = Settings(database_url=f"sqlite:///{folder / 'store.sqlite3'}", study_files=(study,),
-                      robot_workers=0, admin_token="busy-admin", flush_interval_s=0.1,
+                      robot_workers=0, admin_token=SecretStr("busy-admin"), flush_interval_s=0.1,
                       static_dir=Path(__file__).resolve().parents[2] / "static", join_rate_per_minute=0,
                       max_live_trials=1, **settings)
     with ThreadServer(create_app(config)) as thread:

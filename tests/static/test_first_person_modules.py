@@ -91,7 +91,8 @@ def test_three_is_vendored_at_its_pinned_version_unchanged():
     version, _, files = pinned.groups()
     folder = STATIC / "vendor" / "three"
     assert (folder / "VERSION").read_text().strip() == f"three@{version}"
-    sums = dict(reversed(line.split()) for line in (folder / "SHA256SUMS").read_text().splitlines())
+    listed = (folder / "SHA256SUMS").read_text().splitlines()
+    sums = {name: digest for digest, name in (line.split() for line in listed)}
     names = {Path(f).name for f in files.split()}
     assert set(sums) == names | {"VERSION"}
     for name, digest in sums.items():

@@ -29,8 +29,9 @@ COMMENT = '=HYPERLINK("http://x.example","click"), then "quotes",\nand a second 
 
 
 def enabled_tasks(page) -> list[str]:
-    return page.eval_on_selector_all("button[data-subtask]", "bs => bs.filter(b => b.getAttribute('aria-disabled')"
-                                     " === 'false').map(b => b.dataset.subtask)")
+    tasks: list[str] = page.eval_on_selector_all("button[data-subtask]", "bs => bs.filter(b => b.getAttribute('aria-disabled')"
+                                      " === 'false').map(b => b.dataset.subtask)")
+    return tasks
 
 
 def wait_idle(page) -> bool:
@@ -74,8 +75,9 @@ def play_from_the_page(page, shots: dict[str, str] | None = None) -> list[str]:
 
 
 def public_id_of(server, recruit_id: str) -> str:
-    return next(p["participant_id"] for p in server.get("/api/admin/participants")
-                if p["recruiting"].get("PROLIFIC_PID") == recruit_id)
+    public_id: str = next(p["participant_id"] for p in server.get("/api/admin/participants")
+                          if p["recruiting"].get("PROLIFIC_PID") == recruit_id)
+    return public_id
 
 
 def stored(server, public_id: str, model):

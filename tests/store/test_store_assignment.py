@@ -62,7 +62,8 @@ def test_a_recruiting_id_joins_once_and_only_its_token_comes_back(store, loaded)
             service.join(store, loaded, {"PROLIFIC_PID": "abc"}, False, token)
         assert (refused.value.status, refused.value.code) == (409, "already_started")
     with store.transaction() as session:
-        assert participants.by_token(session, first.token).id == first.participant.id
+        found = participants.by_token(session, first.token)
+        assert found is not None and found.id == first.participant.id
         refusals = session.query(EventRow).filter(EventRow.kind == "join_refused").all()
         assert [e.participant_id for e in refusals] == [first.participant.id] * 3
     assert counts(store, loaded) == [1, 1]

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from typing import Any
 
 import pytest
 import uvicorn
@@ -18,7 +19,7 @@ def clean_env(monkeypatch):
 
 
 def test_serve_starts_uvicorn_with_the_options(monkeypatch, study_file, tmp_path):
-    seen = {}
+    seen: dict[str, Any] = {}
     monkeypatch.setattr(uvicorn, "run", lambda app, **kwargs: seen.update(app=app, **kwargs))
     study = study_file()
     url = f"sqlite:///{tmp_path / 'db.sqlite3'}"

@@ -128,7 +128,7 @@ def client_tls() -> ssl.SSLContext:
     return context
 
 
-class ProxiedPlayer(Player):
+class ProxiedPlayer(Player):  # type: ignore[misc]  # Player: imported by its sys.path name, unresolved (Any)
     """A participant reaching the servers only through the proxy, as a browser does."""
 
     def __init__(self, base_url: str) -> None:
@@ -144,7 +144,7 @@ class ProxiedPlayer(Player):
 
 def backoff_s(attempt: int) -> float:
     """The browser's reconnect delay before attempt ``attempt`` (0-based), without its ±20 % jitter."""
-    return min(BACKOFF_MAX_S, BACKOFF_MIN_S * 2 ** max(0, attempt))
+    return min(BACKOFF_MAX_S, BACKOFF_MIN_S * 2.0 ** max(0, attempt))
 
 
 def trial_processes(events: list[Any]) -> dict[int, list[str]]:

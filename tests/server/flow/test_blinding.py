@@ -15,6 +15,7 @@ from steakhouse_blinding import Recorder, forbidden_names, hits
 from steakhouse_test_robots import simulated_partner
 from steakhouse_testing import REPO, http_client
 from websockets.asyncio.client import connect
+from websockets.typing import Subprotocol
 
 from study_config.study import load_study
 
@@ -39,9 +40,14 @@ def client_files() -> list[str]:
                   if p.is_file() and p.parts[len(static.parts)] not in ("admin", "vendor"))
 
 
+def protocols(token: str) -> list[Subprotocol]:
+    """The websocket subprotocols the client offers: the protocol version and the session token."""
+    return [Subprotocol("steakhouse.v1"), Subprotocol(f"token.{token}")]
+
+
 async def play_trial(base: str, token: str, record: Recorder) -> None:
     """Connect, provoke the errors a participant can meet, and play (first available subtask) to the end."""
-    async with connect(base.replace("http", "ws", 1) + "/ws/play", subprotocols=["steakhouse.v1", f"token.{token}"],
+    async with connect(base.replace("http", "ws", 1) + "/ws/play", subprotocols=protocols(token),
                        max_size=1 << 22) as ws:
         await ws.send("not json")
         await ws.send(json.dumps({"v": 1, "seq": 1, "type": "select_subtask", "subtask": "no_such_task"}))
@@ -62,7 +68,7 @@ async def probe(base: str, record: Recorder) -> dict[str, Any]:
     async with http_client(base) as http:
         async def call(method: str, path: str, token: str | None = None, **kwargs: Any) -> httpx.Response:
             headers = {"Authorization": f"Bearer {token}"} if token else {}
-            response = await http.request(method, path, headers=headers, **kwargs)
+            response: httpx.Response = await http.request(method, path, headers=headers, **kwargs)
             record.add(f"{method} {path} → {response.status_code}", response.content)
             return response
 
@@ -96,8 +102,7 @@ async def probe(base: str, record: Recorder) -> dict[str, Any]:
             else:
                 await play_trial(base, token, record)
         await call("GET", "/api/session/completion", token)
-        async with connect(base.replace("http", "ws", 1) + "/ws/play",
-                           subprotocols=["steakhouse.v1", f"token.{token}"]) as ws:
+        async with connect(base.replace("http", "ws", 1) + "/ws/play", subprotocols=protocols(token)) as ws:
             record.add("ws (after the end)", await asyncio.wait_for(ws.recv(), 10))
         return {"states": states}
 

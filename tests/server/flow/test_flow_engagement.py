@@ -12,6 +12,7 @@ import pytest
 from server.flow.engagement import engagement_problem
 from server.flow.standing import not_taking_part, review_device, round_problem
 from store.activity import Activity
+from store.tables import ParticipantRow
 from study_config.study.validity import Validity
 
 PLAYED = Activity(selections=12, interrupts=3, key_actions=2, ticks=120, idle_ticks=10, waited_seconds=0.0,
@@ -51,7 +52,7 @@ def test_rounds_the_participant_did_not_take_part_in_screen_out_beyond_the_allow
 
 
 def test_a_refused_device_stops_counting_until_an_accepted_one():
-    row = SimpleNamespace(uncounted_reason=None)
+    row = ParticipantRow(uncounted_reason=None)
     review_device(row, ["small_screen"])
     assert row.uncounted_reason == "device_refused: small_screen"
     review_device(row, [])

@@ -30,6 +30,7 @@ def walk(plan) -> list[Phase]:
         elif progress.phase is Phase.QUIZ:
             progress = progress.apply(Move.PASS_QUIZ)
         elif progress.phase in (Phase.PRACTICE, Phase.TRIAL):
+            assert step.trial_kind is not None and step.index is not None
             progress = progress.apply(Move.END_TRIAL, trial=(step.trial_kind, step.index))
         else:
             progress = progress.apply(Move.SUBMIT_QUESTIONNAIRE, questionnaire=step.questionnaire)
@@ -78,13 +79,15 @@ def test_only_legal_moves_change_the_state(plan, step, move):
         Phase.PRACTICE: {Move.END_TRIAL, Move.SERVER_FULL}, Phase.TRIAL: {Move.END_TRIAL, Move.SERVER_FULL},
         Phase.QUESTIONNAIRE: {Move.SUBMIT_QUESTIONNAIRE}, Phase.DONE: set(),
     }[progress.phase]
-    kwargs = {"trial": (current.trial_kind, current.index), "questionnaire": current.questionnaire}
+    # The current step's trial and questionnaire, so that only the move itself decides (a step that is no trial
+    # names none).
+    trial = None if current.trial_kind is None or current.index is None else (current.trial_kind, current.index)
     if move in legal:
-        after = progress.apply(move, **kwargs)
+        after = progress.apply(move, trial=trial, questionnaire=current.questionnaire)
         assert after.step == step + (0 if move in (Move.DECLINE_CONSENT, Move.FAIL_QUIZ, Move.SERVER_FULL) else 1)
     else:
         with pytest.raises(IllegalTransition):
-            progress.apply(move, **kwargs)
+            progress.apply(move, trial=trial, questionnaire=current.questionnaire)
 
 
 def test_end_of_study_questionnaires_come_once_after_the_last_trial(study_file):

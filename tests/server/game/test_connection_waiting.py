@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+from typing import Any
 
 import pytest
 
@@ -14,7 +15,7 @@ from server.protocol.server import Pong, Waiting
 
 class Socket:
     def __init__(self) -> None:
-        self.sent: list[dict] = []
+        self.sent: list[dict[str, Any]] = []
         self.closed_with: int | None = None
 
     async def send_text(self, text: str) -> None:
@@ -25,7 +26,7 @@ class Socket:
 
 
 def test_waiting_messages_come_first_and_the_numbering_goes_on_after_opening() -> None:
-    async def scenario() -> list[dict]:
+    async def scenario() -> list[dict[str, Any]]:
         socket = Socket()
         conn = Connection(socket)
         assert not conn.send(Waiting(position=1, eta_s=5))  # not yet started: nothing is sent

@@ -16,7 +16,7 @@ from planner.rules import Rules
 from planner.state import AgentState, WorldState, initial_state
 from planner.subtasks import SUBTASKS, Subtask
 from server.game.blocked import NOTICE_AFTER_MOVES, Reason, hands_reason, interaction_reason
-from server.game.engine import TrialEngine
+from server.game.engine import TickOutcome, TrialEngine
 from server.game.needs import NEEDS, hands_fit
 from study_config import load_layout
 
@@ -93,7 +93,7 @@ def engine_at(world: WorldState, blocked_ticks: int = 5, layout=PRACTICE) -> Tri
                        blocked_ticks=blocked_ticks)
 
 
-def run(engine: TrialEngine, ticks: int) -> list:
+def run(engine: TrialEngine, ticks: int) -> list[TickOutcome]:
     return [engine.advance(Action.STAY) for _ in range(ticks)]
 
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import asyncio
 import time
+from typing import Any
 
 import pytest
 from steakhouse_testing import Player, eventually, play_to_end
@@ -58,7 +59,7 @@ def test_a_flood_of_messages_stores_a_bounded_number_of_rows_and_the_game_goes_o
         started = time.monotonic()
         for _ in range(flood):
             await sock.send("focus")
-        replies = []
+        replies: list[dict[str, Any]] = []
         while len(replies) < flood:
             message = await sock.recv()
             if message["type"] in ("ack", "error"):

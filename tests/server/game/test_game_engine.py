@@ -9,14 +9,14 @@ from planner.rules import Rules
 from planner.state import WorldState
 from planner.summary import gap_components, summarize
 from server.game.controller import ParticipantController
-from server.game.engine import TrialEngine
+from server.game.engine import TickOutcome, TrialEngine
 from study_config import load_layout
 
 RULES = Rules(orders=1, horizon=200)
 
 
-def play(engine: TrialEngine, limit: int = 200) -> list:
-    outcomes = []
+def play(engine: TrialEngine, limit: int = 200) -> list[TickOutcome]:
+    outcomes: list[TickOutcome] = []
     while not engine.done and len(outcomes) < limit:
         if engine.controller.subtask is None:
             engine.controller.select(engine.controller.available(engine.world, engine.kb)[0], engine.world.human.held)

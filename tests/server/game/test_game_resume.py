@@ -60,16 +60,16 @@ def test_a_reconnection_while_the_trial_is_being_stored_as_ended_does_not_resume
     server = live_server([study_file(world={"orders": 1, "horizon": 8, "kb_delay": 1})])
     order: list[str] = []
     ending, second_prepare = threading.Event(), threading.Event()
-    original_end, original_prepare = service.end_trial, registry.prepare_trial
+    original_end, original_prepare = service.end_trial, prepare_trial
 
-    def slow_end(*args, **kwargs):  # type: ignore[no-untyped-def]
+    def slow_end(*args, **kwargs):
         ending.set()
         second_prepare.wait(timeout=1.0)
         result = original_end(*args, **kwargs)
         order.append("end stored")
         return result
 
-    def watched_prepare(*args, **kwargs):  # type: ignore[no-untyped-def]
+    def watched_prepare(*args, **kwargs):
         order.append("prepare")
         if order.count("prepare") == 2:
             second_prepare.set()
@@ -86,7 +86,7 @@ def test_a_reconnection_while_the_trial_is_being_stored_as_ended_does_not_resume
             assert (await first.recv())["type"] == "hello"
             assert await asyncio.to_thread(ending.wait, 60)
             again = await player.socket()
-            reply = await again.recv()
+            reply: dict[str, Any] = await again.recv()
             await again.close()
             await first.close()
             return reply

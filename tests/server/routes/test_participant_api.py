@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+from typing import Any
 
 import httpx
 import pytest
@@ -27,8 +28,8 @@ def client(server):
         yield client
 
 
-def ws_messages(server, token: str, until: str | None = None) -> list[dict]:
-    async def run() -> list[dict]:
+def ws_messages(server, token: str, until: str | None = None) -> list[dict[str, Any]]:
+    async def run() -> list[dict[str, Any]]:
         out = []
         async with connect(server.url.replace("http", "ws") + f"/ws/play?token={token}") as ws:
             while True:
@@ -42,7 +43,7 @@ def ws_messages(server, token: str, until: str | None = None) -> list[dict]:
     return asyncio.run(run())
 
 
-def join(client, **recruiting) -> tuple[dict, dict]:
+def join(client, **recruiting) -> tuple[dict[str, Any], dict[str, str]]:
     response = client.post("/api/studies/tiny/join", json={"recruiting": recruiting})
     assert response.status_code == 200, response.text
     body = response.json()
@@ -136,7 +137,7 @@ def test_a_placeholder_code_never_reaches_a_real_participant_but_test_runs_see_i
                     "screen_out_code": "REPLACE-WITH-YOUR-SCREEN-OUT-CODE"}
     server = live_server([study_file(world={"orders": 1, "horizon": 5, "kb_delay": 1}, recruiting=placeholders)])
 
-    async def finish(test_run: bool) -> tuple[dict, dict]:
+    async def finish(test_run: bool) -> tuple[dict[str, Any], dict[str, Any]]:
         player = Player(server.url)
         joined = await player.http.post("/api/studies/tiny/join", json={"test_run": test_run})
         player.token = joined.json()["token"]

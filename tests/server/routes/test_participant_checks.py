@@ -42,7 +42,7 @@ def client(live_server, study_file):
         yield http
 
 
-def join(client, pid: str) -> dict:
+def join(client, pid: str) -> dict[str, str]:
     body = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": pid}}).json()
     return {"Authorization": f"Bearer {body['token']}"}
 
@@ -78,7 +78,7 @@ def test_the_consent_states_the_studys_own_length(client):
     assert consent.startswith("Up to ") and "rounds of at most 1 second." in consent and "{" not in consent
 
 
-def to_quiz(client, pid: str) -> dict:
+def to_quiz(client, pid: str) -> dict[str, str]:
     headers = join(client, pid)
     client.post("/api/session/consent", json={"accept": True}, headers=headers)
     view = client.post("/api/session/instructions_done", headers=headers).json()

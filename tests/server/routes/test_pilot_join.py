@@ -3,6 +3,8 @@ assignment of real participants; the admin shows them apart."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import httpx
 import pytest
 
@@ -17,7 +19,7 @@ def client(live_server, study_file):
 
 
 def join(client: httpx.Client, name: str, pilot: bool = False, headers: dict[str, str] | None = None) -> httpx.Response:
-    body: dict = {"recruiting": {"PROLIFIC_PID": name}}
+    body: dict[str, Any] = {"recruiting": {"PROLIFIC_PID": name}}
     if pilot:
         body["pilot"] = {"pace": "fast"}
     return client.post("/api/studies/tiny/join", json=body, headers=headers or {})
@@ -26,8 +28,9 @@ def join(client: httpx.Client, name: str, pilot: bool = False, headers: dict[str
 def order_of(client: httpx.Client, response: httpx.Response) -> int:
     """The order the admin sees for the participant just joined (the join answer itself never names it)."""
     public_id = response.json()["participant_id"]
-    people = client.get("/api/admin/participants", headers=ADMIN).json()
-    return next(p["order_index"] for p in people if p["participant_id"] == public_id)
+    people: list[dict[str, Any]] = client.get("/api/admin/participants", headers=ADMIN).json()
+    order: int = next(p["order_index"] for p in people if p["participant_id"] == public_id)
+    return order
 
 
 def test_a_participant_cannot_make_themselves_a_pilot(client) -> None:

@@ -86,8 +86,8 @@ def test_a_wall_clock_limit_belongs_to_the_waiting_clock_and_the_engagement_rule
     assert found == [("timing.max_round_seconds", "only a wait_for_participant round has a wall-clock limit; a "
                                                   "fixed_rate round ends at the horizon")]
     bad = "validity: {min_participant_actions: -1, max_idle_pct: 101, max_invalid_rounds: -2}\n"
-    found = {p.path for p in validate_study_file(write(tmp_path, bad))}
-    assert found == {"validity.min_participant_actions", "validity.max_idle_pct", "validity.max_invalid_rounds"}
+    paths = {p.path for p in validate_study_file(write(tmp_path, bad))}
+    assert paths == {"validity.min_participant_actions", "validity.max_idle_pct", "validity.max_invalid_rounds"}
     study = load_study(write(tmp_path, "timing: {mode: wait_for_participant}\n"))
     assert (study.validity.min_participant_actions, study.validity.max_idle_pct,
             study.validity.max_invalid_rounds) == (1, 95.0, 0)
