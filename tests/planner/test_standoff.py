@@ -11,6 +11,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from planner.events import Event
 from planner.geometry import Action, Direction
 from planner.human import HumanMemory, HumanModel
 from planner.kb import KnowledgeBase, initial_kb, update_kb
@@ -106,7 +107,7 @@ def play(layout: Layout, world: WorldState, config: PlannerConfig, human: Human,
     robot = make_robot("fov_aware", layout, RULES, config)
     robot.reset(world)
     rng = np.random.default_rng(0)
-    events: tuple = ()
+    events: tuple[Event, ...] = ()
     for _ in range(ticks):
         action = robot.decide(world, events, rng).action
         world, events = step(layout, world, {"human": human(world), "robot": action}, RULES)
@@ -154,7 +155,7 @@ def test_behind_a_still_person_the_robot_takes_over_the_person_s_errand():
     robot = make_robot("fov_aware", ERRANDS, RULES, ON)
     robot.reset(world, replace(initial_kb(world), grills=(3,), boards=(0,)))
     rng = np.random.default_rng(0)
-    events: tuple = ()
+    events: tuple[Event, ...] = ()
     held = []
     for _ in range(16):
         action = robot.decide(world, events, rng).action
@@ -185,7 +186,7 @@ def play_with_person(layout: Layout, world: WorldState, kb: KnowledgeBase, confi
     robot.reset(world)
     person, memory = HumanModel(layout, RULES), HumanMemory()
     person_rng, robot_rng = np.random.default_rng(0).spawn(2)
-    events: tuple = ()
+    events: tuple[Event, ...] = ()
     for _ in range(ticks):
         human_action, memory = person.act(world, kb, memory, person_rng)
         action = robot.decide(world, events, robot_rng).action
