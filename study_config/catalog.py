@@ -39,10 +39,17 @@ class LoadedStudy:
         like ``orders`` (read at every assignment; the study is immutable after start-up)."""
         return tuple(self.study.order_groups())
 
-    def planner_config(self, angle: float) -> PlannerConfig:
-        """The robot's model of the person a trial of this study shows: the trial's FOV ``angle`` and the study's
-        KB delay (docs/domain.md §5); the kitchen's numbers reach the robot as :attr:`rules`."""
-        return PlannerConfig(human_angle=angle, human_delay=self.study.world.kb_delay)
+    def planner_config(self, robot: str, angle: float) -> PlannerConfig:
+        """The settings of the robot called ``robot`` in a trial of this study: its variant's settings
+        (``study_config/study/robots.py``), and the robot's model of the person the trial shows, the trial's FOV
+        ``angle`` and the study's KB delay (docs/domain.md §5); the kitchen's numbers reach the robot as
+        :attr:`rules`."""
+        person = PlannerConfig(human_angle=angle, human_delay=self.study.world.kb_delay)
+        return self.study.planner_config(robot, person)
+
+    def planner(self, robot: str) -> str:
+        """The planner (``planner.registry``) of the robot called ``robot``."""
+        return self.study.planner(robot)
 
 
 class DuplicateStudyError(ValueError):

@@ -330,9 +330,9 @@ class LiveGame:
 
     async def _reopen_planner(self) -> None:
         try:
-            await self.deps.pool.open(self.meta.trial_id, self.meta.robot, self.engine.layout, self.engine.rules,
-                                      self.loaded.planner_config(self.engine.angle), self.engine.world,
-                                      self.engine.kb)
+            await self.deps.pool.open(self.meta.trial_id, self.loaded.planner(self.meta.robot), self.engine.layout,
+                                      self.engine.rules, self.loaded.planner_config(self.meta.robot, self.engine.angle),
+                                      self.engine.world, self.engine.kb)
         except Exception as exc:  # the robot stays until a worker is back
             log.error("cannot re-open the planner of trial %d: %s", self.meta.trial_id, exc)
 

@@ -156,8 +156,9 @@ class GameRegistry:
             if prepared.outcome == "abandoned":
                 raise TrialAbandoned(prepared)
             game = self._build(loaded, participant, prepared)
-            await self.deps.pool.open(game.meta.trial_id, game.meta.robot, game.engine.layout, game.engine.rules,
-                                      loaded.planner_config(game.engine.angle), game.engine.world, game.engine.kb)
+            await self.deps.pool.open(game.meta.trial_id, loaded.planner(game.meta.robot), game.engine.layout,
+                                      game.engine.rules, loaded.planner_config(game.meta.robot, game.engine.angle),
+                                      game.engine.world, game.engine.kb)
             self.games[game.meta.trial_id] = game
             self._by_participant[participant.id] = game
             game.event("trial_start" if prepared.outcome == "new" else "resume",

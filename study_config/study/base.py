@@ -72,9 +72,9 @@ def _check_slug(value: str) -> str:
     return value
 
 
-def robot_problem(value: str) -> str:
-    """Why ``value`` is not a robot planner's name."""
-    return f"unknown robot {value!r}; choose one of: {', '.join(PLANNER_NAMES)}"
+def robot_problem(value: str, known: Sequence[str] = PLANNER_NAMES) -> str:
+    """Why ``value`` is not the name of a robot: a planner's, or one of ``known`` (a study's own variants)."""
+    return f"unknown robot {value!r}; choose one of: {', '.join(known)}"
 
 
 def _check_robot(value: str) -> str:

@@ -16,11 +16,11 @@ from typing import Annotated, Any
 from pydantic import Field, ValidationInfo, field_validator
 
 from planner.perception import FOV_ANGLE
+from planner.planner_config import PlannerConfig
 from planner.registry import PLANNER_NAMES
 from study_config.study.base import (
     Loc,
     NotEmpty,
-    RobotName,
     Slug,
     StudyModel,
     duplicate_problems,
@@ -36,6 +36,7 @@ from study_config.study.groups import between_problems, scheme_problems
 from study_config.study.kitchens import Kitchen, KitchenEntry, base_dir_of, entry_name, resolve_kitchens
 from study_config.study.questionnaire import Questionnaire
 from study_config.study.quiz import Quiz
+from study_config.study.robots import RobotVariant, VariantName
 from study_config.study.sections import Assignment, Counterbalancing, Practice, Reconnect, Recruiting, Timing, World
 from study_config.study.texts import DEFAULT_CONSENT, DEFAULT_INSTRUCTIONS
 from study_config.study.validity import Validity
@@ -55,8 +56,12 @@ class Study(StudyModel):
     """What the study is about, for experimenters (not shown to participants)."""
     kitchens: Annotated[tuple[KitchenEntry, ...], NotEmpty]
     """Levels of the kitchen factor: shipped kitchen names or layout paths relative to the study file."""
-    robots: Annotated[tuple[RobotName, ...], NotEmpty]
-    """Levels of the robot factor: planner names (``fov_aware``, ``baseline``, ``no_rollout``, ``stay``)."""
+    robot_variants: dict[VariantName, RobotVariant] = Field(default_factory=dict)
+    """The study's own robots, by name: a planner with some of its settings changed, e.g. ``fov_aware_no_walk:
+    {planner: fov_aware, settings: {hands_walk: false}}`` (``study_config/study/robots.py``)."""
+    robots: Annotated[tuple[Slug, ...], NotEmpty]
+    """Levels of the robot factor: planner names (``fov_aware``, ``baseline``, ``no_rollout``, ``stay``) or the
+    names of ``robot_variants``."""
     view: ViewName | None = None
     """How participants see the kitchen in every trial: ``top_down`` (the default) or ``first_person``
     (``study_config.study.views``). Shorthand for ``views`` with one entry; write one of the two."""
@@ -118,6 +123,13 @@ class Study(StudyModel):
         raise_problems([(loc, reason) for loc, reason, _ in problems], kitchens, [w for _, _, w in problems])
         return resolved
 
+    @field_validator("robot_variants", mode="before")
+    @classmethod
+    def _remember_variants(cls, variants: Any, info: ValidationInfo) -> Any:
+        if isinstance(variants, dict) and isinstance(info.context, dict):
+            info.context["variants_as_written"] = tuple(str(name) for name in variants)
+        return variants
+
     @field_validator("robots", mode="before")
     @classmethod
     def _check_robots(cls, robots: Any, info: ValidationInfo) -> Any:
@@ -125,7 +137,11 @@ class Study(StudyModel):
         if not isinstance(robots, (list, tuple)) or not all(isinstance(r, str) for r in robots):
             return robots
         _remember_levels(info, "robots", list(robots))
-        problems = [((i,), robot_problem(r)) for i, r in enumerate(robots) if r not in PLANNER_NAMES]
+        variants = info.data.get("robot_variants")
+        context = info.context if isinstance(info.context, dict) else {}
+        written = variants if variants is not None else context.get("variants_as_written", ())
+        known = tuple(dict.fromkeys((*PLANNER_NAMES, *written)))
+        problems = [((i,), robot_problem(r, known)) for i, r in enumerate(robots) if r not in known]
         raise_problems(sorted(problems + duplicate_problems(robots, "robot")), robots)
         return robots
 
@@ -286,6 +302,17 @@ class Study(StudyModel):
         and not known from the store's copy of the study) the study's ``world.fov_angle``."""
         return stored if stored is not None else self.world.fov_angle
 
+    def planner(self, robot: str) -> str:
+        """The planner of the robot called ``robot`` (a level of the robot factor or a practice robot)."""
+        variant = self.robot_variants.get(robot)
+        return variant.planner if variant is not None else robot
+
+    def planner_config(self, robot: str, base: PlannerConfig) -> PlannerConfig:
+        """The settings of the robot called ``robot``: ``base`` (the trial's model of the person), changed by its
+        variant's settings."""
+        variant = self.robot_variants.get(robot)
+        return variant.config(base) if variant is not None else base
+
     def kitchen(self, name: str) -> Kitchen:
         """The kitchen called ``name`` among the study's and the practice kitchens."""
         for kitchen in (*self.kitchens, *(p.kitchen for p in self.practice)):
@@ -302,7 +329,7 @@ class Study(StudyModel):
                      "practice": {"__all__": {"kitchen": {"path"}}}},
         )
         data["views"] = list(self.view_levels)
-        for field in ("between", "fov_angles"):
+        for field in ("between", "fov_angles", "robot_variants"):
             if not data[field]:
                 del data[field]  # studies without these fields keep the hash they had before the fields existed
         return json.dumps(data, sort_keys=True, separators=(",", ":"), ensure_ascii=False)

@@ -33,7 +33,7 @@ class StudyWarning:
     reason: str
     code: str
     """A stable name for tools (``no_completion_code``, ``placeholder_code``, ``no_screen_out_code``,
-    ``many_orders``, ``unknown_placeholder``, ``names_condition``)."""
+    ``many_orders``, ``unknown_placeholder``, ``names_condition``, ``unused_variant``)."""
 
     def __str__(self) -> str:
         return f"{self.path}: warning: {self.reason}"
@@ -75,6 +75,10 @@ def study_warnings(study: Study) -> list[StudyWarning]:
             out.append(StudyWarning(field, f"{token} is not a placeholder and is shown as written; placeholders: "
                                            f"{', '.join('{' + n + '}' for n in names)}", "unknown_placeholder"))
     out += condition_name_warnings(study)
+    for name in study.robot_variants:
+        if name not in study.robots:
+            out.append(StudyWarning(f"robot_variants.{name}", "defined but not one of robots: no trial plays it",
+                                    "unused_variant"))
     return out
 
 

@@ -1,0 +1,78 @@
+"""A study's own robots (``study_config/study/robots.py``): a planner with some settings changed is a level of the
+robot factor, and every mistake in one is named by field and reason."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from study_config.catalog import load_one
+from study_config.study import load_study, validate_study_file
+from study_config.study.warnings import study_warnings
+
+BASE = "id: t\ntitle: Variants\nkitchens: [none_3]\nfactors: [robot]\n"
+VARIANTS = """\
+robots: [fov_aware, fov_aware_no_walk, baseline]
+robot_variants:
+  fov_aware_no_walk:
+    planner: fov_aware
+    settings: {hands_walk: false, walk_price: 0, view_detour: 2}
+world: {kb_delay: 2, fov_angle: 90}
+"""
+
+
+def write(tmp_path: Path, text: str) -> Path:
+    path = tmp_path / "study.yaml"
+    path.write_text(BASE + text, encoding="utf-8")
+    return path
+
+
+def test_a_variant_is_a_robot_level_played_by_its_planner_with_its_settings(tmp_path):
+    loaded = load_one(write(tmp_path, VARIANTS))
+    study = loaded.study
+    assert [c.id for c in study.conditions] == ["fov_aware@none_3", "fov_aware_no_walk@none_3", "baseline@none_3"]
+    assert [loaded.planner(r) for r in study.robots] == ["fov_aware", "fov_aware", "baseline"]
+    variant = loaded.planner_config("fov_aware_no_walk", 90.0)
+    plain = loaded.planner_config("fov_aware", 90.0)
+    assert (variant.hands_walk, variant.walk_price, variant.view_detour) == (False, 0.0, 2)
+    assert (plain.hands_walk, plain.walk_price, plain.view_detour) == (True, 0.05, 4), "other robots keep defaults"
+    # The robot's model of the person is the trial's, for a variant too.
+    assert (variant.human_angle, variant.human_delay) == (plain.human_angle, plain.human_delay) == (90.0, 2)
+    assert "unused_variant" not in {w.code for w in study_warnings(study)}
+
+
+def test_every_mistake_in_a_variant_is_named_by_its_field(tmp_path):
+    text = """\
+robots: [fov_aware, careful, careles]
+robot_variants:
+  careful:
+    planner: fov_aware
+    settings: {hands_walk: 1, view_detour: -2, human_angle: 90, walk_pric: 0.1, lookahead: guess}
+  baseline: {planner: baseline}
+  other: {planner: nobody}
+"""
+    found = {p.path: p.reason for p in validate_study_file(write(tmp_path, text))}
+    assert found == {
+        "robot_variants.careful.settings.hands_walk": "must be true or false, not 1",
+        "robot_variants.careful.settings.view_detour": "must be 0 or more",
+        "robot_variants.careful.settings.human_angle":
+            "set by the study for every robot (world.fov_angle or fov_angles), not by a robot variant",
+        "robot_variants.careful.settings.walk_pric": found["robot_variants.careful.settings.walk_pric"],
+        "robot_variants.baseline": "key: 'baseline' is a planner's name; give the variant its own name",
+        "robot_variants.other.planner": "unknown robot 'nobody'; choose one of: fov_aware, baseline, no_rollout, stay",
+        "robots[2]": "unknown robot 'careles'; choose one of: fov_aware, baseline, no_rollout, stay, careful, other",
+    }
+    assert found["robot_variants.careful.settings.walk_pric"].startswith("unknown planner setting 'walk_pric'; known: ")
+    assert "walk_price" in found["robot_variants.careful.settings.walk_pric"]
+    lookahead = {p.path: p.reason for p in validate_study_file(write(tmp_path, text.replace(
+        "hands_walk: 1, view_detour: -2, human_angle: 90, walk_pric: 0.1, ", "").replace("careles", "careful")
+        .replace("  baseline: {planner: baseline}\n  other: {planner: nobody}\n", "").replace(
+        "[fov_aware, careful, careful]", "[fov_aware, careful]")))}
+    assert lookahead == {"robot_variants.careful.settings": "lookahead must be one of rollout, abstract, got 'guess'"}
+
+
+def test_a_variant_no_robot_plays_is_warned_about_and_a_study_without_variants_keeps_its_hash(tmp_path):
+    unused = load_study(write(tmp_path, "robots: [stay]\nrobot_variants: {spare: {planner: baseline}}\n"))
+    assert [w.path for w in study_warnings(unused) if w.code == "unused_variant"] == ["robot_variants.spare"]
+    plain = load_study(write(tmp_path, "robots: [stay]\n"))
+    assert "robot_variants" not in plain.canonical_json()
+    assert plain.config_hash() == load_study(write(tmp_path, "robots: [stay]\nrobot_variants: {}\n")).config_hash()
