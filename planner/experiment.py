@@ -10,7 +10,7 @@ kitchen and robot (:mod:`planner.behaviours`): does the FOV-aware robot show its
 from __future__ import annotations
 
 import statistics
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -33,6 +33,10 @@ GAP_PARTS = ("lag", "unseen", "stale")
 
 @dataclass(frozen=True, slots=True)
 class TrialSpec:
+    """One simulated trial. ``robot`` names the robot in the results; ``planner`` is the planner that plays it
+    (default: ``robot``) with ``settings`` (``PlannerConfig`` fields) changed: a study's own robot (its
+    ``robot_variants``). ``rules``: the kitchen's numbers (a study's ``world``)."""
+
     layout: Layout
     robot: str
     seed: int
@@ -40,16 +44,22 @@ class TrialSpec:
     kb_delay: int = KB_DELAY
     rollout_samples: int = 1
     lookahead: str = "rollout"
+    planner: str | None = None
+    settings: tuple[tuple[str, Any], ...] = ()
+    rules: Rules = field(default_factory=Rules)
+
+    def config(self) -> PlannerConfig:
+        """The robot's settings: the simulated person's view and KB delay, then ``settings``."""
+        return replace(PlannerConfig(human_angle=self.human_angle, human_delay=self.kb_delay,
+                                     rollout_samples=self.rollout_samples, lookahead=self.lookahead),
+                       **dict(self.settings))
 
 
 def run_spec(spec: TrialSpec) -> dict[str, object]:
     """One simulated trial as a row of ``trials.csv`` (importable by worker processes; the kitchen travels in
     the spec, so planner/ reads no files)."""
-    layout = spec.layout
-    rules = Rules()
-    robot = make_robot(spec.robot, layout, rules,
-                       PlannerConfig(human_angle=spec.human_angle, human_delay=spec.kb_delay,
-                                     rollout_samples=spec.rollout_samples, lookahead=spec.lookahead))
+    layout, rules = spec.layout, spec.rules
+    robot = make_robot(spec.planner or spec.robot, layout, rules, spec.config())
     result = run_trial(layout, spec.seed, TrialSettings(angle=spec.human_angle, kb_delay=spec.kb_delay,
                                                          rules=rules), robot=robot)
     times = np.array(result.decision_ms) if result.decision_ms else np.zeros(1)
@@ -129,12 +139,13 @@ def behaviour_lines(rows: list[dict[str, Any]], robots: list[str], layouts: list
     """The paper's behaviours per kitchen and robot, pooled over seeds; none for rows written without them."""
     if not rows or any(r.get("holdings") in (None, "") for r in rows):
         return []
+    width = max(14, *(len(rb) + 2 for rb in robots))
     lines = ["", "the paper's robot behaviours (docs/domain.md §6, \"Behaviours\"), pooled over seeds:",
              "  b1 = share of pickups shown kb_delay ticks in a row; b2 = mean share of a dish trip in the person's "
              "view;",
              "  robot gap = % of ticks the person's KB is wrong about what the robot holds = lag + unseen + stale;",
              "  robot off = how many cells from where it is the person's KB places the robot, on average",
-             f"{'kitchen':<10}{'robot':<14}{'b1 shown':>14}{'b2 trip share':>20}{'robot off':>11}   robot gap %"]
+             f"{'kitchen':<10}{'robot':<{width}}{'b1 shown':>14}{'b2 trip share':>20}{'robot off':>11}   robot gap %"]
     for layout in layouts:
         for rb in robots:
             mine = [r for r in rows if r["robot"] == rb and r["layout"] == layout]
@@ -147,5 +158,5 @@ def behaviour_lines(rows: list[dict[str, Any]], robots: list[str], layouts: list
             parts = " + ".join(f"{statistics.mean(float(r[f'gap_{p}_pct']) for r in mine):.1f}" for p in GAP_PARTS)
             gap = statistics.mean(float(r["robot_gap_pct"]) for r in mine)
             off = statistics.mean(float(r["robot_place_cells"]) for r in mine)
-            lines.append(f"{layout:<10}{rb:<14}{b1:>14}{b2:>20}{off:>11.2f}   {gap:.1f} = {parts}")
+            lines.append(f"{layout:<10}{rb:<{width}}{b1:>14}{b2:>20}{off:>11.2f}   {gap:.1f} = {parts}")
     return lines

@@ -7,6 +7,7 @@ import csv
 import sys
 from collections.abc import Iterable
 from pathlib import Path
+from typing import Any
 
 from planner.perception import FOV_ANGLE, KB_DELAY
 from server.cli import UsageError
@@ -14,11 +15,15 @@ from server.cli import UsageError
 
 def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser("simulate", help="robots × kitchens × seeds with the simulated human")
-    parser.add_argument("--layouts", default="all", help="all, or comma-separated names/files")
-    parser.add_argument("--robots", default="fov_aware,baseline")
+    parser.add_argument("--study", metavar="FILE",
+                        help="a study file: its kitchens, robots (its own robot_variants too), field of view, KB "
+                             "delay and world numbers (then leave out --layouts, --robots and --kb-delay)")
+    parser.add_argument("--layouts", help="all (default), or comma-separated names/files")
+    parser.add_argument("--robots", help="comma-separated planner names (default fov_aware,baseline)")
     parser.add_argument("--seeds", type=int, default=10, help="seeds 0..N-1 per kitchen and robot")
-    parser.add_argument("--human-angle", type=float, default=FOV_ANGLE, metavar="DEG")
-    parser.add_argument("--kb-delay", type=int, default=KB_DELAY)
+    parser.add_argument("--human-angle", type=float, metavar="DEG",
+                        help=f"the simulated person's field of view (default {FOV_ANGLE:g}, or the study's)")
+    parser.add_argument("--kb-delay", type=int, help=f"the person's KB delay (default {KB_DELAY})")
     parser.add_argument("--lookahead", default="rollout", choices=("rollout", "abstract"),
                         help="how the QMDP robots plan: tick rollouts (default) or docs/domain.md §5 as the "
                              "reference did it (motion-sequence exploration and abstract-state search)")
@@ -38,23 +43,28 @@ def _simulate(args: argparse.Namespace) -> int:
     from planner.registry import PLANNER_NAMES
     from study_config import layout_names, load_layout
 
-    robots = [r.strip() for r in args.robots.split(",") if r.strip()]
-    unknown = [r for r in robots if r not in PLANNER_NAMES]
-    if unknown or not robots:
-        raise UsageError(f"unknown robot(s) {', '.join(unknown) or '(none)'}; known: {', '.join(PLANNER_NAMES)}")
-    names = list(layout_names()) if args.layouts == "all" else [n.strip() for n in args.layouts.split(",")]
-    layouts = []
-    for name in names:
-        try:
-            layouts.append(load_layout(name))
-        except LayoutError as exc:
-            raise UsageError(str(exc)) from exc
     if args.seeds < 1:
         raise UsageError("--seeds must be at least 1")
-    if not 0 < args.human_angle <= 360 or args.kb_delay < 0:
-        raise UsageError("--human-angle must be in (0, 360] and --kb-delay 0 or more")
-    specs = [TrialSpec(lay, r, s, args.human_angle, args.kb_delay, lookahead=args.lookahead) for lay in layouts
-             for r in robots for s in range(args.seeds)]
+    if args.study is not None:
+        robots, specs = _study_specs(args)
+    else:
+        robots = [r.strip() for r in (args.robots or "fov_aware,baseline").split(",") if r.strip()]
+        unknown = [r for r in robots if r not in PLANNER_NAMES]
+        if unknown or not robots:
+            raise UsageError(f"unknown robot(s) {', '.join(unknown) or '(none)'}; known: {', '.join(PLANNER_NAMES)}")
+        layouts_arg = args.layouts or "all"
+        names = list(layout_names()) if layouts_arg == "all" else [n.strip() for n in layouts_arg.split(",")]
+        layouts = []
+        for name in names:
+            try:
+                layouts.append(load_layout(name))
+            except LayoutError as exc:
+                raise UsageError(str(exc)) from exc
+        angle = FOV_ANGLE if args.human_angle is None else args.human_angle
+        delay = KB_DELAY if args.kb_delay is None else args.kb_delay
+        _check_person(angle, delay)
+        specs = [TrialSpec(lay, r, s, angle, delay, lookahead=args.lookahead) for lay in layouts
+                 for r in robots for s in range(args.seeds)]
     jobs = args.jobs or os.cpu_count() or 1
     rows: list[dict[str, object]] = []
     show = not args.quiet and sys.stderr.isatty()
@@ -76,6 +86,43 @@ def _simulate(args: argparse.Namespace) -> int:
         print(line)
     print(f"wrote {out / 'trials.csv'} ({len(rows)} trials)")
     return 0
+
+
+def _check_person(angle: float, delay: int) -> None:
+    if not 0 < angle <= 360 or delay < 0:
+        raise UsageError("--human-angle must be in (0, 360] and --kb-delay 0 or more")
+
+
+def _study_specs(args: argparse.Namespace) -> tuple[list[str], list[Any]]:
+    """The robots and trials of ``--study``: its kitchens and robots (a variant is played by its planner with its
+    settings), the person at its field of view and KB delay, the kitchens' numbers from its world."""
+    from planner.experiment import TrialSpec
+    from planner.layout import LayoutError
+    from study_config.catalog import load_one
+    from study_config.study import StudyConfigError
+
+    given = [flag for flag, value in (("--layouts", args.layouts), ("--robots", args.robots),
+                                      ("--kb-delay", args.kb_delay)) if value is not None]
+    if given:
+        raise UsageError(f"--study gives the kitchens, robots and KB delay; leave out {', '.join(given)}")
+    try:
+        loaded = load_one(Path(args.study))
+    except (StudyConfigError, LayoutError, OSError) as exc:
+        raise UsageError(str(exc)) from exc
+    study = loaded.study
+    angles = study.fov_angle_levels
+    if args.human_angle is None and len(angles) > 1:
+        raise UsageError(f"the study has {len(angles)} fields of view ({', '.join(f'{a:g}' for a in angles)}): "
+                         "choose one with --human-angle")
+    angle = angles[0] if args.human_angle is None else args.human_angle
+    _check_person(angle, study.world.kb_delay)
+    robots = list(study.robots)
+    settings = {name: tuple(variant.settings.items()) for name, variant in study.robot_variants.items()}
+    specs = [TrialSpec(loaded.layout(kitchen.name), robot, seed, angle, study.world.kb_delay,
+                       lookahead=args.lookahead, planner=loaded.planner(robot), settings=settings.get(robot, ()),
+                       rules=loaded.rules)
+             for kitchen in study.kitchens for robot in robots for seed in range(args.seeds)]
+    return robots, specs
 
 
 def _collect(results: Iterable[dict[str, object]], total: int, show: bool) -> list[dict[str, object]]:

@@ -8,8 +8,10 @@ import csv
 
 import pytest
 
-from planner.experiment import COLUMNS
+from planner.experiment import COLUMNS, TrialSpec, run_spec
+from planner.rules import Rules
 from server.cli import main
+from study_config import load_layout
 
 
 # The abstract lookahead is several times slower than the rollouts; each planner's abstract trial of the practice
@@ -52,3 +54,65 @@ def test_an_unknown_lookahead_is_a_usage_error(tmp_path, capsys):
     with pytest.raises(SystemExit) as exit_info:
         main(["simulate", "--lookahead", "mcts", "--out", str(tmp_path)])
     assert exit_info.value.code == 2 and "invalid choice" in capsys.readouterr().err
+
+
+STUDY = """\
+id: rehearse
+title: Rehearse a variant
+kitchens: [practice]
+robots: [baseline, patient]
+factors: [robot]
+robot_variants:
+  patient: {planner: baseline, settings: {standoff_ticks: 40, stall_ticks: 90}}
+world: {orders: 1, kb_delay: 2, fov_angle: 90, delivery_reward: 7}
+"""
+
+
+def test_simulate_a_study_plays_its_kitchens_robots_and_world(tmp_path, capsys):
+    study = tmp_path / "rehearse.yaml"
+    study.write_text(STUDY, encoding="utf-8")
+    out_dir = tmp_path / "out"
+    assert main(["simulate", "--study", str(study), "--seeds", "3", "--jobs", "1", "--quiet",
+                 "--out", str(out_dir)]) == 0
+    out = capsys.readouterr().out
+    with (out_dir / "trials.csv").open() as handle:
+        rows = list(csv.DictReader(handle))
+    assert sorted((r["layout"], r["robot"]) for r in rows) == [("practice", "baseline")] * 3 + [
+        ("practice", "patient")] * 3
+    assert all(r["finished"] == "1" and r["reward"] == "7" for r in rows), "one order of the study's world"
+    # The variant is the baseline planner with its settings, the person at the study's view and KB delay.
+    rules = Rules(orders=1, delivery_reward=7)
+    expected = [run_spec(TrialSpec(load_layout("practice"), "patient", seed, 90.0, 2, planner="baseline",
+                                   settings=(("standoff_ticks", 40), ("stall_ticks", 90)), rules=rules))
+                for seed in range(3)]
+    timed = {"decision_ms_p50", "decision_ms_p99"}
+    assert [{k: v for k, v in r.items() if k not in timed} for r in rows if r["robot"] == "patient"] == [
+        {k: str(v) for k, v in row.items() if k not in timed} for row in expected]
+    assert "kb_gap_mean, 3 seeds as participants" in out and "practice  patient" in out
+
+
+def test_a_variant_s_settings_change_only_that_robot_s_config():
+    spec = TrialSpec(load_layout("practice"), "patient", 0, 90.0, 2, planner="baseline",
+                     settings=(("standoff_ticks", 40),))
+    config = spec.config()
+    assert (config.standoff_ticks, config.human_angle, config.human_delay) == (40, 90.0, 2)
+    assert TrialSpec(load_layout("practice"), "baseline", 0).config().standoff_ticks == 5
+
+
+def test_simulate_a_study_says_what_it_cannot_take(tmp_path, capsys):
+    study = tmp_path / "rehearse.yaml"
+    study.write_text(STUDY, encoding="utf-8")
+    angles = tmp_path / "angles.yaml"
+    angles.write_text(STUDY.replace("fov_angle: 90, ", "") + "fov_angles: [90, 150]\nbetween: [fov_angle]\n",
+                      encoding="utf-8")
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(STUDY.replace("standoff_ticks: 40", "standoff_ticks: -1"), encoding="utf-8")
+    for argv, reason in [
+        (["--study", str(study), "--robots", "baseline"], "--study gives the kitchens, robots and KB delay; "
+                                                          "leave out --robots"),
+        (["--study", str(angles)], "the study has 2 fields of view (90, 150): choose one with --human-angle"),
+        (["--study", str(bad)], "robot_variants.patient.settings.standoff_ticks: must be 0 or more"),
+    ]:
+        assert main(["simulate", *argv, "--out", str(tmp_path / "x")]) == 2
+        assert reason in capsys.readouterr().err
+    assert not (tmp_path / "x").exists(), "nothing is simulated"
