@@ -21,6 +21,8 @@ from study_config.study.base import Loc, StudyModel, duplicate_problems, raise_p
 
 LAYOUT_SUFFIX = ".layout"
 _NAME = re.compile(r"^[A-Za-z0-9_-]+$")
+MAX_KITCHEN_NAME = 64
+"""The longest kitchen name (a layout file's stem): the store keeps it with every trial (``trials.kitchen``)."""
 
 
 def layout_dir() -> Path:
@@ -40,7 +42,7 @@ def shipped_kitchens() -> tuple[str, ...]:
 class Kitchen(StudyModel):
     """A kitchen as resolved from the study file."""
 
-    name: str = Field(pattern=_NAME.pattern)
+    name: str = Field(pattern=_NAME.pattern, max_length=MAX_KITCHEN_NAME)
     """The kitchen's name in condition ids and exports: the layout file's stem (``none_3``)."""
     source: str
     """The entry as written in the study: a shipped name or a path relative to the study file."""
@@ -79,6 +81,9 @@ def resolve_kitchen(entry: str, base_dir: Path) -> Kitchen:
             raise ValueError(f"no kitchen file at {path}")
     if not _NAME.match(path.stem):
         raise ValueError(f"kitchen file name {path.name!r} must use only letters, digits, '-' and '_'")
+    if len(path.stem) > MAX_KITCHEN_NAME:
+        raise ValueError(f"kitchen file name {path.name!r}: at most {MAX_KITCHEN_NAME} characters before "
+                         f"{LAYOUT_SUFFIX} (the name is stored with every trial)")
     try:
         data = path.read_bytes()
     except OSError as exc:

@@ -86,9 +86,15 @@ def check_setting(key: str, value: Any) -> tuple[Any, str | None]:
     return checked, None
 
 
+MAX_NAME = 32
+"""The longest variant name: it is stored with every trial and is part of its condition's id."""
+
+
 def _own_name(name: str) -> str:
     if name in PLANNER_NAMES:
         raise ValueError(f"{name!r} is a planner's name; give the variant its own name")
+    if len(name) > MAX_NAME:
+        raise ValueError(f"at most {MAX_NAME} characters (the name is stored with every trial)")
     return name
 
 

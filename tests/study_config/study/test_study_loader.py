@@ -203,3 +203,15 @@ def test_kitchen_path_and_name_may_not_collide(tmp_path: Path) -> None:
     shutil.copy(LAYOUTS / "mid_1.layout", tmp_path / "none_3.layout")
     found = problems_of(tmp_path, BASE.replace("[none_3, mid_2]", "[none_3, ./none_3.layout]"))
     assert "duplicate kitchen 'none_3'" in found["kitchens[1]"]
+
+
+def test_a_kitchen_name_too_long_to_store_is_refused_before_any_trial(tmp_path: Path) -> None:
+    # The store keeps the kitchen's name with every trial (64 characters; PostgreSQL refuses more).
+    fits, too_long = "k" * 64, "k" * 65
+    for stem in (fits, too_long):
+        shutil.copy(LAYOUTS / "none_3.layout", tmp_path / f"{stem}.layout")
+    assert [k.name for k in load_study(write(tmp_path, BASE.replace("[none_3, mid_2]", f"[./{fits}.layout, mid_2]"))
+                                       ).kitchens] == [fits, "mid_2"]
+    found = problems_of(tmp_path, BASE.replace("[none_3, mid_2]", f"[./{too_long}.layout, mid_2]"))
+    assert found == {"kitchens[0]": f"kitchen file name '{too_long}.layout': at most 64 characters before .layout "
+                                    "(the name is stored with every trial)"}

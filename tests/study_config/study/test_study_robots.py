@@ -49,6 +49,7 @@ robot_variants:
     settings: {hands_walk: 1, view_detour: -2, human_angle: 90, walk_pric: 0.1, lookahead: guess}
   baseline: {planner: baseline}
   other: {planner: nobody}
+  a_variant_with_a_name_too_long_to_store: {planner: baseline}
 """
     found = {p.path: p.reason for p in validate_study_file(write(tmp_path, text))}
     assert found == {
@@ -58,14 +59,18 @@ robot_variants:
             "set by the study for every robot (world.fov_angle or fov_angles), not by a robot variant",
         "robot_variants.careful.settings.walk_pric": found["robot_variants.careful.settings.walk_pric"],
         "robot_variants.baseline": "key: 'baseline' is a planner's name; give the variant its own name",
+        "robot_variants.a_variant_with_a_name_too_long_to_store":
+            "key: at most 32 characters (the name is stored with every trial)",
         "robot_variants.other.planner": "unknown robot 'nobody'; choose one of: fov_aware, baseline, no_rollout, stay",
-        "robots[2]": "unknown robot 'careles'; choose one of: fov_aware, baseline, no_rollout, stay, careful, other",
+        "robots[2]": "unknown robot 'careles'; choose one of: fov_aware, baseline, no_rollout, stay, careful, other, "
+                     "a_variant_with_a_name_too_long_to_store",
     }
     assert found["robot_variants.careful.settings.walk_pric"].startswith("unknown planner setting 'walk_pric'; known: ")
     assert "walk_price" in found["robot_variants.careful.settings.walk_pric"]
     lookahead = {p.path: p.reason for p in validate_study_file(write(tmp_path, text.replace(
         "hands_walk: 1, view_detour: -2, human_angle: 90, walk_pric: 0.1, ", "").replace("careles", "careful")
-        .replace("  baseline: {planner: baseline}\n  other: {planner: nobody}\n", "").replace(
+        .replace("  baseline: {planner: baseline}\n  other: {planner: nobody}\n", "")
+        .replace("  a_variant_with_a_name_too_long_to_store: {planner: baseline}\n", "").replace(
         "[fov_aware, careful, careful]", "[fov_aware, careful]")))}
     assert lookahead == {"robot_variants.careful.settings": "lookahead must be one of rollout, abstract, got 'guess'"}
 
