@@ -63,12 +63,18 @@ def duplicate_problems(values: Sequence[Any], what: str, suffix: Loc = ()) -> li
     return problems
 
 
+MAX_ID = 64
+"""The longest id: the store keeps ids (the study's, questionnaires' and their items') in 64-character columns."""
+
+
 def _check_slug(value: str) -> str:
     if not _SLUG.match(value):
         raise ValueError(
             f"{value!r} is not a valid id: use lowercase letters, digits, '-' and '_', "
             "starting and ending with a letter or digit"
         )
+    if len(value) > MAX_ID:
+        raise ValueError(f"an id has at most {MAX_ID} characters (it is stored with the data)")
     return value
 
 

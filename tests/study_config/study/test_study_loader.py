@@ -215,3 +215,12 @@ def test_a_kitchen_name_too_long_to_store_is_refused_before_any_trial(tmp_path: 
     found = problems_of(tmp_path, BASE.replace("[none_3, mid_2]", f"[./{too_long}.layout, mid_2]"))
     assert found == {"kitchens[0]": f"kitchen file name '{too_long}.layout': at most 64 characters before .layout "
                                     "(the name is stored with every trial)"}
+
+
+def test_an_id_too_long_to_store_is_refused(tmp_path: Path) -> None:
+    # Study, questionnaire and item ids are stored in 64-character columns (PostgreSQL refuses more).
+    too_long = BASE.replace("id: t\n", f"id: {'s' * 65}\n") + QUESTIONNAIRE.replace("id: trust", f"id: {'t' * 65}")
+    assert problems_of(tmp_path, too_long) == {
+        "id": "an id has at most 64 characters (it is stored with the data)",
+        "questionnaires[0].items[1].id": "an id has at most 64 characters (it is stored with the data)"}
+    assert load_study(write(tmp_path, BASE.replace("id: t\n", f"id: {'s' * 64}\n"))).id == "s" * 64
