@@ -33,7 +33,7 @@ class StudyWarning:
     reason: str
     code: str
     """A stable name for tools (``no_completion_code``, ``placeholder_code``, ``no_screen_out_code``,
-    ``many_orders``, ``unknown_placeholder``, ``names_condition``, ``unused_variant``)."""
+    ``many_orders``, ``clock_not_chosen``, ``unknown_placeholder``, ``names_condition``, ``unused_variant``)."""
 
     def __str__(self) -> str:
         return f"{self.path}: warning: {self.reason}"
@@ -69,6 +69,11 @@ def study_warnings(study: Study) -> list[StudyWarning]:
                 "counterbalancing", f"full counterbalancing of {len(study.conditions)} conditions gives {orders} "
                 f"orders: a complete design needs a multiple of {orders} participants ({orders}, {2 * orders}, …); "
                 f"latin_square needs {len(williams_rows(len(study.conditions)))}", "many_orders"))
+    if "mode" not in study.timing.model_fields_set:
+        out.append(StudyWarning(
+            "timing.mode", "not written, so fixed_rate: the world goes on while the participant thinks, and the "
+            "robot does the work meanwhile; the paper's clock is wait_for_participant (docs/protocol.md, \"The two "
+            "clocks\"). Write the clock you mean", "clock_not_chosen"))
     names = study_length(study).placeholders()
     for field in ("consent", "instructions"):
         for token in unknown_placeholders(getattr(study, field), names):

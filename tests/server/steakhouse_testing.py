@@ -44,7 +44,7 @@ def write_study(folder: Path, study_id: str = "tiny", **overrides: Any) -> Path:
     """A small study: one kitchen (``practice``), the ``stay`` robot, one order, 30 Hz, one questionnaire."""
     data: dict[str, Any] = {
         "id": study_id, "title": "Test study", "kitchens": ["practice"], "robots": ["stay"], "factors": ["robot"],
-        "timing": {"tick_rate_hz": 30}, "world": {"orders": 1, "horizon": 300, "kb_delay": 1},
+        "timing": {"mode": "fixed_rate", "tick_rate_hz": 30}, "world": {"orders": 1, "horizon": 300, "kb_delay": 1},
         "questionnaires": [{"id": "q", "items": [
             {"id": "a", "text": "A", "scale": {"min": 1, "max": 5}},
             {"id": "b", "text": "B", "scale": {"min": 1, "max": 5}, "required": False}]}],

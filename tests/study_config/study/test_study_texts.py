@@ -81,7 +81,19 @@ def test_default_texts_never_say_steps_or_ticks_and_fill_every_placeholder(tmp_p
 
 
 def warnings_of(tmp_path: Path, text: str) -> list[tuple[str, str]]:
-    return [(w.path, w.code) for w in study_warnings(load_study(write(tmp_path, text)))]
+    """The warnings of the study with ``text``, its clock chosen (that warning has its own test)."""
+    study = load_study(write(tmp_path, "timing: {mode: fixed_rate}\n" + text))
+    return [(w.path, w.code) for w in study_warnings(study)]
+
+
+def test_a_study_that_does_not_choose_its_clock_is_told_what_the_default_does(tmp_path):
+    (unchosen,) = study_warnings(load_study(write(tmp_path, "recruiting: {completion_code: C}\n")))
+    assert (unchosen.path, unchosen.code) == ("timing.mode", "clock_not_chosen")
+    assert "fixed_rate" in unchosen.reason and "wait_for_participant" in unchosen.reason
+    for clock in ("fixed_rate", "wait_for_participant"):
+        chosen = load_study(write(tmp_path, f"recruiting: {{completion_code: C}}\ntiming: {{mode: {clock}}}\n"))
+        assert study_warnings(chosen) == []
+    assert "clock_not_chosen" not in {w.code for w in study_warnings(load_study(STUDY_CONFIG / "paper_study.yaml"))}
 
 
 def test_recruiting_without_a_completion_code_is_warned_about(tmp_path):
@@ -96,6 +108,7 @@ def test_full_counterbalancing_beyond_24_orders_says_how_many_participants_a_com
     five = "kitchens: [none_3, mid_2, none_1, mid_1, side_1]\nfactors: [kitchen]\ncounterbalancing: full\n"
     text = BASE.replace("kitchens: [none_3]\n", "").replace("factors: [robot]\n", "") + five
     path = tmp_path / "five.yaml"
+    text += "timing: {mode: fixed_rate}\n"
     path.write_text(text + "recruiting: {completion_code: X}\n", encoding="utf-8")
     (warning,) = study_warnings(load_study(path))
     assert warning.path == "counterbalancing" and warning.code == "many_orders"
@@ -114,7 +127,7 @@ def test_a_quiz_without_a_screen_out_code_and_misspelt_placeholders_are_warned_a
 
 
 def test_validate_prints_warnings_on_stderr_and_still_passes(tmp_path, capsys):
-    path = write(tmp_path, "")
+    path = write(tmp_path, "timing: {mode: wait_for_participant}\n")
     assert main(["study", "validate", str(path)]) == 0
     out, err = capsys.readouterr()
     assert out.startswith(f"{path}: ok: t")
