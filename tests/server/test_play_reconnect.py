@@ -115,5 +115,8 @@ def test_after_the_grace_window_the_study_policy_applies(live_server, study_file
         assert reply["type"] == "hello" and reply["trial"]["id"] == first_row.id and reply["resumed"] is True
         assert last["tick"] <= reply["tick"] <= last["tick"] + 5
         assert follow["tick"] == reply["tick"]
+        # Every tick stored once, none skipped: up to the resumed one, and on from it while the second socket stayed
+        # open (on a busy machine the world steps on at 30 Hz before the close is handled).
         with server.services.store.transaction() as s:
-            assert [t.tick for t in trials.ticks(s, first_row.id)] == list(range(1, reply["tick"] + 1))
+            stored = [t.tick for t in trials.ticks(s, first_row.id)]
+        assert stored == list(range(1, len(stored) + 1)) and len(stored) >= reply["tick"]
