@@ -7,10 +7,13 @@ import csv
 import sys
 from collections.abc import Iterable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
 
 from planner.perception import FOV_ANGLE, KB_DELAY
 from server.cli import UsageError
+
+if TYPE_CHECKING:
+    from planner.experiment import TrialSpec
 
 
 def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -38,33 +41,11 @@ def _simulate(args: argparse.Namespace) -> int:
     from concurrent.futures import ProcessPoolExecutor
 
     from analysis.simulation import robot_effects
-    from planner.experiment import COLUMNS, TrialSpec, run_spec, summarize_trials
-    from planner.layout import LayoutError
-    from planner.registry import PLANNER_NAMES
-    from study_config import layout_names, load_layout
+    from planner.experiment import COLUMNS, run_spec, summarize_trials
 
     if args.seeds < 1:
         raise UsageError("--seeds must be at least 1")
-    if args.study is not None:
-        robots, specs = _study_specs(args)
-    else:
-        robots = [r.strip() for r in (args.robots or "fov_aware,baseline").split(",") if r.strip()]
-        unknown = [r for r in robots if r not in PLANNER_NAMES]
-        if unknown or not robots:
-            raise UsageError(f"unknown robot(s) {', '.join(unknown) or '(none)'}; known: {', '.join(PLANNER_NAMES)}")
-        layouts_arg = args.layouts or "all"
-        names = list(layout_names()) if layouts_arg == "all" else [n.strip() for n in layouts_arg.split(",")]
-        layouts = []
-        for name in names:
-            try:
-                layouts.append(load_layout(name))
-            except LayoutError as exc:
-                raise UsageError(str(exc)) from exc
-        angle = FOV_ANGLE if args.human_angle is None else args.human_angle
-        delay = KB_DELAY if args.kb_delay is None else args.kb_delay
-        _check_person(angle, delay)
-        specs = [TrialSpec(lay, r, s, angle, delay, lookahead=args.lookahead) for lay in layouts
-                 for r in robots for s in range(args.seeds)]
+    robots, specs = _study_specs(args) if args.study is not None else _named_specs(args)
     jobs = args.jobs or os.cpu_count() or 1
     rows: list[dict[str, object]] = []
     show = not args.quiet and sys.stderr.isatty()
@@ -93,7 +74,33 @@ def _check_person(angle: float, delay: int) -> None:
         raise UsageError("--human-angle must be in (0, 360] and --kb-delay 0 or more")
 
 
-def _study_specs(args: argparse.Namespace) -> tuple[list[str], list[Any]]:
+def _named_specs(args: argparse.Namespace) -> tuple[list[str], list[TrialSpec]]:
+    """The robots and trials named on the command line: planners, kitchens, the person's view and KB delay."""
+    from planner.experiment import TrialSpec
+    from planner.layout import LayoutError
+    from planner.registry import PLANNER_NAMES
+    from study_config import layout_names, load_layout
+
+    robots = [r.strip() for r in (args.robots or "fov_aware,baseline").split(",") if r.strip()]
+    unknown = [r for r in robots if r not in PLANNER_NAMES]
+    if unknown or not robots:
+        raise UsageError(f"unknown robot(s) {', '.join(unknown) or '(none)'}; known: {', '.join(PLANNER_NAMES)}")
+    layouts_arg = args.layouts or "all"
+    names = list(layout_names()) if layouts_arg == "all" else [n.strip() for n in layouts_arg.split(",")]
+    layouts = []
+    for name in names:
+        try:
+            layouts.append(load_layout(name))
+        except LayoutError as exc:
+            raise UsageError(str(exc)) from exc
+    angle = FOV_ANGLE if args.human_angle is None else args.human_angle
+    delay = KB_DELAY if args.kb_delay is None else args.kb_delay
+    _check_person(angle, delay)
+    return robots, [TrialSpec(lay, r, s, angle, delay, lookahead=args.lookahead) for lay in layouts
+                    for r in robots for s in range(args.seeds)]
+
+
+def _study_specs(args: argparse.Namespace) -> tuple[list[str], list[TrialSpec]]:
     """The robots and trials of ``--study``: its kitchens and robots (a variant is played by its planner with its
     settings), the person at its field of view and KB delay, the kitchens' numbers from its world."""
     from planner.experiment import TrialSpec

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import math
 import os
 import socket
 from typing import Any
@@ -246,17 +247,17 @@ class GameRegistry:
 
     def touch_interval(self) -> float:
         """How often the stored last activity of the connected trials is refreshed: every sweep, and at least twice
-        per the shortest reconnect grace window served (never more often than :data:`MIN_TOUCH_S`). Another server
-        process judges a round it does not run by that stored activity (a participant's page, loaded through it,
-        says whether the round is in progress or ended while away): it must never look older than the grace
-        window while the participant is connected."""
-        graces = [loaded.study.reconnect.grace_seconds / 2 for loaded in self.catalog]
-        return max(min([self.sweep_interval, *graces]), MIN_TOUCH_S)
+        per the shortest reconnect grace window served (for that, never more often than :data:`MIN_TOUCH_S`).
+        Another server process judges a round it does not run by that stored activity (a participant's page, loaded
+        through it, says whether the round is in progress or ended while away): it must never look older than the
+        grace window while the participant is connected."""
+        half_grace = min((loaded.study.reconnect.grace_seconds / 2 for loaded in self.catalog), default=math.inf)
+        return min(self.sweep_interval, max(half_grace, MIN_TOUCH_S))
 
     async def _sweep_forever(self) -> None:
+        interval = self.touch_interval()  # the catalog does not change after start-up
         since_sweep = 0.0
         while True:
-            interval = min(self.touch_interval(), self.sweep_interval)
             await asyncio.sleep(interval)
             since_sweep += interval
             try:

@@ -126,8 +126,8 @@ class Study(StudyModel):
     @field_validator("robot_variants", mode="before")
     @classmethod
     def _remember_variants(cls, variants: Any, info: ValidationInfo) -> Any:
-        if isinstance(variants, dict) and isinstance(info.context, dict):
-            info.context["variants_as_written"] = tuple(str(name) for name in variants)
+        if isinstance(variants, dict):
+            _remember_levels(info, "robot_variants", [str(name) for name in variants])
         return variants
 
     @field_validator("robots", mode="before")
@@ -137,10 +137,7 @@ class Study(StudyModel):
         if not isinstance(robots, (list, tuple)) or not all(isinstance(r, str) for r in robots):
             return robots
         _remember_levels(info, "robots", list(robots))
-        variants = info.data.get("robot_variants")
-        context = info.context if isinstance(info.context, dict) else {}
-        written = variants if variants is not None else context.get("variants_as_written", ())
-        known = tuple(dict.fromkeys((*PLANNER_NAMES, *written)))
+        known = tuple(dict.fromkeys((*PLANNER_NAMES, *(_levels(info, "robot_variants") or ()))))
         problems = [((i,), robot_problem(r, known)) for i, r in enumerate(robots) if r not in known]
         raise_problems(sorted(problems + duplicate_problems(robots, "robot")), robots)
         return robots

@@ -67,11 +67,9 @@ robot_variants:
     }
     assert found["robot_variants.careful.settings.walk_pric"].startswith("unknown planner setting 'walk_pric'; known: ")
     assert "walk_price" in found["robot_variants.careful.settings.walk_pric"]
-    lookahead = {p.path: p.reason for p in validate_study_file(write(tmp_path, text.replace(
-        "hands_walk: 1, view_detour: -2, human_angle: 90, walk_pric: 0.1, ", "").replace("careles", "careful")
-        .replace("  baseline: {planner: baseline}\n  other: {planner: nobody}\n", "")
-        .replace("  a_variant_with_a_name_too_long_to_store: {planner: baseline}\n", "").replace(
-        "[fov_aware, careful, careful]", "[fov_aware, careful]")))}
+    only_lookahead = ("robots: [fov_aware, careful]\n"
+                      "robot_variants: {careful: {planner: fov_aware, settings: {lookahead: guess}}}\n")
+    lookahead = {p.path: p.reason for p in validate_study_file(write(tmp_path, only_lookahead))}
     assert lookahead == {"robot_variants.careful.settings": "lookahead must be one of rollout, abstract, got 'guess'"}
 
 
