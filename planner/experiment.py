@@ -27,7 +27,7 @@ from planner.perception import FOV_ANGLE, KB_DELAY
 from planner.play import TrialResult, TrialSettings, run_trial
 from planner.robot_api import Person
 from planner.robot_catalog import RobotSetup
-from planner.robot_guard import GuardedRobot
+from planner.robot_guard import HANG_S, GuardedRobot
 from planner.rules import Rules
 
 COLUMNS = ("layout", "robot", "seed", "ticks", "finished", "reward", "kb_gap_mean", "kb_gap_ticks_pct",
@@ -55,6 +55,8 @@ class TrialSpec:
     planner: str | None = None
     settings: tuple[tuple[str, Any], ...] = ()
     rules: Rules = field(default_factory=Rules)
+    hang_s: float = HANG_S
+    """A decision running this long is stopped and the trial flagged (:mod:`planner.robot_guard`)."""
 
     @property
     def installed(self) -> str:
@@ -90,7 +92,7 @@ def run_spec(spec: TrialSpec) -> dict[str, object]:
         built: Robot = robot_catalog.build(spec.installed, layout, rules, spec.setup())
     except Exception as exc:  # flagged below, like a robot that fails later
         built = _Unbuilt(exc)
-    robot = GuardedRobot(built)
+    robot = GuardedRobot(built, spec.hang_s)
     result = run_trial(layout, spec.seed, TrialSettings(angle=spec.human_angle, kb_delay=spec.kb_delay,
                                                          rules=rules), robot=robot)
     times = np.array(result.decision_ms) if result.decision_ms else np.zeros(1)

@@ -42,7 +42,8 @@ def handle(args: argparse.Namespace) -> int:
                 continue  # the person the study shows, never a setting of a variant
             kind = hints[field.name]
             default = field.default if field.default is not dataclasses.MISSING else "(computed)"
-            print(f"  {field.name}: {getattr(kind, '__name__', str(kind))} = {default!r}")
+            shown = kind.__name__ if isinstance(kind, type) else str(kind).replace("typing.", "")
+            print(f"  {field.name}: {shown} = {default!r}")
         return 0
     entries = robot_catalog.installed()
     width = max(len(e.name) for e in entries)
