@@ -4,8 +4,9 @@
 - ``participants``: recruiting ids, the hash of their token (never the token), their step plan and
   progress, test-run / exclusion flags with a reason.
 - ``assignments``: the condition order each participant got (index into the study's orders).
-- ``trials``: one row per attempt at a practice or main trial: condition, kitchen, robot, view, FOV angle, seed, config
-  hash, status (``running`` / ``finished`` / ``abandoned``) and outcome (ticks, delivered, score).
+- ``trials``: one row per attempt at a practice or main trial: condition, kitchen, robot (and the package and version
+  that provided it), view, FOV angle, seed, config hash, status (``running`` / ``finished`` / ``abandoned``) and
+  outcome (ticks, delivered, score).
 - ``ticks``: one row per world step (primary key ``(trial_id, tick)``, so a tick can never be stored
   twice): joint action, the participant's subtask, modelled KB and world summaries, KB-gap components,
   robot in the participant's FOV, tick lateness, robot decision time, and the full world and KB state
@@ -150,6 +151,14 @@ class TrialRow(Base):
     """Robot decisions the loop asked for (one per world step); NULL for trials stored before revision 0005."""
     missed_decisions: Mapped[int | None] = mapped_column(Integer, nullable=True)
     """Of these, the ones that missed their deadline (the robot stood still)."""
+    failed_decisions: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """Of these, the ones the robot failed (it raised, answered an illegal decision or hung; its worker was lost:
+    ``planner.robot_guard``), so it stood still; NULL for trials stored before revision 0010."""
+    robot_package: Mapped[str | None] = mapped_column(String(100), nullable=True)
+    """The distribution that provided the robot (``steakhouse-study`` for the shipped ones, a plug-in's package:
+    ``planner.robot_catalog``); NULL for trials stored before revision 0010."""
+    robot_version: Mapped[str | None] = mapped_column(String(64), nullable=True)
+    """That distribution's version when the trial started."""
     invalid_reason: Mapped[str | None] = mapped_column(String(200), nullable=True)
     """Why the trial is not valid data (``server.game.health``); NULL when it is valid."""
     selections: Mapped[int | None] = mapped_column(Integer, nullable=True)
@@ -191,6 +200,9 @@ class TickRow(Base):
     decision_ms: Mapped[float | None] = mapped_column(Float)
     robot_missed: Mapped[bool] = mapped_column(Boolean, default=False)
     robot_info: Mapped[dict[str, Any] | None] = mapped_column(JsonType)
+    robot_error: Mapped[str | None] = mapped_column(String(300), nullable=True)
+    """Why the robot had no decision at this tick when it failed (``planner.robot_guard.describe``, or
+    ``worker_lost``); NULL when it decided or was merely late, and in ticks stored before revision 0010."""
     world_state: Mapped[dict[str, Any]] = mapped_column(JsonType)
     kb_state: Mapped[dict[str, Any]] = mapped_column(JsonType)
     controller: Mapped[dict[str, Any]] = mapped_column(JsonType)
