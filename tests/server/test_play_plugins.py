@@ -101,13 +101,18 @@ def test_a_plug_in_that_raises_answers_illegally_or_hangs_flags_its_trial_and_th
                                                       "mylab_scripted"))
     assert raised.invalid_reason is not None and "failed" in raised.invalid_reason
     assert errors["broken_raises"][0] == "raised RuntimeError: the lab's planner has a bug"
-    assert raised.failed_decisions == failed_ticks["broken_raises"] == raised.decisions - 2
+    # Every decision after the two good ones failed, unless its (failing) answer came after the deadline, which on a
+    # loaded machine happens: it then counts as missed. A good one may be missed too, hence the inequalities.
+    assert 0 < raised.failed_decisions == failed_ticks["broken_raises"] <= raised.decisions - 2
+    assert raised.failed_decisions + (raised.missed_decisions or 0) >= raised.decisions - 2
     assert illegal.invalid_reason is not None and "failed" in illegal.invalid_reason
     assert errors["broken_illegal"][0].startswith("illegal decision: answered the action 'fly', not one of Action.")
     # The hung decision holds its worker until it is stopped, HANG_GRACE_S after its deadline (the next test shows
     # what then): the robot misses its deadlines meanwhile.
-    assert hung.invalid_reason == f"robot decisions missed their deadline: {hung.decisions - 2} of {hung.decisions} " \
-        f"({100 * (hung.decisions - 2) / hung.decisions:.1f} % > 5 %)"
+    missed = hung.missed_decisions or 0
+    assert missed >= hung.decisions - 2 and hung.failed_decisions == 0
+    assert hung.invalid_reason == f"robot decisions missed their deadline: {missed} of {hung.decisions} " \
+        f"({100 * missed / hung.decisions:.1f} % > 5 %)"
     # The next trial, on the same worker, is played as if nothing had happened.
     assert fine.invalid_reason is None and fine.failed_decisions == 0
 
