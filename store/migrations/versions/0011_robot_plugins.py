@@ -4,8 +4,8 @@
 Trials stored before have ``NULL`` in all three (their robot was one of the shipped planners of the version then
 installed, which was not recorded), and their ticks ``NULL`` for the failure (failures were logged as events only).
 
-Revision ID: 0010
-Revises: 0009
+Revision ID: 0011
+Revises: 0010
 Create Date: 2026-12-07
 """
 
@@ -14,8 +14,8 @@ from __future__ import annotations
 import sqlalchemy as sa
 from alembic import op
 
-revision = "0010"
-down_revision = "0009"
+revision = "0011"
+down_revision = "0010"
 branch_labels = None
 depends_on = None
 
