@@ -41,7 +41,7 @@ from server.flow.engagement import engagement_problem
 from server.flow.plan import build_plan, plan_from_json, plan_to_json
 from server.flow.progress import IllegalTransition, Move, Phase, Progress
 from server.flow.quiz import QuizResult, quiz_problems
-from store import activity, assignment, participants, trials
+from store import activity, assignment, lease, participants, trials
 from store.engine import Store
 from store.group_assignment import least_filled_grouped
 from store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, QuizAttemptRow
@@ -268,22 +268,34 @@ def record_device(store: Store, loaded: LoadedStudy, participant_id: int, info: 
 
 def end_trial_in(session: Session, participant_id: int, trial_id: int, kind: str, index: int, *, status: str,
                  reason: str, ticks: int | None = None, delivered: int | None = None,
-                 score: int | None = None, study: Study | None = None) -> Progress | None:
+                 score: int | None = None, study: Study | None = None, epoch: int | None = None,
+                 end_event: dict[str, Any] | None = None) -> Progress | None:
     """End the trial row and move the participant past the trial (inside ``session``'s transaction).
+
+    ``epoch``: the ender's lease on the round (``store.lease``); the end is refused when another process has
+    taken the round over since. Without one (the sweep, a reconnection after the grace window) the lease is
+    voided first, so that whoever held it stores nothing more. ``end_event``: the ``trial_end`` event's payload,
+    stored with the end under its epoch (only when the end is stored, so a round ends once, with one event).
 
     With the ``study``, the participant's activity in the trial is counted and stored, a finished main trial is
     judged for engagement, and after a main trial the participant's standing is reviewed: they stop counting
     toward their order when a round cannot become a cell, and are screened out when they did not take part
     (:mod:`server.flow.standing`). Without it (tools that build a store by hand) only the trial ends.
 
-    Returns the participant's new progress, or ``None`` if the trial had already ended.
+    Returns the participant's new progress, or ``None`` if the trial had already ended or its lease had passed.
     """
+    row = _load(session, participant_id, lock=True)  # the participant first, then the trial (as prepare_trial)
+    if epoch is None:
+        epoch = lease.fence(session, trial_id)
     if not trials.end(session, trial_id, status=status, reason=reason, ticks=ticks, delivered=delivered,
-                      score=score):
+                      score=score, epoch=epoch):
         return None
-    row = _load(session, participant_id)
+    if end_event is not None:
+        session.add(EventRow(participant_id=row.id, trial_id=trial_id, tick=ticks, kind="trial_end",
+                             payload=end_event, created_at=utcnow(), epoch=epoch))
     screen_out = None
     if study is not None:
+        session.flush()
         done = activity.measure(session, trial_id, study.timing.tick_rate_hz)
         problem = (engagement_problem(done, study.validity)
                    if kind == "main" and status == trials.FINISHED else None)
@@ -291,7 +303,7 @@ def end_trial_in(session: Session, participant_id: int, trial_id: int, kind: str
         if problem is not None:
             log.warning("trial %d (participant %s) is low-engagement: %s", trial_id, row.public_id, problem)
             session.add(EventRow(participant_id=row.id, trial_id=trial_id, tick=ticks, kind="trial_low_engagement",
-                                 payload={"reason": problem}, created_at=utcnow()))
+                                 payload={"reason": problem}, created_at=utcnow(), epoch=epoch))
         if kind == "main":
             session.flush()
             screen_out = standing.review_rounds(session, row, study.validity)
@@ -326,8 +338,8 @@ def completion(loaded: LoadedStudy, row: ParticipantRow) -> dict[str, Any]:
     raise ApiError(409, "not_finished", f"the session is in state {row.state!r}, not finished")
 
 
-def _load(session: Session, participant_id: int) -> ParticipantRow:
-    row = session.get(ParticipantRow, participant_id, populate_existing=True)
+def _load(session: Session, participant_id: int, lock: bool = False) -> ParticipantRow:
+    row = session.get(ParticipantRow, participant_id, populate_existing=True, with_for_update=lock or None)
     if row is None:
         raise ApiError(404, "not_found", "no such participant")
     return row

@@ -24,7 +24,7 @@ from server.admin.resume import link_secret, make_code, resume_path
 from server.admin.stored_live import running_elsewhere, stored_live_view, stored_summary
 from server.deps import ServicesDep, path_study, require_admin
 from server.errors import ApiError
-from server.game.registry import process_name
+from server.game.ownership import process_name
 from server.services import Services
 from server.text_input import storable_body
 from store import participants, trials
