@@ -104,8 +104,8 @@ async def read_until_told(sock: Socket) -> str:
 
 
 async def open_round(seat: Seat) -> dict[str, Any]:
-    sock = await seat.player.socket()
-    hello = await sock.recv()
+    sock: Socket = await seat.player.socket()
+    hello: dict[str, Any] = await sock.recv()
     assert hello["type"] == "hello", hello
     seat.sock, seat.trial_id = sock, hello["trial"]["id"]
     return hello
