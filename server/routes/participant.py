@@ -17,6 +17,7 @@ from anyio import from_thread
 from fastapi import APIRouter, Depends, Request
 
 from server.admin.resume import link_secret, read_code, verify
+from server.admin.test_links import signing_key, verify_test_code
 from server.deps import ParticipantDep, ServicesDep, bearer, is_admin, participant_study, path_study
 from server.errors import ApiError
 from server.flow import payment, service
@@ -54,13 +55,21 @@ def join(loaded: Annotated[LoadedStudy, Depends(path_study)], body: JoinRequest,
     """Join, or come back with the token this browser holds (``Authorization``); a known recruiting id from
     a browser without its token answers ``409 already_started`` (:func:`server.flow.service.join`). A pilot join
     (``pilot``) needs the admin token as the bearer, so no participant can make themselves a pilot (and get the
-    pilot's pace); without it, 403 ``pilot_needs_admin``."""
+    pilot's pace); without it, 403 ``pilot_needs_admin``. A test run needs an admin-signed test link
+    (``test_link``, :mod:`server.admin.test_links`; 410 ``test_link_invalid`` when expired or altered): the body's
+    ``test_run`` is ignored."""
+    test_run = False
+    if body.test_link is not None:
+        if not verify_test_code(signing_key(services.admin_token), body.test_link, loaded.id, time.time()):
+            raise ApiError(410, "test_link_invalid",
+                           "this test link is no longer valid; make a new one in the admin dashboard")
+        test_run = True
     if body.pilot is not None:
         if not is_admin(request, services):
             raise ApiError(403, "pilot_needs_admin", "pilot participants are joined with the admin token")
-        joined = service.join(services.store, loaded, body.recruiting, body.test_run, pilot_pace=body.pilot.pace)
+        joined = service.join(services.store, loaded, body.recruiting, test_run, pilot_pace=body.pilot.pace)
     else:
-        joined = service.join(services.store, loaded, body.recruiting, body.test_run, bearer(request))
+        joined = service.join(services.store, loaded, body.recruiting, test_run, bearer(request))
     return _joined(loaded, joined)
 
 

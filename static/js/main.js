@@ -77,6 +77,9 @@ function failure(exc) {
     messagePage(root, "This link is incomplete",
       ["Please open the study from its link on the recruiting site: that link carries your participant ID.",
        "If you did, contact the researcher."]);
+  } else if (exc.status === 410 && exc.code === "test_link_invalid") {
+    messagePage(root, "This test link is no longer valid",
+      "Test links work for a limited time. Copy a new one from the admin dashboard (Studies → Recruiting links).");
   } else if (exc.status === 410 && exc.code === "link_invalid") {
     messagePage(root, "This link is no longer valid",
       "Resume links work once and for a limited time. Please contact the researcher for a new one.");
@@ -96,6 +99,12 @@ async function boot() {
   if (!link.study) {
     messagePage(root, "This link is incomplete",
       ["The address should name a study, for example /?study=demo.", "Please use the full link you were given."]);
+    return;
+  }
+  if (link.testRun && !link.testLink) {
+    messagePage(root, "Test runs start from the admin dashboard",
+      ["A test run needs the signed test link of the dashboard (Studies → Recruiting links → Test run).",
+       "Participants use the study's participant link."]);
     return;
   }
   try {

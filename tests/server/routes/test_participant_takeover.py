@@ -10,7 +10,7 @@ import time
 from typing import Any
 
 import httpx
-from steakhouse_testing import Player, eventually, http_client
+from steakhouse_testing import Player, eventually, http_client, signed_test_code
 
 from server.admin.resume import link_secret, make_code, read_code
 from server.flow.service import ALREADY_STARTED
@@ -179,7 +179,9 @@ def test_a_study_that_requires_the_id_refuses_a_join_without_it(live_server, stu
             refused = client.post("/api/studies/tiny/join", json={"recruiting": recruiting})
             assert refused.status_code == 422, refused.text
             assert refused.json()["detail"]["code"] == "recruit_id_required" and "PROLIFIC_PID" in refused.text
-        assert client.post("/api/studies/tiny/join", json={"test_run": True}).status_code == 200
+        ignored = client.post("/api/studies/tiny/join", json={"test_run": True})
+        assert ignored.status_code == 422, "a participant's own test_run is ignored: the id is still required"
+        assert client.post("/api/studies/tiny/join", json={"test_link": signed_test_code()}).status_code == 200
         assert client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "p"}}).status_code == 200
     with server.services.store.transaction() as session:
         assert session.query(ParticipantRow).count() == 2
