@@ -65,13 +65,18 @@ class StudyRow(Base):
 
 class ParticipantRow(Base):
     __tablename__ = "participants"
-    __table_args__ = (UniqueConstraint("study_id", "recruit_id", name="uq_participants_study_recruit"),)
+    __table_args__ = (UniqueConstraint("study_id", "recruit_id", name="uq_participants_study_recruit"),
+                      Index("uq_participants_study_recruit_key", "study_id", "recruit_key", unique=True))
 
     id: Mapped[int] = mapped_column(Integer, primary_key=True, autoincrement=True)
     public_id: Mapped[str] = mapped_column(String(32), unique=True)
     study_id: Mapped[str] = mapped_column(ForeignKey("studies.id"), index=True)
     token_hash: Mapped[str] = mapped_column(String(64), unique=True)
     recruit_id: Mapped[str | None] = mapped_column(String(200))
+    """The recruiting id as given (the study's first URL parameter, e.g. the Prolific id)."""
+    recruit_key: Mapped[str | None] = mapped_column(String(200), nullable=True)
+    """What the id is compared by (``store.recruit_ids``: its look-alikes have the same key), unique per study; NULL
+    without an id (and for a look-alike stored before revision 0011 beside an older participant with its key)."""
     recruiting: Mapped[dict[str, str]] = mapped_column(JsonType, default=dict)
     config_hash: Mapped[str] = mapped_column(String(64))
     plan: Mapped[list[dict[str, Any]]] = mapped_column(JsonType)

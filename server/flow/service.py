@@ -5,7 +5,8 @@
   answers the same participant only from the browser holding that participant's token (the token is kept);
   from any other browser it is refused (``409 already_started``), the attempt stored as a ``join_refused``
   event, and the participant's session and token are left as they were. Never two assignments. Ids are
-  compared normalised (:func:`store.participants.normalised_recruit_id`: ``" ABC"`` is ``abc``). The
+  compared by their key (:mod:`store.recruit_ids`: case, spaces, invisible characters, diacritics and look-alike
+  letters of other scripts do not make another person). The
   exception is a session that holds nothing yet: its device was refused on landing and it has not moved past
   the first step (a phone user sent to a laptop): the next browser with the id claims it (a new token, the
   phone's stops working, a ``session_claimed`` event). A study with ``recruiting.require_id`` refuses a join
@@ -44,6 +45,7 @@ from server.flow.quiz import QuizResult, quiz_problems
 from store import activity, assignment, lease, participants, trials
 from store.engine import Store
 from store.group_assignment import least_filled_grouped
+from store.recruit_ids import recruit_key
 from store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, QuizAttemptRow
 from store.types import utcnow
 from study_config.catalog import LoadedStudy
@@ -86,13 +88,13 @@ def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run
     study = loaded.study
     names = study.recruiting.url_parameters
     kept = {name: recruiting[name] for name in names if name in recruiting}
-    recruit_id = participants.normalised_recruit_id(kept.get(names[0])) if names else None
-    if recruit_id is None and study.recruiting.require_id and not (test_run or study.test_run or pilot_pace):
+    key = recruit_key(kept.get(names[0])) if names else None
+    if key is None and study.recruiting.require_id and not (test_run or study.test_run or pilot_pace):
         raise ApiError(422, "recruit_id_required", "this study is joined from its link on the recruiting platform, "
                        f"which carries your {names[0]}; please open that link again")
     with store.transaction() as session:
         assignment.lock_study(session, study.id)
-        outcome = _join_in(session, loaded, kept, recruit_id, test_run, presented_token, pilot_pace)
+        outcome = _join_in(session, loaded, kept, key, test_run, presented_token, pilot_pace)
     if isinstance(outcome, Refused):
         log.warning("join refused: the recruiting id of participant %s already started in another browser",
                     outcome.participant.public_id)
@@ -107,12 +109,13 @@ def _rejoined(session: Session, row: ParticipantRow, token: str) -> Joined:
     return Joined(token, row, found, rejoined=True)
 
 
-def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recruit_id: str | None, test_run: bool,
+def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], key: str | None, test_run: bool,
              presented_token: str | None, pilot_pace: str | None) -> Joined | Refused:
+    """``key``: the recruiting id's key (``store.recruit_ids``), ``None`` without one."""
     study = loaded.study
     pilot = pilot_pace is not None
-    if recruit_id:
-        existing = participants.by_recruit_id(session, study.id, recruit_id)
+    if key:
+        existing = participants.by_recruit_key(session, study.id, key)
         if existing is not None and existing.pilot != pilot:
             raise ApiError(409, "recruit_id_taken", "this recruiting id belongs to a pilot participant"
                            if existing.pilot else "this recruiting id belongs to a real participant")
@@ -138,7 +141,8 @@ def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recrui
     order = list(loaded.orders[index])
     plan = build_plan(study, order)
     row = participants.create(
-        session, study_id=study.id, public_id=uuid.uuid4().hex, token=token, recruit_id=recruit_id,
+        session, study_id=study.id, public_id=uuid.uuid4().hex, token=token,
+        recruit_id=kept[study.recruiting.url_parameters[0]] if key else None, recruit_key=key,
         recruiting=kept, config_hash=study.config_hash(), plan=plan_to_json(plan),
         state=Progress(plan, 0).phase.value, test_run=test_run or study.test_run, order_index=index,
         condition_order=order, pilot_pace=pilot_pace)

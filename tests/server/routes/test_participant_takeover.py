@@ -169,7 +169,39 @@ def test_recruiting_ids_are_compared_normalised(live_server, study_file):
         assert other.status_code == 200
     with server.services.store.transaction() as session:
         row = participants.by_public_id(session, first["participant_id"])
-        assert row is not None and row.recruit_id == "abc123" and row.recruiting["PROLIFIC_PID"] == "AbC123"
+        assert row is not None and row.recruit_id == "AbC123" and row.recruit_key == "abcl23"
+        assert row.recruiting["PROLIFIC_PID"] == "AbC123"
+
+
+PROLIFIC_ID = "5f3a9c1e2b7d4a6f8e0c1b2a"
+LOOK_ALIKES = {
+    "zero-width space": PROLIFIC_ID[:6] + "\u200b" + PROLIFIC_ID[6:],
+    "zero-width joiner": PROLIFIC_ID[:6] + "\u200d" + PROLIFIC_ID[6:],
+    "soft hyphen": PROLIFIC_ID[:6] + "\u00ad" + PROLIFIC_ID[6:],
+    "full-width letters": "".join(chr(ord(c) + 0xFEE0) for c in PROLIFIC_ID),
+    "combining accent": PROLIFIC_ID[:3] + "\u0301" + PROLIFIC_ID[3:],
+    "Cyrillic look-alike": PROLIFIC_ID.replace("a", "\u0430").replace("e", "\u0435").replace("c", "\u0441"),
+    "O for 0, l for 1": PROLIFIC_ID.replace("0", "O").replace("1", "l"),
+}
+
+
+def test_look_alike_ids_are_the_same_participant(live_server, study_file):
+    server = live_server([study_file()])
+    with httpx.Client(base_url=server.url, timeout=30) as client:
+        first = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": PROLIFIC_ID}}).json()
+        mine = {"Authorization": f"Bearer {first['token']}"}
+        itself = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": PROLIFIC_ID}})
+        assert itself.status_code == 409
+        for name, look_alike in LOOK_ALIKES.items():
+            assert look_alike != PROLIFIC_ID
+            other = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": look_alike}})
+            assert (other.status_code, other.json()) == (409, itself.json()), name
+            own = client.post("/api/studies/tiny/join", headers=mine,
+                              json={"recruiting": {"PROLIFIC_PID": look_alike}})
+            assert own.status_code == 200 and own.json()["participant_id"] == first["participant_id"], name
+    with server.services.store.transaction() as session:
+        rows = session.query(ParticipantRow).all()
+        assert [(r.recruit_id, r.public_id) for r in rows] == [(PROLIFIC_ID, first["participant_id"])]
 
 
 def test_a_study_that_requires_the_id_refuses_a_join_without_it(live_server, study_file):
