@@ -29,6 +29,9 @@ class JoinRequest(BaseModel):
     test_link: Annotated[str, StringConstraints(max_length=200)] | None = None
     """The code of an experimenter's test-run link (``/?study=<id>#test=<code>``, ``server.admin.test_links``):
     join as a test run (not counted for assignment, excluded from exports, no real completion code)."""
+    handoff: Annotated[str, StringConstraints(max_length=40)] | None = None
+    """The hand-off code a device-refused session's first device shows (``server.flow.handoff``): continue that
+    session in this browser."""
     pilot: PilotRequest | None = None
     """Join as a simulated pilot participant (``steakhouse pilot``); only with the admin token as the bearer."""
 

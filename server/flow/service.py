@@ -8,9 +8,10 @@
   compared by their key (:mod:`store.recruit_ids`: case, spaces, invisible characters, diacritics and look-alike
   letters of other scripts do not make another person). The
   exception is a session that holds nothing yet: its device was refused on landing and it has not moved past
-  the first step (a phone user sent to a laptop): the next browser with the id claims it (a new token, the
-  phone's stops working, a ``session_claimed`` event). A study with ``recruiting.require_id`` refuses a join
-  without the id (``422 recruit_id_required``), except test runs.
+  the first step (a phone user sent to a laptop): a browser with the id **and the hand-off code its first device
+  shows** (:mod:`server.flow.handoff`) claims it (a new token, the phone's stops working, a ``session_claimed``
+  event); with the id alone it is refused (``409 handoff_code_required``). A study with
+  ``recruiting.require_id`` refuses a join without the id (``422 recruit_id_required``), except test runs.
 - :func:`resume_on_new_device`: the experimenter's one-time resume link redeemed (:mod:`server.admin.resume`):
   a fresh token for the participant, the old one stops working.
 - :func:`move`: one state-machine transition, applied only if nobody moved the participant meanwhile.
@@ -39,6 +40,7 @@ from server.errors import AnswerProblems, ApiError
 from server.flow import standing
 from server.flow.answers import check_answers, stored_answer
 from server.flow.engagement import engagement_problem
+from server.flow.handoff import MAX_WRONG, matches
 from server.flow.plan import build_plan, plan_from_json, plan_to_json
 from server.flow.progress import IllegalTransition, Move, Phase, Progress
 from server.flow.quiz import QuizResult, quiz_problems
@@ -61,9 +63,18 @@ ALREADY_STARTED = ("this ID has already started in another browser; continue the
 
 @dataclass(frozen=True)
 class Refused:
-    """A join with a recruiting id that already started elsewhere: the participant it belongs to."""
+    """A join with a recruiting id that already started elsewhere: the participant it belongs to, and why (the
+    409's code and message)."""
 
     participant: ParticipantRow
+    code: str = "already_started"
+    message: str = ALREADY_STARTED
+
+
+HANDOFF_REQUIRED = ("this ID started on another device: type the code that device shows (or open the link it "
+                    "shows) to continue here")
+HANDOFF_WRONG = "this is not the code your other device shows; check it and try again"
+HANDOFF_LOCKED = "too many wrong codes: please contact the researcher to continue on this device"
 
 
 @dataclass(frozen=True)
@@ -80,9 +91,11 @@ def progress_of(row: ParticipantRow) -> Progress:
 
 
 def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run: bool,
-         presented_token: str | None = None, pilot_pace: str | None = None) -> Joined:
+         presented_token: str | None = None, pilot_pace: str | None = None, handoff: str | None = None,
+         handoff_key: bytes = b"") -> Joined:
     """Join ``loaded``'s study, or come back to it: ``presented_token`` is the token the browser already holds
-    (its ``Authorization`` header), which alone resumes a participant whose recruiting id is known. A pilot
+    (its ``Authorization`` header), which alone resumes a participant whose recruiting id is known; ``handoff``
+    (checked with ``handoff_key``) is the code a device-refused session's first device shows. A pilot
     participant (``pilot_pace`` given; the route lets only the admin ask for it) is balanced among pilots, and
     the admin's pilot driver resumes its own pilot by recruiting id (with a new token)."""
     study = loaded.study
@@ -94,11 +107,12 @@ def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run
                        f"which carries your {names[0]}; please open that link again")
     with store.transaction() as session:
         assignment.lock_study(session, study.id)
-        outcome = _join_in(session, loaded, kept, key, test_run, presented_token, pilot_pace)
+        outcome = _join_in(session, loaded, kept, key, test_run, presented_token, pilot_pace,
+                           (handoff, handoff_key) if handoff else None)
     if isinstance(outcome, Refused):
-        log.warning("join refused: the recruiting id of participant %s already started in another browser",
-                    outcome.participant.public_id)
-        raise ApiError(409, "already_started", ALREADY_STARTED)
+        log.warning("join refused (%s): the recruiting id of participant %s already started in another browser",
+                    outcome.code, outcome.participant.public_id)
+        raise ApiError(409, outcome.code, outcome.message)
     return outcome
 
 
@@ -110,8 +124,10 @@ def _rejoined(session: Session, row: ParticipantRow, token: str) -> Joined:
 
 
 def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], key: str | None, test_run: bool,
-             presented_token: str | None, pilot_pace: str | None) -> Joined | Refused:
-    """``key``: the recruiting id's key (``store.recruit_ids``), ``None`` without one."""
+             presented_token: str | None, pilot_pace: str | None,
+             handoff: tuple[str, bytes] | None = None) -> Joined | Refused:
+    """``key``: the recruiting id's key (``store.recruit_ids``), ``None`` without one; ``handoff``: a typed hand-off
+    code and the key it is checked with."""
     study = loaded.study
     pilot = pilot_pace is not None
     if key:
@@ -126,8 +142,8 @@ def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], key: s
         if existing is not None:
             holder = participants.by_token(session, presented_token) if presented_token else None
             other_browser = presented_token is None or holder is None or holder.id != existing.id
-            if other_browser and _claimable(existing):
-                return _claimed(session, existing)
+            if other_browser and claimable(existing):
+                return _hand_off(session, existing, handoff)
             if other_browser or presented_token is None:
                 session.add(EventRow(participant_id=existing.id, trial_id=None, tick=None, kind="join_refused",
                                      payload={"reason": "already_started", "had_token": presented_token is not None},
@@ -152,9 +168,25 @@ def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], key: s
     return Joined(token, row, found, rejoined=False)
 
 
-def _claimable(row: ParticipantRow) -> bool:
+def claimable(row: ParticipantRow) -> bool:
     """A session that holds nothing yet: its device was refused on landing and it is still at its first step."""
     return row.status == "in_progress" and row.step == 0 and device_refused(row.device)
+
+
+def _hand_off(session: Session, row: ParticipantRow, handoff: tuple[str, bytes] | None) -> Joined | Refused:
+    """Another browser asks for a claimable session: only with the hand-off code its first device shows."""
+    wrong = int(session.scalar(select(func.count()).select_from(EventRow).where(
+        EventRow.participant_id == row.id, EventRow.kind == "handoff_refused")) or 0)
+    if wrong >= MAX_WRONG:
+        return Refused(row, "handoff_locked", HANDOFF_LOCKED)
+    if handoff is None:
+        return Refused(row, "handoff_code_required", HANDOFF_REQUIRED)
+    typed, key = handoff
+    if not matches(key, typed, row.public_id, row.token_hash):
+        session.add(EventRow(participant_id=row.id, trial_id=None, tick=None, kind="handoff_refused",
+                             payload={"wrong": wrong + 1}, created_at=utcnow()))
+        return Refused(row, "handoff_code_wrong", HANDOFF_WRONG)
+    return _claimed(session, row)
 
 
 def _claimed(session: Session, row: ParticipantRow) -> Joined:

@@ -7,6 +7,8 @@
  *                from exports, no real completion code; in the fragment, so it never reaches a server log).
  *                A bare `test_run=1` no longer makes a test run: the page asks for the dashboard's link
  *   new=1        forget the session stored in this browser for this study and join again
+ *   #handoff=…   the hand-off code a phone showed after the device check refused it: this computer continues
+ *                the phone's session (without it, the page asks for the code)
  *   #resume=…    a one-time resume link from the researcher (moving to a new device; in the fragment, so it
  *                never reaches a server log): this browser takes over the participant's session
  * Only the parameters the study lists in `recruiting.url_parameters` are sent to the server. A recruiting id
@@ -32,6 +34,7 @@ export function readLink(location = window.location) {
     raw,
     testRun: ["1", "true", "yes"].includes((params.get("test_run") || "").toLowerCase()),
     testLink: fragment.get("test") || "",
+    handoff: fragment.get("handoff") || "",
     fresh: ["1", "true", "yes"].includes((params.get("new") || "").toLowerCase()),
     resume: fragment.get("resume") || "",
   };
@@ -112,7 +115,7 @@ export async function enter(link) {
   // A token stored for this study goes with the join: the server resumes its participant when the recruiting
   // id is theirs, and keeps the token.
   api.token = stored ? stored.token : "";
-  const joined = await api.join(link.study, recruiting, link.testLink);
+  const joined = await api.join(link.study, recruiting, link.testLink, link.handoff);
   api.token = joined.token;
   saveStored(link.study, { token: joined.token, recruiting, participant: joined.participant_id });
   return { api, session: await api.session(), info };

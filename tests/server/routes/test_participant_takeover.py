@@ -219,27 +219,56 @@ def test_a_study_that_requires_the_id_refuses_a_join_without_it(live_server, stu
         assert session.query(ParticipantRow).count() == 2
 
 
-def test_a_session_whose_device_was_refused_is_claimed_by_the_next_browser(live_server, study_file):
+def test_a_session_whose_device_was_refused_continues_on_a_laptop_only_with_the_phones_code(live_server, study_file):
     server = live_server([study_file()])
     with httpx.Client(base_url=server.url, timeout=30) as client:
         phone = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "walker"}}).json()
         on_phone = {"Authorization": f"Bearer {phone['token']}"}
         view = client.post("/api/session/device", json=PHONE, headers=on_phone).json()
         assert view["device"]["ok"] is False and view["state"] == "consent"
-        laptop = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "walker"}})
+        code = view["handoff"]["code"]
+        assert client.get("/api/session", headers=on_phone).json()["handoff"]["code"] == code
+        walker = {"recruiting": {"PROLIFIC_PID": "walker"}}
+        alone = client.post("/api/studies/tiny/join", json=walker)
+        assert alone.status_code == 409 and alone.json()["detail"]["code"] == "handoff_code_required"
+        wrong = client.post("/api/studies/tiny/join", json={**walker, "handoff": "AAAAA-BBBBB"})
+        assert wrong.status_code == 409 and wrong.json()["detail"]["code"] == "handoff_code_wrong"
+        assert client.get("/api/session", headers=on_phone).status_code == 200, "the phone's session is untouched"
+        laptop = client.post("/api/studies/tiny/join", json={**walker, "handoff": f" {code.lower()} "})
         assert laptop.status_code == 200, laptop.text
         body = laptop.json()
         assert body["participant_id"] == phone["participant_id"] and body["token"] != phone["token"]
         assert body["rejoined"] is True
         on_laptop = {"Authorization": f"Bearer {body['token']}"}
         assert client.get("/api/session", headers=on_phone).status_code == 401, "the phone's token stops working"
-        assert client.post("/api/session/device", json=LAPTOP, headers=on_laptop).json()["device"]["ok"] is True
+        assert client.post("/api/studies/tiny/join", json={**walker, "handoff": code}).status_code == 409, "once"
+        passed = client.post("/api/session/device", json=LAPTOP, headers=on_laptop).json()
+        assert passed["device"]["ok"] is True and "handoff" not in passed
         assert client.post("/api/session/consent", json={"accept": True}, headers=on_laptop).status_code == 200
         # Once the device passed, the session is the laptop's: a third browser is refused as before.
-        third = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "walker"}})
-        assert third.status_code == 409
+        third = client.post("/api/studies/tiny/join", json=walker)
+        assert third.status_code == 409 and third.json()["detail"]["code"] == "already_started"
     _, kinds = stored(server, phone["participant_id"])
-    assert kinds.count("session_claimed") == 1 and kinds.count("join_refused") == 1
+    assert kinds.count("session_claimed") == 1 and kinds.count("handoff_refused") == 2  # wrong, then reused
+
+
+def test_wrong_hand_off_codes_lock_the_hand_off(live_server, study_file):
+    from server.flow.handoff import MAX_WRONG
+
+    server = live_server([study_file()])
+    with httpx.Client(base_url=server.url, timeout=30) as client:
+        phone = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "guessed"}}).json()
+        on_phone = {"Authorization": f"Bearer {phone['token']}"}
+        code = client.post("/api/session/device", json=PHONE, headers=on_phone).json()["handoff"]["code"]
+        guesses = [client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "guessed"},
+                                                               "handoff": f"GUESS-{n:05d}"}).json()["detail"]["code"]
+                   for n in range(MAX_WRONG + 3)]
+        right = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "guessed"},
+                                                             "handoff": code})
+    assert guesses == ["handoff_code_wrong"] * MAX_WRONG + ["handoff_locked"] * 3
+    assert right.status_code == 409 and right.json()["detail"]["code"] == "handoff_locked"
+    _, kinds = stored(server, phone["participant_id"])
+    assert kinds.count("handoff_refused") == MAX_WRONG, "the attempts beyond the lock store nothing"
 
 
 def test_a_session_past_its_first_step_is_not_claimed_even_if_its_device_is_refused_later(live_server, study_file):
