@@ -18,7 +18,8 @@
 - :func:`submit_questionnaire`: answers checked, stored and the transition made, all or nothing.
 - :func:`submit_quiz`: one attempt at the comprehension quiz stored; passed → the next step, the last allowed
   attempt failed → screened out.
-- :func:`record_device`: the device the browser reported, stored with the participant (and as an event).
+- :func:`record_device`: the device the browser reported, stored with the participant (and as an event, within the
+  participant's row budget: :mod:`store.budget`).
 - :func:`end_trial`: the trial row ended, the participant's activity in it counted and judged
   (:mod:`server.flow.engagement`), and the participant moved past it (or screened out when they did not take
   part, :mod:`server.flow.standing`), together.
@@ -44,7 +45,7 @@ from server.flow.handoff import MAX_WRONG, matches
 from server.flow.plan import build_plan, plan_from_json, plan_to_json
 from server.flow.progress import IllegalTransition, Move, Phase, Progress
 from server.flow.quiz import QuizResult, quiz_problems
-from store import activity, assignment, lease, participants, trials
+from store import activity, assignment, budget, lease, participants, trials
 from store.engine import Store
 from store.group_assignment import least_filled_grouped
 from store.recruit_ids import recruit_key
@@ -145,9 +146,10 @@ def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], key: s
             if other_browser and claimable(existing):
                 return _hand_off(session, existing, handoff)
             if other_browser or presented_token is None:
-                session.add(EventRow(participant_id=existing.id, trial_id=None, tick=None, kind="join_refused",
-                                     payload={"reason": "already_started", "had_token": presented_token is not None},
-                                     created_at=utcnow()))
+                budget.store_or_count(session, EventRow(
+                    participant_id=existing.id, trial_id=None, tick=None, kind="join_refused",
+                    payload={"reason": "already_started", "had_token": presented_token is not None},
+                    created_at=utcnow()), budget.REFUSED_JOINS)
                 return Refused(existing)
             return _rejoined(session, existing, presented_token)
     token = secrets.token_urlsafe(32)
@@ -297,8 +299,8 @@ def record_device(store: Store, loaded: LoadedStudy, participant_id: int, info: 
         row = _load(session, participant_id)
         row.device = report
         standing.review_device(row, problems)
-        session.add(EventRow(participant_id=row.id, trial_id=None, tick=None, kind="device_check",
-                             payload=report, created_at=now))
+        budget.store_or_count(session, EventRow(participant_id=row.id, trial_id=None, tick=None, kind="device_check",
+                                                payload=report, created_at=now), budget.DEVICE_REPORTS, now)
     return problems
 
 

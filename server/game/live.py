@@ -113,6 +113,7 @@ class LiveGame:
         self.stored = asyncio.Event()
         """Set once an ending trial's last ticks and its end are stored (:meth:`end`), so that a reconnection
         arriving meanwhile decides on what the store then says, not on a store still missing its last ticks."""
+        self._connect_logged = False
         self.waiting_since: float | None = None
         """When the current wait for the participant began (``pacing.clock``), while the world waits: the round's
         lease renewals store it, so a crash does not lose it from the idle share (``store.lease``)."""
@@ -156,7 +157,10 @@ class LiveGame:
         conn.send(snapshot.hello(self.meta, self.engine, mode=self.pacing.mode, rate=self.pacing.rate,
                                  resumed=self.resumed or self.engine.tick > 0, limit=self.deps.max_message_bytes))
         conn.send(self.state_message())
-        self.event("connect", {"replaced": replaced is not None, "resumed_at": self.engine.tick})
+        # A reconnection flood is counted like a message flood; a disconnect is logged when its connect was.
+        self._connect_logged = self.link.budget.take("connect")
+        if self._connect_logged:
+            self.event("connect", {"replaced": replaced is not None, "resumed_at": self.engine.tick})
         self.link.connected.set()
         self.link.wake.set()
 
@@ -165,8 +169,9 @@ class LiveGame:
         if not self.link.drop(conn):
             return False
         self.pacing.times.disconnected()
+        if self._connect_logged:
+            self.event("disconnect", {})
         self._store_drops(force=True)
-        self.event("disconnect", {})
         self.link.wake.set()
         return True
 
