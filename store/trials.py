@@ -48,7 +48,7 @@ def latest_attempt(session: Session, participant_id: int, kind: str, index: int,
              .where(TrialRow.participant_id == participant_id, TrialRow.kind == kind, TrialRow.index == index)
              .order_by(TrialRow.attempt.desc()).limit(1))
     if lock:
-        query = query.with_for_update().execution_options(populate_existing=True)
+        query = query.with_for_update(key_share=True).execution_options(populate_existing=True)
     return session.scalar(query)
 
 

@@ -377,7 +377,10 @@ def completion(loaded: LoadedStudy, row: ParticipantRow) -> dict[str, Any]:
 
 
 def _load(session: Session, participant_id: int, lock: bool = False) -> ParticipantRow:
-    row = session.get(ParticipantRow, participant_id, populate_existing=True, with_for_update=lock or None)
+    # FOR NO KEY UPDATE on PostgreSQL: a batch inserting this participant's events (their foreign key takes FOR KEY
+    # SHARE) must not wait on it while holding the trial row this transaction waits for (a deadlock).
+    row = session.get(ParticipantRow, participant_id, populate_existing=True,
+                      with_for_update={"key_share": True} if lock else None)
     if row is None:
         raise ApiError(404, "not_found", "no such participant")
     return row

@@ -77,7 +77,10 @@ def prepare_trial(store: Store, loaded: LoadedStudy, participant_id: int, step: 
         raise ValueError("the participant's current step is not a trial")
     study = loaded.study
     with store.transaction() as session:
-        participant = session.get(ParticipantRow, participant_id, with_for_update=True, populate_existing=True)
+        # FOR NO KEY UPDATE (PostgreSQL): a store batch inserting this participant's rows (its foreign keys take FOR
+        # KEY SHARE) goes on meanwhile, so it cannot deadlock with this transaction over the trial row below.
+        participant = session.get(ParticipantRow, participant_id, with_for_update={"key_share": True},
+                                  populate_existing=True)
         if participant is None:
             raise ValueError(f"no participant {participant_id}")
         progress = service.progress_of(participant)

@@ -55,6 +55,14 @@ class Seat:
     told: list[str] = field(default_factory=list)
     """What the round's old sockets were told when the round moved (``moved`` / ``replaced``)."""
     end: dict[str, Any] | None = None
+    opened: list[Socket] = field(default_factory=list)
+    """Every socket opened, closed at the end (the server closes the old ones; the client side is closed here)."""
+
+    async def close(self) -> None:
+        for sock in self.opened:
+            with contextlib.suppress(Exception):
+                await sock.close()
+        await self.player.close()
 
 
 def store_rows(db_url: str) -> dict[str, Any]:
@@ -108,6 +116,7 @@ async def open_round(seat: Seat) -> dict[str, Any]:
     hello: dict[str, Any] = await sock.recv()
     assert hello["type"] == "hello", hello
     seat.sock, seat.trial_id = sock, hello["trial"]["id"]
+    seat.opened.append(sock)
     return hello
 
 
@@ -164,6 +173,13 @@ def test_a_connection_moving_to_the_other_process_leaves_the_round_one_owner(db_
 
         async def drill() -> tuple[list[Seat], dict[str, Any]]:
             seats = [Seat(ProxiedPlayer(proxy.url)) for _ in range(SEATS)]
+            try:
+                return await moves(seats)
+            finally:
+                for seat in seats:
+                    await seat.close()
+
+        async def moves(seats: list[Seat]) -> tuple[list[Seat], dict[str, Any]]:
             for i, seat in enumerate(seats):
                 await seat.player.ready(PROLIFIC_PID=f"owner-{i}")
                 await open_round(seat)
@@ -221,8 +237,6 @@ def test_a_connection_moving_to_the_other_process_leaves_the_round_one_owner(db_
                 assert session["state"] == "done", session["state"]
 
             await asyncio.gather(*(finish(s) for s in seats))
-            for seat in seats:
-                await seat.player.close()
             numbers["moved"] = [seats.index(s) for s in (a, b, c, d)]
             return seats, numbers
 
