@@ -21,7 +21,7 @@ import asyncio
 import logging
 import os
 import socket
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from datetime import datetime
 
 from server.game.connection import Connection
@@ -86,6 +86,16 @@ class Ownership:
 
     # -- losing -----------------------------------------------------------------------------------------
 
+    async def stop(self, game: LiveGame) -> None:
+        """Stop a round whose lease another process took: its loop and robot stop, nothing more is stored, its
+        socket is told to go (the registry forgets it)."""
+        log.warning("trial %d (participant %s): another server process took the round over; it stops here "
+                    "(lease epoch %d is no longer the round's)", game.meta.trial_id, game.meta.participant,
+                    game.meta.epoch)
+        await self.tell_to_go(game)
+        await game.suspend()
+        self.forget(game.meta.trial_id)
+
     async def tell_to_go(self, game: LiveGame) -> None:
         """Tell the round's socket (if one is open here) that the round runs elsewhere now, and close it."""
         conn: Connection | None = game.connection
@@ -106,6 +116,15 @@ class Ownership:
             return row is None or token_hash is None or row.token_hash != token_hash
 
     # -- starting and stopping ----------------------------------------------------------------------------
+
+    async def restart(self, study_ids: list[str], live: Callable[[], frozenset[int]], after_s: float = 0.0) -> None:
+        """After ``after_s``: the rounds nobody holds start their participants' grace window again (``live``: the
+        rounds this process runs then)."""
+        await asyncio.sleep(after_s)
+        count = await asyncio.to_thread(self.restart_count, study_ids, live())
+        if count:
+            log.info("%d round(s) left by a stopped server process: their participants' grace window starts again",
+                     count)
 
     def restart_count(self, study_ids: list[str], live: frozenset[int] = frozenset()) -> int:
         """The rounds nobody holds count their participant as away from now (blocking). A lease held by a

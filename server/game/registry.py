@@ -89,19 +89,11 @@ class GameRegistry:
         writer = self.deps.writer
         writer.beats = lambda: self.ownership.beats(self.games.values())
         writer.on_stale = self._stale
-        await self._restart_count()
-        self._spawn(self._restart_count(lease.LEASE_TTL_S))
+        studies = list(self.catalog.studies)
+        await self.ownership.restart(studies, lambda: frozenset(self.games))
+        self._spawn(self.ownership.restart(studies, lambda: frozenset(self.games), lease.LEASE_TTL_S))
         await self.sweep()
         self._sweeper = asyncio.create_task(self._sweep_forever(), name="trial-sweeper")
-
-    async def _restart_count(self, after_s: float = 0.0) -> None:
-        """The rounds nobody holds start their reconnect grace window again (:mod:`server.game.ownership`)."""
-        await asyncio.sleep(after_s)
-        count = await asyncio.to_thread(self.ownership.restart_count, list(self.catalog.studies),
-                                        frozenset(self.games))
-        if count:
-            log.info("%d round(s) left by a stopped server process: their participants' grace window starts again",
-                     count)
 
     async def shutdown(self) -> None:
         """Suspend every live trial (they stay ``running`` and resume from the store)."""
@@ -207,13 +199,8 @@ class GameRegistry:
     async def _let_go(self, game: LiveGame, keep_slot: bool = False) -> None:
         """Stop a round another process took over (its lease is gone): no more steps or rows here, its socket told
         to go, its slot freed (unless ``keep_slot``: the participant's new connection takes it over here)."""
-        log.warning("trial %d (participant %s): another server process took the round over; it stops here "
-                    "(lease epoch %d is no longer the round's)", game.meta.trial_id, game.meta.participant,
-                    game.meta.epoch)
-        await self.ownership.tell_to_go(game)
-        await game.suspend()
+        await self.ownership.stop(game)
         self._cancel_timer(game)
-        self.ownership.forget(game.meta.trial_id)
         if self.games.get(game.meta.trial_id) is game:
             del self.games[game.meta.trial_id]
         if self._by_participant.get(game.meta.participant_id) is game:
