@@ -76,6 +76,7 @@ def create_app(settings: Settings | None = None, *, robot_factory: RobotFactory 
 
     app = FastAPI(title="Steakhouse Study", version="0.1.0", lifespan=lifespan)
     app.state.catalog = catalog
+    app.state.admin_token = admin_token
     errors.install(app)
     security.install(app, settings.join_rate_per_minute, settings.max_body_bytes)
     for module in (health, participant, play, admin, admin_exports):

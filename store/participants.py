@@ -10,7 +10,7 @@ import hashlib
 from datetime import datetime
 from typing import Any
 
-from sqlalchemy import func, or_, select, update
+from sqlalchemy import select, update
 from sqlalchemy.orm import Session
 
 from store.tables import AssignmentRow, ParticipantRow
@@ -29,21 +29,10 @@ def by_public_id(session: Session, public_id: str) -> ParticipantRow | None:
     return session.scalar(select(ParticipantRow).where(ParticipantRow.public_id == public_id))
 
 
-def normalised_recruit_id(value: str | None) -> str | None:
-    """A recruiting id as it is stored and compared: without surrounding spaces, in lower case (``" ABC "``,
-    ``"abc"`` and ``"Abc"`` are one participant); ``None`` when blank."""
-    value = (value or "").strip().lower()
-    return value or None
-
-
-def by_recruit_id(session: Session, study_id: str, recruit_id: str) -> ParticipantRow | None:
-    """The participant whose normalised recruiting id is ``recruit_id``'s (also among rows stored before ids
-    were normalised, which hold them as typed)."""
-    wanted = normalised_recruit_id(recruit_id)
-    return session.scalar(select(ParticipantRow).where(
-        ParticipantRow.study_id == study_id,
-        or_(ParticipantRow.recruit_id == wanted, func.lower(func.trim(ParticipantRow.recruit_id)) == wanted))
-        .order_by(ParticipantRow.id).limit(1))
+def by_recruit_key(session: Session, study_id: str, key: str) -> ParticipantRow | None:
+    """The participant of ``study_id`` whose recruiting id has the key ``key`` (``store.recruit_ids``)."""
+    return session.scalar(select(ParticipantRow).where(ParticipantRow.study_id == study_id,
+                                                       ParticipantRow.recruit_key == key))
 
 
 def assignment_of(session: Session, participant_id: int) -> AssignmentRow | None:
@@ -53,12 +42,13 @@ def assignment_of(session: Session, participant_id: int) -> AssignmentRow | None
 def create(session: Session, *, study_id: str, public_id: str, token: str, recruit_id: str | None,
            recruiting: dict[str, str], config_hash: str, plan: list[dict[str, Any]], state: str,
            test_run: bool, order_index: int, condition_order: list[str],
-           pilot_pace: str | None = None) -> ParticipantRow:
+           pilot_pace: str | None = None, recruit_key: str | None = None) -> ParticipantRow:
     """A new participant at step 0 with their assignment (call inside the assignment's transaction); a pilot
     (simulated) participant when ``pilot_pace`` is given."""
     now = utcnow()
     row = ParticipantRow(study_id=study_id, public_id=public_id, token_hash=hash_token(token),
-                         recruit_id=recruit_id, recruiting=recruiting, config_hash=config_hash, plan=plan,
+                         recruit_id=recruit_id, recruit_key=recruit_key, recruiting=recruiting,
+                         config_hash=config_hash, plan=plan,
                          step=0, state=state, status="in_progress", test_run=test_run, excluded=False,
                          pilot=pilot_pace is not None, pilot_pace=pilot_pace,
                          created_at=now, updated_at=now)

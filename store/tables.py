@@ -67,13 +67,18 @@ class StudyRow(Base):
 
 class ParticipantRow(Base):
     __tablename__ = "participants"
-    __table_args__ = (UniqueConstraint("study_id", "recruit_id", name="uq_participants_study_recruit"),)
+    __table_args__ = (UniqueConstraint("study_id", "recruit_id", name="uq_participants_study_recruit"),
+                      Index("uq_participants_study_recruit_key", "study_id", "recruit_key", unique=True))
 
     id: Mapped[int] = mapped_column(Integer, primary_key=True, autoincrement=True)
     public_id: Mapped[str] = mapped_column(String(32), unique=True)
     study_id: Mapped[str] = mapped_column(ForeignKey("studies.id"), index=True)
     token_hash: Mapped[str] = mapped_column(String(64), unique=True)
     recruit_id: Mapped[str | None] = mapped_column(String(200))
+    """The recruiting id as given (the study's first URL parameter, e.g. the Prolific id)."""
+    recruit_key: Mapped[str | None] = mapped_column(String(200), nullable=True)
+    """What the id is compared by (``store.recruit_ids``: its look-alikes have the same key), unique per study; NULL
+    without an id (and for a look-alike stored before revision 0013 beside an older participant with its key)."""
     recruiting: Mapped[dict[str, str]] = mapped_column(JsonType, default=dict)
     config_hash: Mapped[str] = mapped_column(String(64))
     plan: Mapped[list[dict[str, Any]]] = mapped_column(JsonType)
@@ -180,6 +185,23 @@ class TrialRow(Base):
     engagement_reason: Mapped[str | None] = mapped_column(String(200), nullable=True)
     """Why the main trial is ``low_engagement`` (``server.flow.engagement``); NULL when the participant took
     part."""
+    lease_epoch: Mapped[int] = mapped_column(Integer, default=0, server_default="0")
+    """The fencing number of the round's lease (``store.lease``): one more at every takeover by a server process;
+    ticks, trial events and the end are stored only under the current one. 0 for trials stored before revision
+    0012."""
+    lease_owner: Mapped[str | None] = mapped_column(String(128), nullable=True)
+    """The server process (``host:pid``) holding the lease; NULL when none does (released at a shutdown)."""
+    lease_until: Mapped[datetime | None] = mapped_column(UTCDateTime, nullable=True)
+    """The holder's lease runs until then (renewed at every store flush): later, the holder is gone."""
+    away_since: Mapped[datetime | None] = mapped_column(UTCDateTime, nullable=True)
+    """When the participant's connection to the round dropped (the reconnect grace window counts from here, or
+    from a server restart, whichever is later); NULL while connected."""
+    connected_s: Mapped[float | None] = mapped_column(Float, nullable=True)
+    """Seconds the round had run while the participant was connected, at the lease's last renewal (what
+    ``timing.max_round_seconds`` limits, kept between ticks)."""
+    open_wait_s: Mapped[float | None] = mapped_column(Float, nullable=True)
+    """Seconds of the wait for the participant running at the lease's last renewal (NULL: none); a round taken
+    over after a crash stores it as a ``wait`` event, so it enters the idle share."""
 
 
 class TickRow(Base):
@@ -218,6 +240,8 @@ class TickRow(Base):
     """The reference's KB gap at this tick, per component (grill, board, sink, robot_held;
     ``planner.summary.info_diff``), from the ``reference`` state info of ``kb_summary`` and ``world_summary``
     (the writer fills it when the row does not bring it); NULL in ticks stored before revision 0010."""
+    epoch: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """The trial's lease epoch the tick was stepped under (``store.lease``); NULL before revision 0012."""
 
 
 class EventRow(Base):
@@ -230,6 +254,8 @@ class EventRow(Base):
     kind: Mapped[str] = mapped_column(String(32))
     payload: Mapped[dict[str, Any]] = mapped_column(JsonType, default=dict)
     created_at: Mapped[datetime] = mapped_column(UTCDateTime, default=utcnow)
+    epoch: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """For an event of a live round: the lease epoch it was made under (``store.lease``); NULL otherwise."""
 
 
 class AnswerRow(Base):

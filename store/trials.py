@@ -42,35 +42,47 @@ def create(session: Session, *, study_id: str, participant_id: int, kind: str, i
     return row
 
 
-def latest_attempt(session: Session, participant_id: int, kind: str, index: int) -> TrialRow | None:
-    return session.scalar(
-        select(TrialRow)
-        .where(TrialRow.participant_id == participant_id, TrialRow.kind == kind, TrialRow.index == index)
-        .order_by(TrialRow.attempt.desc())
-        .limit(1)
-    )
+def latest_attempt(session: Session, participant_id: int, kind: str, index: int,
+                   lock: bool = False) -> TrialRow | None:
+    """The participant's last attempt at trial ``(kind, index)``; with ``lock``, its row locked until the
+    transaction ends (where the database can: PostgreSQL)."""
+    query = (select(TrialRow)
+             .where(TrialRow.participant_id == participant_id, TrialRow.kind == kind, TrialRow.index == index)
+             .order_by(TrialRow.attempt.desc()).limit(1))
+    if lock:
+        query = query.with_for_update(key_share=True).execution_options(populate_existing=True)
+    return session.scalar(query)
 
 
 def end(session: Session, trial_id: int, *, status: str, reason: str, ticks: int | None = None,
-        delivered: int | None = None, score: int | None = None) -> bool:
-    """Mark a running trial ``finished`` or ``abandoned``; ``False`` if it had already ended."""
-    values: dict[str, Any] = {"status": status, "end_reason": reason, "ended_at": utcnow()}
+        delivered: int | None = None, score: int | None = None, epoch: int | None = None) -> bool:
+    """Mark a running trial ``finished`` or ``abandoned``; ``False`` if it had already ended, or if ``epoch`` (the
+    ender's lease, ``store.lease``) is no longer the trial's. Without an epoch (the sweep, a restart policy, tools)
+    the lease is not asked: call ``store.lease.fence`` too. The lease is given up either way."""
+    values: dict[str, Any] = {"status": status, "end_reason": reason, "ended_at": utcnow(), "lease_owner": None,
+                              "open_wait_s": None}
     for name, value in (("ticks", ticks), ("delivered", delivered), ("score", score)):
         if value is not None:
             values[name] = value
-    result = session.execute(update(TrialRow).where(TrialRow.id == trial_id, TrialRow.status == RUNNING)
-                             .values(**values))
+    where = [TrialRow.id == trial_id, TrialRow.status == RUNNING]
+    if epoch is not None:
+        where.append(TrialRow.lease_epoch == epoch)
+    result = session.execute(update(TrialRow).where(*where).values(**values))
     return bool(result.rowcount)  # type: ignore[attr-defined]
 
 
 def record_health(session: Session, trial_id: int, *, decisions: int, missed: int,
-                  invalid_reason: str | None, failed: int = 0) -> None:
+                  invalid_reason: str | None, failed: int = 0, epoch: int | None = None) -> None:
     """Store the robot's decision counts (late ones, failed ones) and, once set, why the trial is invalid (it is
-    never cleared)."""
+    never cleared); nothing when ``epoch`` is given and is no longer the trial's lease (another process runs the
+    round now)."""
     values: dict[str, Any] = {"decisions": decisions, "missed_decisions": missed, "failed_decisions": failed}
     if invalid_reason is not None:
         values["invalid_reason"] = invalid_reason[:200]
-    session.execute(update(TrialRow).where(TrialRow.id == trial_id).values(**values))
+    where = [TrialRow.id == trial_id]
+    if epoch is not None:
+        where.append(TrialRow.lease_epoch == epoch)
+    session.execute(update(TrialRow).where(*where).values(**values))
 
 
 def decision_counts(session: Session, trial_id: int) -> tuple[int, int]:
@@ -129,10 +141,10 @@ def events(session: Session, trial_id: int) -> list[EventRow]:
     return list(session.scalars(select(EventRow).where(EventRow.trial_id == trial_id).order_by(EventRow.id)))
 
 
-def running_inactive_since(session: Session, study_id: str, before: datetime) -> list[TrialRow]:
-    """Running trials of a study with no activity since ``before`` (candidates for the grace-window sweep)."""
-    return list(session.scalars(select(TrialRow).where(TrialRow.study_id == study_id, TrialRow.status == RUNNING,
-                                                       TrialRow.last_active_at < before)))
+def running_of_study(session: Session, study_id: str) -> list[TrialRow]:
+    """The running trials of a study (candidates for the grace-window sweep)."""
+    return list(session.scalars(select(TrialRow).where(TrialRow.study_id == study_id, TrialRow.status == RUNNING)
+                                .order_by(TrialRow.id)))
 
 
 def list_trials(session: Session, *, participant_id: int | None = None, study_id: str | None = None,

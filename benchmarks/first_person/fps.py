@@ -72,6 +72,16 @@ def walk_and_count(page: Any, seconds: float, tick_s: float) -> tuple[int, float
     return frames() - start_frames, time.monotonic() - start
 
 
+def test_run_path(server: BenchServer, study_id: str) -> str:
+    """The admin's signed test-run link of the study (a test run is only ever started from one)."""
+    import httpx
+
+    links = httpx.get(f"{server.url}/api/admin/studies/{study_id}/links", timeout=30,
+                      headers={"Authorization": f"Bearer {server.admin_token}"})
+    links.raise_for_status()
+    return str(links.json()["test_run"]["path"])
+
+
 def measure(fov: float, seconds: float, chromium: str, folder: Path) -> dict[str, Any]:
     from playwright.sync_api import sync_playwright
 
@@ -81,7 +91,7 @@ def measure(fov: float, seconds: float, chromium: str, folder: Path) -> dict[str
         browser = playwright.chromium.launch(executable_path=chromium, headless=True, args=WEBGL_ARGS)
         try:
             page = browser.new_page(viewport={"width": 1760, "height": 1100}, device_scale_factor=1)
-            page.goto(f"{server.url}/?study=fps_{int(fov)}&test_run=1")
+            page.goto(server.url + test_run_path(server, f"fps_{int(fov)}"))
             for selector in ("#consent-agree", "#instructions-done", "#start-round"):
                 page.click(selector)
             page.wait_for_selector("#stage")

@@ -13,6 +13,7 @@ phase:
 - ``json``: its serialisation (``model_dump_json``, as ``Connection.send`` does);
 - ``to_worker``: pickling the decision request for the robot worker and unpickling it there (its IPC share);
 - ``store``: committing the rows every 0.5 s of trial time (a temporary SQLite file, as ``BatchWriter``),
+  with the renewal of every trial's lease (``store.lease``; ``--no-lease`` leaves it out, to see what it costs),
   per tick.
 
 With ``--robot NAME`` (e.g. ``fov_aware``) the robot is that planner, run in this process, and two more
@@ -52,6 +53,7 @@ from server.game.engine import TrialEngine  # noqa: E402
 from server.game.records import tick_row  # noqa: E402
 from server.robots.choice import RobotChoice, run_decision  # noqa: E402
 from store.engine import Store  # noqa: E402
+from store.lease import Beat  # noqa: E402
 from store.writer import write_batch  # noqa: E402
 
 PHASES = ("step", "record", "mask", "json", "to_worker", "store")
@@ -68,7 +70,7 @@ def make_trials(count: int, seed: int) -> list[TrialEngine]:
 
 
 def run(trials: int, ticks: int, seed: int, store: Store, timer: Callable[[], float] = time.thread_time,
-        robot: str | None = None) -> dict[str, float]:
+        robot: str | None = None, lease: bool = True) -> dict[str, float]:
     """Seconds spent per phase over ``ticks`` ticks of ``trials`` trials (``trial_id`` 1..trials)."""
     rng = random.Random(seed)
     engines = make_trials(trials, seed)
@@ -121,8 +123,10 @@ def run(trials: int, ticks: int, seed: int, store: Store, timer: Callable[[], fl
             if engine.controller.subtask is None and message.available and rng.random() < 0.5:
                 engine.controller.select(Subtask(rng.choice(message.available)), engine.world.human.held)
         if tick % flush_every == flush_every - 1 and rows:
+            beats = [Beat(trial_id, 0, None, tick / 5.0, None) for trial_id, engine in enumerate(engines, start=1)
+                     if not engine.done] if lease else []
             t0 = timer()
-            write_batch(store, rows, [])
+            write_batch(store, rows, [], beats)
             spent["store"] += timer() - t0
             rows = []
     return spent
@@ -154,6 +158,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--profile", type=int, default=0, metavar="N", help="print the N top functions instead")
     p.add_argument("--robot", default=None, help="run this robot planner in-process (e.g. fov_aware)")
+    p.add_argument("--no-lease", action="store_true", help="store the rows without renewing the trials' leases")
     args = p.parse_args(argv)
     results: list[dict[str, float]] = []
     with tempfile.TemporaryDirectory(prefix="steakhouse-share-") as tmp:
@@ -164,7 +169,7 @@ def main(argv: list[str] | None = None) -> int:
             profiler = cProfile.Profile() if args.profile else None
             if profiler is not None:
                 profiler.enable()
-            spent = run(args.trials, args.ticks, args.seed, store, robot=args.robot)
+            spent = run(args.trials, args.ticks, args.seed, store, robot=args.robot, lease=not args.no_lease)
             if profiler is not None:
                 profiler.disable()
                 pstats.Stats(profiler).sort_stats("cumulative").print_stats(args.profile)
@@ -174,7 +179,8 @@ def main(argv: list[str] | None = None) -> int:
     steps = args.trials * args.ticks
     per_tick = {phase: statistics.median(r[phase] for r in results) / steps * 1e6 for phase in results[0]}
     total = sum(per_tick[phase] for phase in PHASES)
-    print(f"# {args.trials} trials × {args.ticks} ticks, median of {args.repeat} runs; CPU µs per trial tick")
+    print(f"# {args.trials} trials × {args.ticks} ticks, median of {args.repeat} runs; CPU µs per trial tick"
+          f"{' (leases not renewed)' if args.no_lease else ''}")
     for phase in PHASES:
         print(f"{phase:<10}{per_tick[phase]:>9.1f}")
     print(f"{'total':<10}{total:>9.1f}")

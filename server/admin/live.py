@@ -10,7 +10,7 @@ from typing import Any
 from server.admin.scenes import frame, grid, kb_frame
 from server.game.engine import TrialEngine
 from server.game.live import LiveGame
-from server.game.registry import process_name
+from server.game.ownership import process_name
 
 
 def scene_view(spectator: dict[str, Any], engine: TrialEngine) -> dict[str, Any]:

@@ -91,6 +91,7 @@ def serve(args: argparse.Namespace) -> int:
 
     from planner.layout import LayoutError
     from server.admin.links import start_banner
+    from server.admin.test_links import signing_key
     from server.app import create_app
     from server.settings import Settings
     from study_config.catalog import DuplicateStudyError
@@ -121,7 +122,8 @@ def serve(args: argparse.Namespace) -> int:
         return 1
     install_redaction()
     shown_host = "127.0.0.1" if settings.host in ("0.0.0.0", "::") else settings.host
-    for line in start_banner(app.state.catalog, f"http://{shown_host}:{settings.port}"):
+    for line in start_banner(app.state.catalog, f"http://{shown_host}:{settings.port}",
+                             signing_key(app.state.admin_token)):
         print(line, file=sys.stderr if line.startswith("WARNING") else sys.stdout, flush=True)
     _freeze_startup_objects()
     uvicorn.run(app, host=settings.host, port=settings.port, log_level=settings.log_level,

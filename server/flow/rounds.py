@@ -4,7 +4,7 @@ their current and previous round (in progress elsewhere, ended while they were a
 from __future__ import annotations
 
 from dataclasses import dataclass
-from datetime import datetime, timedelta
+from datetime import datetime
 from typing import Literal
 
 from sqlalchemy.orm import Session
@@ -12,6 +12,7 @@ from sqlalchemy.orm import Session
 from server.flow.plan import Step
 from server.flow.progress import Progress
 from store import trials
+from store.lease import away_seconds
 from store.tables import TrialRow
 from study_config.study.sections import Reconnect
 
@@ -19,10 +20,11 @@ Return = Literal["resume", "restart", "abandon"]
 RoundStatus = Literal["new", "in_progress", "ended_away", "restart"]
 
 
-def on_return(last_active: datetime, now: datetime, reconnect: Reconnect) -> Return:
-    """What a running round becomes when its participant connects at ``now``: within the study's grace window
-    (counted from its last activity) it resumes; later, what ``reconnect.after_grace`` says."""
-    if now - last_active <= timedelta(seconds=reconnect.grace_seconds):
+def on_return(away_s: float, reconnect: Reconnect) -> Return:
+    """What a running round becomes when its participant connects after ``away_s`` seconds away
+    (``store.lease.away_seconds``: time away while a server was up, restarted at a server start): within the study's
+    grace window it resumes; later, what ``reconnect.after_grace`` says."""
+    if away_s <= reconnect.grace_seconds:
         return "resume"
     return reconnect.after_grace
 
@@ -39,9 +41,8 @@ class RoundFacts:
 def round_facts(session: Session, participant_id: int, progress: Progress, now: datetime,
                 reconnect: Reconnect, connected: frozenset[int] = frozenset()) -> RoundFacts:
     """``connected``: the trials a participant is connected to in this process. Such a round is in progress
-    whatever its stored last activity says. A round connected in another process is judged by that stored
-    activity, which its process refreshes at least twice per grace window (down to a second:
-    ``GameRegistry.touch_interval``)."""
+    whatever the store says. A round connected in another process is judged by its lease (``store.lease``), which
+    that process renews at every store flush: connected there, it is in progress."""
     step = progress.current
     current: RoundStatus | None = None
     if step.kind == "trial" and step.trial_kind is not None and step.index is not None and not progress.screened_out:
@@ -62,7 +63,7 @@ _STATUS_ON_RETURN: dict[Return, RoundStatus] = {"resume": "in_progress", "restar
 def _status(row: TrialRow | None, now: datetime, reconnect: Reconnect) -> RoundStatus:
     if row is None or row.status != trials.RUNNING:
         return "new"
-    return _STATUS_ON_RETURN[on_return(row.last_active_at, now, reconnect)]
+    return _STATUS_ON_RETURN[on_return(away_seconds(row, now), reconnect)]
 
 
 def _previous_trial(progress: Progress) -> Step | None:

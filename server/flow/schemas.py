@@ -24,7 +24,14 @@ class JoinRequest(BaseModel):
         default_factory=dict, max_length=20)
     """The landing URL's query parameters; only the study's ``recruiting.url_parameters`` are kept."""
     test_run: bool = False
-    """Mark this participant as a test run (not counted for assignment, excluded from exports)."""
+    """Ignored: a participant's own request never makes a test run (kept so that a client sending it still joins,
+    as a real participant). Test runs come from the admin's signed test links: ``test_link``."""
+    test_link: Annotated[str, StringConstraints(max_length=200)] | None = None
+    """The code of an experimenter's test-run link (``/?study=<id>#test=<code>``, ``server.admin.test_links``):
+    join as a test run (not counted for assignment, excluded from exports, no real completion code)."""
+    handoff: Annotated[str, StringConstraints(max_length=40)] | None = None
+    """The hand-off code a device-refused session's first device shows (``server.flow.handoff``): continue that
+    session in this browser."""
     pilot: PilotRequest | None = None
     """Join as a simulated pilot participant (``steakhouse pilot``); only with the admin token as the bearer."""
 

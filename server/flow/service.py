@@ -5,18 +5,21 @@
   answers the same participant only from the browser holding that participant's token (the token is kept);
   from any other browser it is refused (``409 already_started``), the attempt stored as a ``join_refused``
   event, and the participant's session and token are left as they were. Never two assignments. Ids are
-  compared normalised (:func:`store.participants.normalised_recruit_id`: ``" ABC"`` is ``abc``). The
+  compared by their key (:mod:`store.recruit_ids`: case, spaces, invisible characters, diacritics and look-alike
+  letters of other scripts do not make another person). The
   exception is a session that holds nothing yet: its device was refused on landing and it has not moved past
-  the first step (a phone user sent to a laptop): the next browser with the id claims it (a new token, the
-  phone's stops working, a ``session_claimed`` event). A study with ``recruiting.require_id`` refuses a join
-  without the id (``422 recruit_id_required``), except test runs.
+  the first step (a phone user sent to a laptop): a browser with the id **and the hand-off code its first device
+  shows** (:mod:`server.flow.handoff`) claims it (a new token, the phone's stops working, a ``session_claimed``
+  event); with the id alone it is refused (``409 handoff_code_required``). A study with
+  ``recruiting.require_id`` refuses a join without the id (``422 recruit_id_required``), except test runs.
 - :func:`resume_on_new_device`: the experimenter's one-time resume link redeemed (:mod:`server.admin.resume`):
   a fresh token for the participant, the old one stops working.
 - :func:`move`: one state-machine transition, applied only if nobody moved the participant meanwhile.
 - :func:`submit_questionnaire`: answers checked, stored and the transition made, all or nothing.
 - :func:`submit_quiz`: one attempt at the comprehension quiz stored; passed → the next step, the last allowed
   attempt failed → screened out.
-- :func:`record_device`: the device the browser reported, stored with the participant (and as an event).
+- :func:`record_device`: the device the browser reported, stored with the participant (and as an event, within the
+  participant's row budget: :mod:`store.budget`).
 - :func:`end_trial`: the trial row ended, the participant's activity in it counted and judged
   (:mod:`server.flow.engagement`), and the participant moved past it (or screened out when they did not take
   part, :mod:`server.flow.standing`), together.
@@ -38,12 +41,14 @@ from server.errors import AnswerProblems, ApiError
 from server.flow import standing
 from server.flow.answers import check_answers, stored_answer
 from server.flow.engagement import engagement_problem
+from server.flow.handoff import MAX_WRONG, matches
 from server.flow.plan import build_plan, plan_from_json, plan_to_json
 from server.flow.progress import IllegalTransition, Move, Phase, Progress
 from server.flow.quiz import QuizResult, quiz_problems
-from store import activity, assignment, participants, trials
+from store import activity, assignment, budget, lease, participants, trials
 from store.engine import Store
 from store.group_assignment import least_filled_grouped
+from store.recruit_ids import recruit_key
 from store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, QuizAttemptRow
 from store.types import utcnow
 from study_config.catalog import LoadedStudy
@@ -59,9 +64,18 @@ ALREADY_STARTED = ("this ID has already started in another browser; continue the
 
 @dataclass(frozen=True)
 class Refused:
-    """A join with a recruiting id that already started elsewhere: the participant it belongs to."""
+    """A join with a recruiting id that already started elsewhere: the participant it belongs to, and why (the
+    409's code and message)."""
 
     participant: ParticipantRow
+    code: str = "already_started"
+    message: str = ALREADY_STARTED
+
+
+HANDOFF_REQUIRED = ("this ID started on another device: type the code that device shows (or open the link it "
+                    "shows) to continue here")
+HANDOFF_WRONG = "this is not the code your other device shows; check it and try again"
+HANDOFF_LOCKED = "too many wrong codes: please contact the researcher to continue on this device"
 
 
 @dataclass(frozen=True)
@@ -78,25 +92,28 @@ def progress_of(row: ParticipantRow) -> Progress:
 
 
 def join(store: Store, loaded: LoadedStudy, recruiting: dict[str, str], test_run: bool,
-         presented_token: str | None = None, pilot_pace: str | None = None) -> Joined:
+         presented_token: str | None = None, pilot_pace: str | None = None, handoff: str | None = None,
+         handoff_key: bytes = b"") -> Joined:
     """Join ``loaded``'s study, or come back to it: ``presented_token`` is the token the browser already holds
-    (its ``Authorization`` header), which alone resumes a participant whose recruiting id is known. A pilot
+    (its ``Authorization`` header), which alone resumes a participant whose recruiting id is known; ``handoff``
+    (checked with ``handoff_key``) is the code a device-refused session's first device shows. A pilot
     participant (``pilot_pace`` given; the route lets only the admin ask for it) is balanced among pilots, and
     the admin's pilot driver resumes its own pilot by recruiting id (with a new token)."""
     study = loaded.study
     names = study.recruiting.url_parameters
     kept = {name: recruiting[name] for name in names if name in recruiting}
-    recruit_id = participants.normalised_recruit_id(kept.get(names[0])) if names else None
-    if recruit_id is None and study.recruiting.require_id and not (test_run or study.test_run or pilot_pace):
+    key = recruit_key(kept.get(names[0])) if names else None
+    if key is None and study.recruiting.require_id and not (test_run or study.test_run or pilot_pace):
         raise ApiError(422, "recruit_id_required", "this study is joined from its link on the recruiting platform, "
                        f"which carries your {names[0]}; please open that link again")
     with store.transaction() as session:
         assignment.lock_study(session, study.id)
-        outcome = _join_in(session, loaded, kept, recruit_id, test_run, presented_token, pilot_pace)
+        outcome = _join_in(session, loaded, kept, key, test_run, presented_token, pilot_pace,
+                           (handoff, handoff_key) if handoff else None)
     if isinstance(outcome, Refused):
-        log.warning("join refused: the recruiting id of participant %s already started in another browser",
-                    outcome.participant.public_id)
-        raise ApiError(409, "already_started", ALREADY_STARTED)
+        log.warning("join refused (%s): the recruiting id of participant %s already started in another browser",
+                    outcome.code, outcome.participant.public_id)
+        raise ApiError(409, outcome.code, outcome.message)
     return outcome
 
 
@@ -107,12 +124,15 @@ def _rejoined(session: Session, row: ParticipantRow, token: str) -> Joined:
     return Joined(token, row, found, rejoined=True)
 
 
-def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recruit_id: str | None, test_run: bool,
-             presented_token: str | None, pilot_pace: str | None) -> Joined | Refused:
+def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], key: str | None, test_run: bool,
+             presented_token: str | None, pilot_pace: str | None,
+             handoff: tuple[str, bytes] | None = None) -> Joined | Refused:
+    """``key``: the recruiting id's key (``store.recruit_ids``), ``None`` without one; ``handoff``: a typed hand-off
+    code and the key it is checked with."""
     study = loaded.study
     pilot = pilot_pace is not None
-    if recruit_id:
-        existing = participants.by_recruit_id(session, study.id, recruit_id)
+    if key:
+        existing = participants.by_recruit_key(session, study.id, key)
         if existing is not None and existing.pilot != pilot:
             raise ApiError(409, "recruit_id_taken", "this recruiting id belongs to a pilot participant"
                            if existing.pilot else "this recruiting id belongs to a real participant")
@@ -123,12 +143,13 @@ def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recrui
         if existing is not None:
             holder = participants.by_token(session, presented_token) if presented_token else None
             other_browser = presented_token is None or holder is None or holder.id != existing.id
-            if other_browser and _claimable(existing):
-                return _claimed(session, existing)
+            if other_browser and claimable(existing):
+                return _hand_off(session, existing, handoff)
             if other_browser or presented_token is None:
-                session.add(EventRow(participant_id=existing.id, trial_id=None, tick=None, kind="join_refused",
-                                     payload={"reason": "already_started", "had_token": presented_token is not None},
-                                     created_at=utcnow()))
+                budget.store_or_count(session, EventRow(
+                    participant_id=existing.id, trial_id=None, tick=None, kind="join_refused",
+                    payload={"reason": "already_started", "had_token": presented_token is not None},
+                    created_at=utcnow()), budget.REFUSED_JOINS)
                 return Refused(existing)
             return _rejoined(session, existing, presented_token)
     token = secrets.token_urlsafe(32)
@@ -138,7 +159,8 @@ def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recrui
     order = list(loaded.orders[index])
     plan = build_plan(study, order)
     row = participants.create(
-        session, study_id=study.id, public_id=uuid.uuid4().hex, token=token, recruit_id=recruit_id,
+        session, study_id=study.id, public_id=uuid.uuid4().hex, token=token,
+        recruit_id=kept[study.recruiting.url_parameters[0]] if key else None, recruit_key=key,
         recruiting=kept, config_hash=study.config_hash(), plan=plan_to_json(plan),
         state=Progress(plan, 0).phase.value, test_run=test_run or study.test_run, order_index=index,
         condition_order=order, pilot_pace=pilot_pace)
@@ -148,9 +170,25 @@ def _join_in(session: Session, loaded: LoadedStudy, kept: dict[str, str], recrui
     return Joined(token, row, found, rejoined=False)
 
 
-def _claimable(row: ParticipantRow) -> bool:
+def claimable(row: ParticipantRow) -> bool:
     """A session that holds nothing yet: its device was refused on landing and it is still at its first step."""
     return row.status == "in_progress" and row.step == 0 and device_refused(row.device)
+
+
+def _hand_off(session: Session, row: ParticipantRow, handoff: tuple[str, bytes] | None) -> Joined | Refused:
+    """Another browser asks for a claimable session: only with the hand-off code its first device shows."""
+    wrong = int(session.scalar(select(func.count()).select_from(EventRow).where(
+        EventRow.participant_id == row.id, EventRow.kind == "handoff_refused")) or 0)
+    if wrong >= MAX_WRONG:
+        return Refused(row, "handoff_locked", HANDOFF_LOCKED)
+    if handoff is None:
+        return Refused(row, "handoff_code_required", HANDOFF_REQUIRED)
+    typed, key = handoff
+    if not matches(key, typed, row.public_id, row.token_hash):
+        session.add(EventRow(participant_id=row.id, trial_id=None, tick=None, kind="handoff_refused",
+                             payload={"wrong": wrong + 1}, created_at=utcnow()))
+        return Refused(row, "handoff_code_wrong", HANDOFF_WRONG)
+    return _claimed(session, row)
 
 
 def _claimed(session: Session, row: ParticipantRow) -> Joined:
@@ -261,29 +299,41 @@ def record_device(store: Store, loaded: LoadedStudy, participant_id: int, info: 
         row = _load(session, participant_id)
         row.device = report
         standing.review_device(row, problems)
-        session.add(EventRow(participant_id=row.id, trial_id=None, tick=None, kind="device_check",
-                             payload=report, created_at=now))
+        budget.store_or_count(session, EventRow(participant_id=row.id, trial_id=None, tick=None, kind="device_check",
+                                                payload=report, created_at=now), budget.DEVICE_REPORTS, now)
     return problems
 
 
 def end_trial_in(session: Session, participant_id: int, trial_id: int, kind: str, index: int, *, status: str,
                  reason: str, ticks: int | None = None, delivered: int | None = None,
-                 score: int | None = None, study: Study | None = None) -> Progress | None:
+                 score: int | None = None, study: Study | None = None, epoch: int | None = None,
+                 end_event: dict[str, Any] | None = None) -> Progress | None:
     """End the trial row and move the participant past the trial (inside ``session``'s transaction).
+
+    ``epoch``: the ender's lease on the round (``store.lease``); the end is refused when another process has
+    taken the round over since. Without one (the sweep, a reconnection after the grace window) the lease is
+    voided first, so that whoever held it stores nothing more. ``end_event``: the ``trial_end`` event's payload,
+    stored with the end under its epoch (only when the end is stored, so a round ends once, with one event).
 
     With the ``study``, the participant's activity in the trial is counted and stored, a finished main trial is
     judged for engagement, and after a main trial the participant's standing is reviewed: they stop counting
     toward their order when a round cannot become a cell, and are screened out when they did not take part
     (:mod:`server.flow.standing`). Without it (tools that build a store by hand) only the trial ends.
 
-    Returns the participant's new progress, or ``None`` if the trial had already ended.
+    Returns the participant's new progress, or ``None`` if the trial had already ended or its lease had passed.
     """
+    row = _load(session, participant_id, lock=True)  # the participant first, then the trial (as prepare_trial)
+    if epoch is None:
+        epoch = lease.fence(session, trial_id)
     if not trials.end(session, trial_id, status=status, reason=reason, ticks=ticks, delivered=delivered,
-                      score=score):
+                      score=score, epoch=epoch):
         return None
-    row = _load(session, participant_id)
+    if end_event is not None:
+        session.add(EventRow(participant_id=row.id, trial_id=trial_id, tick=ticks, kind="trial_end",
+                             payload=end_event, created_at=utcnow(), epoch=epoch))
     screen_out = None
     if study is not None:
+        session.flush()
         done = activity.measure(session, trial_id, study.timing.tick_rate_hz)
         problem = (engagement_problem(done, study.validity)
                    if kind == "main" and status == trials.FINISHED else None)
@@ -291,7 +341,7 @@ def end_trial_in(session: Session, participant_id: int, trial_id: int, kind: str
         if problem is not None:
             log.warning("trial %d (participant %s) is low-engagement: %s", trial_id, row.public_id, problem)
             session.add(EventRow(participant_id=row.id, trial_id=trial_id, tick=ticks, kind="trial_low_engagement",
-                                 payload={"reason": problem}, created_at=utcnow()))
+                                 payload={"reason": problem}, created_at=utcnow(), epoch=epoch))
         if kind == "main":
             session.flush()
             screen_out = standing.review_rounds(session, row, study.validity)
@@ -326,8 +376,11 @@ def completion(loaded: LoadedStudy, row: ParticipantRow) -> dict[str, Any]:
     raise ApiError(409, "not_finished", f"the session is in state {row.state!r}, not finished")
 
 
-def _load(session: Session, participant_id: int) -> ParticipantRow:
-    row = session.get(ParticipantRow, participant_id, populate_existing=True)
+def _load(session: Session, participant_id: int, lock: bool = False) -> ParticipantRow:
+    # FOR NO KEY UPDATE on PostgreSQL: a batch inserting this participant's events (their foreign key takes FOR KEY
+    # SHARE) must not wait on it while holding the trial row this transaction waits for (a deadlock).
+    row = session.get(ParticipantRow, participant_id, populate_existing=True,
+                      with_for_update={"key_share": True} if lock else None)
     if row is None:
         raise ApiError(404, "not_found", "no such participant")
     return row

@@ -51,7 +51,7 @@ class HealthKeeper:
         """Write ``health``'s counts and reason on the trial row (blocking: call it in a thread)."""
         with self.store.transaction() as session:
             trials.record_health(session, self.meta.trial_id, decisions=health.decisions, missed=health.missed,
-                                 invalid_reason=health.invalid_reason, failed=health.failed)
+                                 invalid_reason=health.invalid_reason, failed=health.failed, epoch=self.meta.epoch)
 
     async def settle(self) -> None:
         """Wait for the writes under way, then store the health as it is now."""

@@ -113,6 +113,10 @@ class LiveGame:
         self.stored = asyncio.Event()
         """Set once an ending trial's last ticks and its end are stored (:meth:`end`), so that a reconnection
         arriving meanwhile decides on what the store then says, not on a store still missing its last ticks."""
+        self._connect_logged = False
+        self.waiting_since: float | None = None
+        """When the current wait for the participant began (``pacing.clock``), while the world waits: the round's
+        lease renewals store it, so a crash does not lose it from the idle share (``store.lease``)."""
         self.task: asyncio.Task[None] | None = None
 
     # -- what the registry, the admin and the tests read ------------------------------------------------
@@ -153,7 +157,10 @@ class LiveGame:
         conn.send(snapshot.hello(self.meta, self.engine, mode=self.pacing.mode, rate=self.pacing.rate,
                                  resumed=self.resumed or self.engine.tick > 0, limit=self.deps.max_message_bytes))
         conn.send(self.state_message())
-        self.event("connect", {"replaced": replaced is not None, "resumed_at": self.engine.tick})
+        # A reconnection flood is counted like a message flood; a disconnect is logged when its connect was.
+        self._connect_logged = self.link.budget.take("connect")
+        if self._connect_logged:
+            self.event("connect", {"replaced": replaced is not None, "resumed_at": self.engine.tick})
         self.link.connected.set()
         self.link.wake.set()
 
@@ -162,8 +169,9 @@ class LiveGame:
         if not self.link.drop(conn):
             return False
         self.pacing.times.disconnected()
+        if self._connect_logged:
+            self.event("disconnect", {})
         self._store_drops(force=True)
-        self.event("disconnect", {})
         self.link.wake.set()
         return True
 
@@ -297,8 +305,9 @@ class LiveGame:
         times, clock = self.pacing.times, self.pacing.clock
         times.idle()
         self.link.wake.clear()
-        began = clock.now()
+        began = self.waiting_since = clock.now()
         await clock.wait(self.link.wake, times.until_next())
+        self.waiting_since = None
         waited = clock.now() - began
         if waited > 0:
             self.event("wait", {"seconds": round(waited, 3)})
@@ -339,7 +348,8 @@ class LiveGame:
     def _record(self, outcome: TickOutcome, choice: RobotChoice, lateness_ms: float) -> None:
         self.pacing.lateness.append(lateness_ms)
         self.deps.writer.add_tick(tick_row(self.meta.trial_id, outcome, choice, lateness_ms,
-                                           self.engine.controller.to_dict(), self.pacing.times.elapsed()))
+                                           self.engine.controller.to_dict(), self.pacing.times.elapsed(),
+                                           self.meta.epoch))
 
     def _blocked(self, blocked: Blocked) -> None:
         """Tell the participant why their subtask is not getting anywhere; log it when the subtask ended."""
@@ -363,7 +373,7 @@ class LiveGame:
     def event(self, kind: str, payload: dict[str, Any]) -> None:
         self.deps.writer.add_event({"participant_id": self.meta.participant_id, "trial_id": self.meta.trial_id,
                                     "tick": self.engine.tick, "kind": kind, "payload": payload,
-                                    "created_at": utcnow()})
+                                    "created_at": utcnow(), "epoch": self.meta.epoch})
 
     def _store_drops(self, force: bool = False) -> None:
         """Store the refused messages' counts as one ``events_dropped`` row (:mod:`server.game.budget`)."""
@@ -387,18 +397,23 @@ class LiveGame:
             world = self.engine.world
             self.keeper.update(self.keeper.health.final(), "ended invalid")
             self._store_drops(force=True)
-            self.event("trial_end", {"status": status, "reason": reason, "ticks": world.tick})
             await self.deps.writer.flush()
             delivered = self.engine.rules.orders - world.orders_left
             await self.keeper.settle()
+            # The end and its event are stored together under this process's lease, or not at all (the round was
+            # taken over by another process meanwhile: it ends there, once).
             progress = await asyncio.to_thread(
                 service.end_trial, self.deps.store, self.meta.participant_id, self.meta.trial_id, self.meta.kind,
                 self.meta.index, status=status, reason=reason, ticks=world.tick, delivered=delivered, score=world.score,
-                study=self.loaded.study)
-            if self.link.connection is not None:
+                study=self.loaded.study, epoch=self.meta.epoch,
+                end_event={"status": status, "reason": reason, "ticks": world.tick})
+            if self.link.connection is not None and progress is None:
+                self.link.connection.send(Error(code="replaced", message="this round continues in another window"))
+                self.link.connection.begin_close(4000)
+            elif self.link.connection is not None and progress is not None:
                 self.link.connection.send(TrialEnd(status=status, reason=reason,  # type: ignore[arg-type]
                                                    ticks=world.tick, delivered=delivered, score=world.score,
-                                                   next=progress.phase.value if progress else "unknown"))
+                                                   next=progress.phase.value))
                 self.link.connection.begin_close(1000)
             await self.deps.pool.close_trial(self.meta.trial_id)
             self.deps.on_end(self)

@@ -30,6 +30,9 @@ class TrialMeta:
     pilot_pace: str | None = None
     """``fast`` or ``realtime`` for a simulated pilot participant (from the store's pilot mark, never from a
     client message); ``None`` for a real participant."""
+    epoch: int = 0
+    """The round's lease epoch this server process runs it under (``store.lease``): its ticks and events carry it,
+    and the store refuses them once another process has taken the round over."""
 
     def to_dict(self) -> dict[str, Any]:
         """For the admin (JSON): the seed as text, since JavaScript numbers keep only 53 bits."""

@@ -9,6 +9,9 @@
 - :meth:`GameRegistry.claim` comes first: a trial that is not live here yet needs a slot; when none is
   free the participant waits in the :class:`~server.game.lobby.Lobby` (docs/operations.md, "Admission
   control"). A slot is freed when its trial leaves this process (ended, suspended or unloaded).
+- One owner per round (docs/deploy.md): starting or resuming a round takes its lease in the store
+  (:mod:`server.game.resume`); every store flush renews the leases held here and reports those another process
+  took over, whose rounds stop here at once (:mod:`server.game.ownership`).
 - A periodic sweep keeps connected trials' ``last_active_at`` fresh (other server processes judge
   staleness by it; flushed ticks refresh it too, but on the paper's clock a thinking participant makes no
   tick), at least twice per reconnect grace window (:meth:`GameRegistry.touch_interval`), and abandons trials
@@ -19,10 +22,9 @@
 from __future__ import annotations
 
 import asyncio
+import dataclasses
 import logging
 import math
-import os
-import socket
 from typing import Any
 
 from server.flow.progress import Phase
@@ -32,21 +34,16 @@ from server.game.connection import Connection
 from server.game.health import RobotHealth
 from server.game.live import GameDeps, LiveGame
 from server.game.lobby import Lobby
+from server.game.ownership import Ownership
 from server.game.restore import trial_engine, trial_meta
 from server.game.resume import Prepared, StepPassed, abandon_stale, prepare_trial
 from server.protocol.server import Error
-from store import trials
+from store import lease, trials
 from store.tables import ParticipantRow
 from store.types import utcnow
 from study_config.catalog import Catalog, LoadedStudy
 
 log = logging.getLogger(__name__)
-
-
-def process_name() -> str:
-    """``host:pid`` of this server process, stored with each trial start and resume: which process ran a
-    trial, and which one took it over after another died (docs/operations.md §4)."""
-    return f"{socket.gethostname()}:{os.getpid()}"
 
 
 class NoTrial(Exception):
@@ -84,10 +81,17 @@ class GameRegistry:
         self._timers: dict[int, asyncio.TimerHandle] = {}
         self._background: set[asyncio.Task[Any]] = set()
         self._sweeper: asyncio.Task[None] | None = None
+        self.ownership = Ownership(deps.store)
 
     # -- lifecycle ------------------------------------------------------------------------------------
 
     async def start(self) -> None:
+        writer = self.deps.writer
+        writer.beats = lambda: self.ownership.beats(self.games.values())
+        writer.on_stale = self._stale
+        studies = list(self.catalog.studies)
+        await self.ownership.restart(studies, lambda: frozenset(self.games))
+        self._spawn(self.ownership.restart(studies, lambda: frozenset(self.games), lease.LEASE_TTL_S))
         await self.sweep()
         self._sweeper = asyncio.create_task(self._sweep_forever(), name="trial-sweeper")
 
@@ -98,8 +102,11 @@ class GameRegistry:
         for handle in self._timers.values():
             handle.cancel()
         games = list(self.games.values())
+        beats = self.ownership.beats(games)
         for game in games:
             await game.suspend()
+        if beats:
+            await asyncio.to_thread(self.ownership.release, beats)
         self.games.clear()
         self._by_participant.clear()
         for task in list(self._background):
@@ -143,15 +150,20 @@ class GameRegistry:
         async with lock:
             game = self._by_participant.get(participant.id)
             if game is not None and (game.meta.kind, game.meta.index) == (step.trial_kind, step.index):
-                if not game.finished:
+                if not game.finished and await asyncio.to_thread(self.ownership.holds, game):
                     self._cancel_timer(game)
+                    self.ownership.connected(game.meta.trial_id, participant.token_hash)
                     game.attach(conn)
                     return game
-                # The trial is ending here (its last ticks and its end are being stored): resuming it from the
-                # store now would replay those ticks. Once stored, the participant has moved on (NoTrial below).
-                await game.stored.wait()
+                if not game.finished:  # another process took the round over: this copy is stale
+                    await self._let_go(game, keep_slot=True)
+                else:
+                    # The trial is ending here (its last ticks and its end are being stored): resuming it from the
+                    # store now would replay those ticks. Once stored, the participant has moved on (NoTrial below).
+                    await game.stored.wait()
             try:
-                prepared = await asyncio.to_thread(prepare_trial, self.deps.store, loaded, participant.id, step)
+                prepared = await asyncio.to_thread(prepare_trial, self.deps.store, loaded, participant.id, step,
+                                                   self.ownership.name)
             except StepPassed as passed:  # the trial ended after the participant's row was read
                 raise NoTrial(passed.progress.phase) from None
             if prepared.outcome == "abandoned":
@@ -164,10 +176,37 @@ class GameRegistry:
             self._by_participant[participant.id] = game
             game.event("trial_start" if prepared.outcome == "new" else "resume",
                        {"attempt": game.meta.attempt, "tick": game.engine.tick, "seed": game.meta.seed,
-                        "process": process_name()})
+                        "process": self.ownership.name, "epoch": prepared.epoch,
+                        "previous_process": prepared.previous_owner})
             game.start()
+            self.ownership.connected(game.meta.trial_id, participant.token_hash)
             game.attach(conn)
             return game
+
+    def _stale(self, stale: set[lease.Key]) -> None:
+        """The store found these leases taken over by another process (at a flush): stop those rounds here."""
+        for trial_id, epoch in stale:
+            game = self.games.get(trial_id)
+            if game is not None and game.meta.epoch == epoch and not game.finished:
+                self._spawn(self._lost(game))
+
+    async def _lost(self, game: LiveGame) -> None:
+        async with self._locks.setdefault(game.meta.participant_id, asyncio.Lock()):
+            if self.games.get(game.meta.trial_id) is not game or game.finished:
+                return
+            await self._let_go(game)
+
+    async def _let_go(self, game: LiveGame, keep_slot: bool = False) -> None:
+        """Stop a round another process took over (its lease is gone): no more steps or rows here, its socket told
+        to go, its slot freed (unless ``keep_slot``: the participant's new connection takes it over here)."""
+        await self.ownership.stop(game)
+        self._cancel_timer(game)
+        if self.games.get(game.meta.trial_id) is game:
+            del self.games[game.meta.trial_id]
+        if self._by_participant.get(game.meta.participant_id) is game:
+            del self._by_participant[game.meta.participant_id]
+            if not keep_slot:
+                self.lobby.admission.release(game.meta.participant_id)
 
     def revoke(self, participant_id: int) -> bool:
         """The participant's token was replaced (their resume link was used on a new device): the old browser's
@@ -186,14 +225,15 @@ class GameRegistry:
         health = RobotHealth(study.validity.max_missed_decisions_pct, loaded.rules.horizon, prepared.decisions,
                              prepared.missed, row.invalid_reason, failed=prepared.failed)
         last = prepared.last_tick
-        return LiveGame(trial_meta(loaded, participant, row), loaded, trial_engine(loaded, row, last),
-                        self.deps, resumed=prepared.outcome == "resume", health=health,
-                        round_seconds=(last.round_seconds or 0.0) if last is not None else 0.0)
+        meta = dataclasses.replace(trial_meta(loaded, participant, row), epoch=prepared.epoch)
+        return LiveGame(meta, loaded, trial_engine(loaded, row, last), self.deps,
+                        resumed=prepared.outcome == "resume", health=health, round_seconds=prepared.round_seconds)
 
     def detach(self, game: LiveGame, conn: Connection) -> None:
         if not game.detach(conn) or game.finished:
             return
         grace = game.loaded.study.reconnect.grace_seconds
+        self.ownership.away(game.meta.trial_id)
         self._cancel_timer(game)
         loop = asyncio.get_running_loop()
         self._timers[game.meta.trial_id] = loop.call_later(grace, lambda: self._spawn(self._expire(game)))
@@ -219,8 +259,10 @@ class GameRegistry:
             if game.loaded.study.reconnect.after_grace == "abandon":
                 await game.end("abandoned", "grace_expired")
                 return
+            beats = self.ownership.beats([game])
             await game.suspend()
             await self.deps.writer.flush()
+            await asyncio.to_thread(self.ownership.release, beats)
             self._ended(game)
 
     def _cancel_timer(self, game: LiveGame) -> None:
@@ -230,6 +272,7 @@ class GameRegistry:
 
     def _ended(self, game: LiveGame) -> None:
         self._cancel_timer(game)
+        self.ownership.forget(game.meta.trial_id)
         if self.games.get(game.meta.trial_id) is game:
             del self.games[game.meta.trial_id]
         if self._by_participant.get(game.meta.participant_id) is game:

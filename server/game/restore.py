@@ -26,7 +26,7 @@ def trial_meta(loaded: LoadedStudy, participant: ParticipantRow, row: TrialRow) 
                      kind_total=sum(1 for s in plan if s.trial_kind == row.kind),
                      condition=row.condition_id, robot=row.robot, kitchen=row.kitchen, view=row.view,
                      seed=row.seed, test_run=participant.test_run,
-                     pilot_pace=participant.pilot_pace if participant.pilot else None)
+                     pilot_pace=participant.pilot_pace if participant.pilot else None, epoch=row.lease_epoch)
 
 
 def trial_engine(loaded: LoadedStudy, row: TrialRow, last: TickRow | None) -> TrialEngine:

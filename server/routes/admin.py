@@ -22,9 +22,10 @@ from server.admin.live import live_view
 from server.admin.replay import replay
 from server.admin.resume import link_secret, make_code, resume_path
 from server.admin.stored_live import running_elsewhere, stored_live_view, stored_summary
+from server.admin.test_links import signing_key
 from server.deps import ServicesDep, path_study, require_admin
 from server.errors import ApiError
-from server.game.registry import process_name
+from server.game.ownership import process_name
 from server.services import Services
 from server.text_input import storable_body
 from store import participants, trials
@@ -82,8 +83,10 @@ def studies(services: ServicesDep) -> list[dict[str, Any]]:
 
 
 @router.get("/studies/{study_id}/links")
-def links(request: Request, loaded: Annotated[LoadedStudy, Depends(path_study)]) -> dict[str, Any]:
-    return study_links(loaded, str(request.base_url))
+def links(request: Request, loaded: Annotated[LoadedStudy, Depends(path_study)], services: ServicesDep
+          ) -> dict[str, Any]:
+    """The study's recruiting links, with test-run links signed now (``server.admin.test_links``)."""
+    return study_links(loaded, str(request.base_url), signing_key(services.admin_token))
 
 
 @router.get("/participants")

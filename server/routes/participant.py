@@ -17,9 +17,11 @@ from anyio import from_thread
 from fastapi import APIRouter, Depends, Request
 
 from server.admin.resume import link_secret, read_code, verify
+from server.admin.test_links import signing_key, verify_test_code
 from server.deps import ParticipantDep, ServicesDep, bearer, is_admin, participant_study, path_study
 from server.errors import ApiError
 from server.flow import payment, service
+from server.flow.handoff import handoff_code, handoff_key
 from server.flow.progress import Move
 from server.flow.schemas import (
     ConsentRequest,
@@ -35,6 +37,7 @@ from server.security import limit_joins
 from server.services import Services
 from server.text_input import storable_body
 from store import participants
+from store.tables import ParticipantRow
 from study_config.catalog import LoadedStudy
 from study_config.study.device import DeviceInfo
 
@@ -54,13 +57,22 @@ def join(loaded: Annotated[LoadedStudy, Depends(path_study)], body: JoinRequest,
     """Join, or come back with the token this browser holds (``Authorization``); a known recruiting id from
     a browser without its token answers ``409 already_started`` (:func:`server.flow.service.join`). A pilot join
     (``pilot``) needs the admin token as the bearer, so no participant can make themselves a pilot (and get the
-    pilot's pace); without it, 403 ``pilot_needs_admin``."""
+    pilot's pace); without it, 403 ``pilot_needs_admin``. A test run needs an admin-signed test link
+    (``test_link``, :mod:`server.admin.test_links`; 410 ``test_link_invalid`` when expired or altered): the body's
+    ``test_run`` is ignored."""
+    test_run = False
+    if body.test_link is not None:
+        if not verify_test_code(signing_key(services.admin_token), body.test_link, loaded.id, time.time()):
+            raise ApiError(410, "test_link_invalid",
+                           "this test link is no longer valid; make a new one in the admin dashboard")
+        test_run = True
     if body.pilot is not None:
         if not is_admin(request, services):
             raise ApiError(403, "pilot_needs_admin", "pilot participants are joined with the admin token")
-        joined = service.join(services.store, loaded, body.recruiting, body.test_run, pilot_pace=body.pilot.pace)
+        joined = service.join(services.store, loaded, body.recruiting, test_run, pilot_pace=body.pilot.pace)
     else:
-        joined = service.join(services.store, loaded, body.recruiting, body.test_run, bearer(request))
+        joined = service.join(services.store, loaded, body.recruiting, test_run, bearer(request),
+                              handoff=body.handoff, handoff_key=handoff_key(services.admin_token))
     return _joined(loaded, joined)
 
 
@@ -92,9 +104,15 @@ def _joined(loaded: LoadedStudy, joined: service.Joined) -> JoinResponse:
 
 
 def _view(services: Services, loaded: LoadedStudy, participant_id: int) -> dict[str, Any]:
+    """The session view, with the hand-off code while the session may move to another device
+    (:mod:`server.flow.handoff`)."""
     connected = from_thread.run_sync(services.registry.connected)
     with services.store.transaction() as session:
-        return load_session_view(session, loaded, participant_id, connected)
+        view = load_session_view(session, loaded, participant_id, connected)
+        row = session.get(ParticipantRow, participant_id)
+        if row is not None and service.claimable(row):
+            view["handoff"] = {"code": handoff_code(handoff_key(services.admin_token), row.public_id, row.token_hash)}
+        return view
 
 
 @router.get("/session")

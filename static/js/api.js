@@ -40,9 +40,15 @@ export class Api {
   }
 
   study(studyId) { return this.request("GET", `/api/studies/${encodeURIComponent(studyId)}`); }
-  join(studyId, recruiting, testRun) {
-    return this.request("POST", `/api/studies/${encodeURIComponent(studyId)}/join`,
-                        { recruiting, test_run: Boolean(testRun) });
+  /**
+   * `testLink`: the code of an experimenter's test-run link (`#test=…`), or "" for a participant; `handoff`: the
+   * code another device showed, to continue its session here (or "").
+   */
+  join(studyId, recruiting, testLink, handoff) {
+    const body = { recruiting };
+    if (testLink) body.test_link = testLink;
+    if (handoff) body.handoff = handoff;
+    return this.request("POST", `/api/studies/${encodeURIComponent(studyId)}/join`, body);
   }
   resume(studyId, code) {
     return this.request("POST", `/api/studies/${encodeURIComponent(studyId)}/resume`, { code });

@@ -3,7 +3,8 @@
  * (`POST /api/session/device`, stored with the participant); the server says whether the study can be taken
  * on it (a screen under the study's minimum, default 1024 × 600, or a device without a mouse or trackpad is
  * refused). The page then asks for a computer with a keyboard: the game's interrupts need one, and on a phone
- * the task buttons would be below the fold.
+ * the task buttons would be below the fold. It shows the session's hand-off code (`session.handoff.code`) and a
+ * link carrying it: the computer continues this session only with one of them (docs/protocol.md §1).
  */
 
 import { h, show } from "./dom.js";
@@ -47,11 +48,18 @@ export function devicePage(root, ctx) {
     }
   } }, "Check again");
   const title = h("h1", { id: "device-title", tabindex: "-1" }, "Please use a computer with a keyboard");
+  const code = ctx.session.handoff ? ctx.session.handoff.code : "";
+  const link = `${window.location.origin}${window.location.pathname}${window.location.search}#handoff=${code}`;
   show(root, h("section", { class: "card narrow", id: "device", dataset: { problems: device.problems.join(" ") },
                             "aria-labelledby": "device-title" },
     title,
     reasons.map((text) => h("p", {}, text)),
     h("p", {}, "Please open the same study link on a laptop or desktop computer. Your place in the study is kept: " +
       "you continue where you are now."),
+    code ? [
+      h("p", {}, "The computer will ask for this code (it keeps your place yours; share it with nobody):"),
+      h("p", { class: "handoff-code", id: "handoff-code" }, code),
+      h("p", {}, "Or open this link on the computer: ", h("a", { href: link, id: "handoff-link" }, link)),
+    ] : null,
     h("div", { class: "actions" }, again)), title);
 }

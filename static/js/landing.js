@@ -3,8 +3,12 @@
  * participant's token (kept in this browser so a refresh or a reopened tab resumes where they were).
  *
  * URL scheme (see docs/client.md):  /?study=<study id>&PROLIFIC_PID=…&STUDY_ID=…&SESSION_ID=…
- *   test_run=1   join as a test run (not counted for assignment, excluded from exports)
+ *   #test=…      an experimenter's signed test-run link from the dashboard (not counted for assignment, excluded
+ *                from exports, no real completion code; in the fragment, so it never reaches a server log).
+ *                A bare `test_run=1` no longer makes a test run: the page asks for the dashboard's link
  *   new=1        forget the session stored in this browser for this study and join again
+ *   #handoff=…   the hand-off code a phone showed after the device check refused it: this computer continues
+ *                the phone's session (without it, the page asks for the code)
  *   #resume=…    a one-time resume link from the researcher (moving to a new device; in the fragment, so it
  *                never reaches a server log): this browser takes over the participant's session
  * Only the parameters the study lists in `recruiting.url_parameters` are sent to the server. A recruiting id
@@ -24,12 +28,15 @@ export function readLink(location = window.location) {
   for (const [key, value] of params) {
     if (!RESERVED.has(key) && !(key in raw)) raw[key] = value.slice(0, 200);
   }
+  const fragment = new URLSearchParams((location.hash || "").replace(/^#/, ""));
   return {
     study,
     raw,
     testRun: ["1", "true", "yes"].includes((params.get("test_run") || "").toLowerCase()),
+    testLink: fragment.get("test") || "",
+    handoff: fragment.get("handoff") || "",
     fresh: ["1", "true", "yes"].includes((params.get("new") || "").toLowerCase()),
-    resume: new URLSearchParams((location.hash || "").replace(/^#/, "")).get("resume") || "",
+    resume: fragment.get("resume") || "",
   };
 }
 
@@ -108,7 +115,7 @@ export async function enter(link) {
   // A token stored for this study goes with the join: the server resumes its participant when the recruiting
   // id is theirs, and keeps the token.
   api.token = stored ? stored.token : "";
-  const joined = await api.join(link.study, recruiting, link.testRun);
+  const joined = await api.join(link.study, recruiting, link.testLink, link.handoff);
   api.token = joined.token;
   saveStored(link.study, { token: joined.token, recruiting, participant: joined.participant_id });
   return { api, session: await api.session(), info };

@@ -68,8 +68,30 @@ function retryButton() {
   return h("button", { type: "button", class: "primary", onclick: () => window.location.reload() }, "Try again");
 }
 
-function failure(exc) {
-  if (exc.status === 409 && exc.code === "already_started") {
+/** The session started on another device whose check refused it: ask for the code that device shows. */
+function handoffPage(link, wrong) {
+  const input = h("input", { id: "handoff-input", type: "text", autocomplete: "off", spellcheck: "false",
+                             "aria-label": "Code shown on your other device", maxlength: "20" });
+  const go = h("button", { type: "submit", class: "primary", id: "handoff-go" }, "Continue here");
+  const form = h("form", { id: "handoff-form", onsubmit: (event) => {
+    event.preventDefault();
+    if (!input.value.trim()) return;
+    go.disabled = true;
+    start({ ...link, handoff: input.value.trim() });
+  } }, input, " ", go);
+  messagePage(root, "Continue the study on this computer",
+    [wrong ? "That is not the code your other device shows. Please check it and type it again."
+       : "You started this study on another device. Type the code it shows to continue here:"], form);
+  input.focus();
+}
+
+function failure(exc, link) {
+  if (exc.status === 409 && (exc.code === "handoff_code_required" || exc.code === "handoff_code_wrong")) {
+    handoffPage(link, exc.code === "handoff_code_wrong");
+  } else if (exc.status === 409 && exc.code === "handoff_locked") {
+    messagePage(root, "This session cannot move to this computer",
+      "Too many wrong codes were typed. Please contact the researcher: they can send you a link to continue.");
+  } else if (exc.status === 409 && exc.code === "already_started") {
     messagePage(root, "This ID has already started in another browser",
       ["Please continue in the browser where you started, or contact the researcher.",
        "For your privacy and the study's, a session can only continue in the browser it started in."]);
@@ -77,6 +99,9 @@ function failure(exc) {
     messagePage(root, "This link is incomplete",
       ["Please open the study from its link on the recruiting site: that link carries your participant ID.",
        "If you did, contact the researcher."]);
+  } else if (exc.status === 410 && exc.code === "test_link_invalid") {
+    messagePage(root, "This test link is no longer valid",
+      "Test links work for a limited time. Copy a new one from the admin dashboard (Studies → Recruiting links).");
   } else if (exc.status === 410 && exc.code === "link_invalid") {
     messagePage(root, "This link is no longer valid",
       "Resume links work once and for a limited time. Please contact the researcher for a new one.");
@@ -98,12 +123,22 @@ async function boot() {
       ["The address should name a study, for example /?study=demo.", "Please use the full link you were given."]);
     return;
   }
+  if (link.testRun && !link.testLink) {
+    messagePage(root, "Test runs start from the admin dashboard",
+      ["A test run needs the signed test link of the dashboard (Studies → Recruiting links → Test run).",
+       "Participants use the study's participant link."]);
+    return;
+  }
+  await start(link);
+}
+
+async function start(link) {
   try {
     const entered = await enter(link);
     ctx = { api: entered.api, link, route, session: entered.session };
     await route(await entered.api.device(deviceInfo()));
   } catch (exc) {
-    failure(exc);
+    failure(exc, link);
   }
 }
 

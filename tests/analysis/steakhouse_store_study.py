@@ -121,7 +121,8 @@ def play_stored_trial(store: Store, loaded: LoadedStudy, participant_id: int, wh
                                     time.monotonic() + 1.0)
         choice_ = RobotChoice(Action(action), decision_ms=(time.perf_counter() - start) * 1000, info=info)
         outcome = engine.advance(choice_.action)
-        ticks.append(tick_row(row.id, outcome, choice_, 1.5, controller.to_dict(), engine.tick / 10))
+        # Under the round's lease (store/lease.py): rows of another epoch would be refused.
+        ticks.append(tick_row(row.id, outcome, choice_, 1.5, controller.to_dict(), engine.tick / 10, prepared.epoch))
     world = engine.world
     reason = "delivered" if world.orders_left == 0 else "horizon"
     events.append(_event(participant_id, row.id, world.tick, "trial_end", {"status": "finished", "reason": reason}))

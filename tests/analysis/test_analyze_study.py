@@ -13,7 +13,7 @@ import pandas as pd
 import pingouin as pg
 import pytest
 from steakhouse_store_study import study_robots
-from steakhouse_testing import Player, http_client
+from steakhouse_testing import Player, http_client, signed_test_code
 from websockets.exceptions import ConnectionClosed
 
 from analysis.apa import apa_f_sentence
@@ -84,7 +84,8 @@ def played(live_server, study_2x2):
         full = await asyncio.gather(*(take_part(server.url, name, n) for n, name in enumerate(names)),
                                     take_part(server.url, "partial", 40, main_trials=2))
         async with http_client(server.url) as client:
-            tester = (await client.post("/api/studies/two_by_two/join", json={"test_run": True})).json()
+            tester = (await client.post("/api/studies/two_by_two/join",
+                                        json={"test_link": signed_test_code("two_by_two")})).json()
             flagged = await client.post(f"/api/admin/participants/{full[FULL]}/flags", headers=ADMIN,
                                         json={"excluded": True, "reason": "did not follow the instructions"})
             flagged.raise_for_status()

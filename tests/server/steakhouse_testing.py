@@ -95,6 +95,13 @@ def wait_stored(where: Any, through: dict[int, int], timeout: float = 60.0) -> N
             store.dispose()
 
 
+def signed_test_code(study_id: str = "tiny", admin_token: str = "admin-secret", days: int = 1) -> str:
+    """The code of an admin's test-run link for ``study_id`` (``server.admin.test_links``), valid ``days``."""
+    from server.admin.test_links import make_test_code, signing_key
+
+    return make_test_code(signing_key(admin_token), study_id, int(time.time()) + days * 86_400)
+
+
 def free_port() -> int:
     with socket.socket() as sock:
         sock.bind(("127.0.0.1", 0))

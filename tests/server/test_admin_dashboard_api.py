@@ -5,6 +5,7 @@ with ``planner.fov``), all behind the admin token."""
 from __future__ import annotations
 
 import asyncio
+from datetime import UTC, datetime, timedelta
 
 import httpx
 import pytest
@@ -49,8 +50,10 @@ def test_recruiting_links_carry_the_prolific_placeholders_and_the_code(server):
     assert links["participant"]["path"] == (
         "/?study=tiny&PROLIFIC_PID={{%PROLIFIC_PID%}}&STUDY_ID={{%STUDY_ID%}}&SESSION_ID={{%SESSION_ID%}}")
     assert links["participant"]["url"] == server.url + links["participant"]["path"]
-    assert links["test_run"]["path"] == "/?study=tiny&test_run=1"
-    assert links["fresh_test_run"]["path"] == "/?study=tiny&test_run=1&new=1"
+    code = links["test_run"]["path"].removeprefix("/?study=tiny#test=")
+    assert code != links["test_run"]["path"] and links["fresh_test_run"]["path"] == f"/?study=tiny&new=1#test={code}"
+    expires = datetime.fromisoformat(links["test_link_expires_at"])
+    assert timedelta(days=6) < expires - datetime.now(UTC) <= timedelta(days=7)
     assert links["completion"] == {"code": "DONE-7", "redirect_url": "https://recruit.example/done?cc=DONE-7"}
     assert links["screen_out"] == {"code": None, "redirect_url": None}
     assert missing.status_code == 404

@@ -3,8 +3,8 @@
 - SIGKILL the server while four participants play at once, check the store (every flushed tick intact:
   ticks 1..n of each trial, no duplicates, each parses back), start it again on the same database: every
   participant resumes per the study's policy — within the grace window the same trial at its last stored
-  tick, which then plays to the end with its stored ticks unchanged; after the window with ``restart`` a
-  new attempt at tick 0, the old one kept as it was.
+  tick, which then plays to the end with its stored ticks unchanged; away longer than the window after the
+  restart (which starts it again), with ``restart`` a new attempt at tick 0, the old one kept as it was.
 - Drop and restore connections at random (abrupt TCP drops and clean closes) during several trials at
   once: every trial ends with ticks 1..n stored once each, and each reconnection continues where it stood.
 """
@@ -136,8 +136,10 @@ def test_sigkill_longer_than_the_grace_window_restarts_per_policy(db_url, study_
     try:
         started = crash(server, server.url, 10)
         before = stored(db_url)
-        time.sleep(1.0)
         server = ProcessServer(study=study, database_url=db_url, workers=0, log=log).start()
+        # The restart starts the grace window again (the outage was not the participants'): they stay away
+        # longer than it after the restart.
+        time.sleep(1.0)
         resumed = asyncio.run(resume_all(server.url, started))
     finally:
         server.kill()

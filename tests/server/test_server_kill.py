@@ -85,7 +85,9 @@ def test_sigkill_mid_trial_then_restart_resumes_from_the_last_flushed_tick(db_ur
         server.kill()
 
 
-def test_after_a_crash_longer_than_the_grace_window_the_trial_is_abandoned(db_url, study_file, tmp_path):
+def test_away_longer_than_the_grace_window_after_a_restart_the_trial_is_abandoned(db_url, study_file, tmp_path):
+    """A restart starts the grace window again (the outage was not the participant's); a participant who then
+    stays away longer than it has their round abandoned, as one who left."""
     study = study_file(reconnect={"grace_seconds": 0.5, "after_grace": "abandon"})
     env = {"STEAKHOUSE_SWEEP_INTERVAL_S": "0.2"}
     server = ProcessServer(study=study, database_url=db_url, workers=0, env=env, log=tmp_path / "s.log").start()
@@ -102,8 +104,8 @@ def test_after_a_crash_longer_than_the_grace_window_the_trial_is_abandoned(db_ur
             return player.token, hello
 
         token, hello = asyncio.run(before_crash())
-        time.sleep(1.0)
         server = ProcessServer(study=study, database_url=db_url, workers=0, env=env, log=tmp_path / "s.log").start()
+        time.sleep(1.0)  # away for longer than the window after the restart
 
         async def after_restart():
             player = Player(server.url)
@@ -118,8 +120,7 @@ def test_after_a_crash_longer_than_the_grace_window_the_trial_is_abandoned(db_ur
         session, reply = asyncio.run(after_restart())
         row, ticks = check_store(db_url, hello["trial"]["id"])
         assert (row.status, row.end_reason) == ("abandoned", "grace_expired")
-        # The only main round was abandoned: the store cannot tell a crash from a participant who left, so the
-        # study's screen-out outcome (docs/operations.md §8: the researcher can still pay them by hand).
+        # The only main round was abandoned: the study's screen-out outcome (docs/operations.md §8).
         assert session["state"] == "screened_out" and session["completion"]["reason"] == "abandoned_rounds"
         assert reply["type"] == "error" and reply["code"] == "no_trial"
         assert ticks == list(range(1, len(ticks) + 1))

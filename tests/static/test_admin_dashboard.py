@@ -64,7 +64,8 @@ def test_studies_show_orders_links_and_downloads(admin_server, admin_page):  # n
     link = page.input_value(f"#link-participant-{REPLAY_STUDY}")
     assert link == (f"{admin_server.url}/?study={REPLAY_STUDY}&PROLIFIC_PID={{{{%PROLIFIC_PID%}}}}"
                     "&STUDY_ID={{%STUDY_ID%}}&SESSION_ID={{%SESSION_ID%}}")
-    assert page.input_value(f"#link-test-{REPLAY_STUDY}") == f"{admin_server.url}/?study={REPLAY_STUDY}&test_run=1"
+    assert page.input_value(f"#link-test-{REPLAY_STUDY}").startswith(f"{admin_server.url}/?study={REPLAY_STUDY}#test=")
+    assert "valid until" in page.inner_text(card)
     assert "https://recruit.example/complete?cc=DASH-OK-9" in page.inner_text(card)
 
     export = admin_server.admin.get(f"/api/admin/studies/{REPLAY_STUDY}/export.zip")

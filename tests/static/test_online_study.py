@@ -311,5 +311,9 @@ def test_a_link_without_the_participant_id_is_refused_but_a_test_run_is_not(stud
     assert len(expected) == 1, problems  # the browser logs the refused join itself
     problems.remove(expected[0])
     tester, _ = new_page()
-    tester.goto(study_server.link(STUDY, test_run="1"))
+    tester.goto(study_server.link(STUDY, test_run="1"))  # a participant cannot make themselves a test run
+    tester.wait_for_selector("#message-title")
+    assert tester.inner_text("#message-title") == "Test runs start from the admin dashboard"
+    test_link = study_server.get(f"/api/admin/studies/{STUDY}/links")["test_run"]["path"]
+    tester.goto(study_server.url + test_link)
     tester.wait_for_selector("#consent-agree")

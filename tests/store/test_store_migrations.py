@@ -2,22 +2,24 @@
 
 from __future__ import annotations
 
+import json
 import threading
+from typing import Any
 
 from alembic.autogenerate import compare_metadata
 from alembic.runtime.migration import MigrationContext
-from sqlalchemy import inspect
+from sqlalchemy import inspect, select
 
 from store.engine import Store
 from store.migrate import current_revision
-from store.tables import Base
+from store.tables import Base, ParticipantRow
 
 
 def test_migrations_match_the_models(empty_db_url):
     store = Store(empty_db_url)
     try:
         store.migrate()
-        assert current_revision(store.engine) == "0011"
+        assert current_revision(store.engine) == "0013"
         with store.engine.connect() as conn:
             context = MigrationContext.configure(conn, opts={"compare_type": True})
             diff = compare_metadata(context, Base.metadata)
@@ -47,7 +49,7 @@ def test_migrating_again_and_concurrently_is_harmless(empty_db_url):
             thread.join()
         stores[0].migrate()
         assert errors == []
-        assert current_revision(stores[0].engine) == "0011"
+        assert current_revision(stores[0].engine) == "0013"
     finally:
         for store in stores:
             store.dispose()
@@ -99,5 +101,48 @@ def test_revision_0008_gives_older_trials_their_studys_angle_where_the_config_is
                 step(config, revision)
         with store.transaction() as session:
             assert [session.get(TrialRow, i).fov_angle for i in ids] == [100.0, None]  # type: ignore[union-attr]
+    finally:
+        store.dispose()
+
+
+def test_revision_0013_keys_older_participants_and_keeps_look_alikes_apart(db_url, study_file):
+    """Participants stored before held their id trimmed and lower-cased: revision 0013 takes back the id as given from
+    their recruiting parameters, keys it, and of two participants whose ids look alike the older keeps the key."""
+    from alembic import command
+    from sqlalchemy import text
+
+    from store.migrate import alembic_config
+    from store.participants import by_recruit_key
+    from store.recruit_ids import recruit_key
+
+    store = Store(db_url)
+    try:
+        store.migrate()
+        config = alembic_config()
+
+        def to(step: Any, revision: str) -> None:
+            with store.engine.begin() as conn:
+                config.attributes["connection"] = conn
+                step(config, revision)
+
+        to(command.downgrade, "0012")
+        with store.engine.begin() as conn:
+            conn.execute(text("INSERT INTO studies (id, title, config_hash, config, orders, created_at, updated_at) "
+                              "VALUES ('s', 'S', 'h', '{}', '[]', :t, :t)"), {"t": "2026-12-01 00:00:00"})
+            for number, (stored, given) in enumerate((("abc12", "AbC12"), ("\u0430bc12", "\u0430bc12"),
+                                                      ("zed", "zed"))):
+                conn.execute(text(
+                    "INSERT INTO participants (public_id, study_id, token_hash, recruit_id, recruiting, config_hash,"
+                    " plan, step, state, status, test_run, pilot, excluded, created_at, updated_at) VALUES (:p, 's',"
+                    " :h, :r, :j, 'h', '[]', 0, 'consent', 'in_progress', false, false, false, :t, :t)"),
+                    {"p": f"p{number}", "h": f"h{number}", "r": stored, "t": "2026-12-01 00:00:00",
+                     "j": json.dumps({"PROLIFIC_PID": given})})
+        to(command.upgrade, "head")
+        with store.transaction() as session:
+            rows = {r.public_id: (r.recruit_id, r.recruit_key) for r in session.scalars(select(ParticipantRow))}
+            assert rows == {"p0": ("AbC12", recruit_key("abc12")), "p1": ("\u0430bc12", None),
+                            "p2": ("zed", "zed")}
+            found = by_recruit_key(session, "s", recruit_key("\u0430BC12") or "")
+            assert found is not None and found.public_id == "p0"
     finally:
         store.dispose()

@@ -158,11 +158,11 @@ def test_a_flush_cut_short_by_shutdown_is_written_once(store, loaded, monkeypatc
     writing, release = threading.Event(), threading.Event()
     batches: list[list[int]] = []
 
-    def slow(store_: Any, ticks: Any, events: Any) -> None:
+    def slow(store_: Any, ticks: Any, events: Any, beats: Any = ()) -> Any:
         batches.append([row["tick"] for row in ticks])
         writing.set()
         release.wait(5)
-        real(store_, ticks, events)
+        return real(store_, ticks, events, beats)
 
     monkeypatch.setattr(writer_module, "write_batch", slow)
 

@@ -97,7 +97,7 @@ function linksPanel(links) {
     linkRow("Participant link", `link-participant-${links.study_id}`, origin + links.participant.path,
       `Use as the study URL on Prolific: ${links.url_parameters.map((p) => `{{%${p}%}}`).join(", ")} are filled in per participant.`),
     linkRow("Test run", `link-test-${links.study_id}`, origin + links.test_run.path,
-      "Not counted for assignment. This browser resumes its test session; the link below always starts a new one (a refresh then starts over too)."),
+      `Signed for you, valid until ${new Date(links.test_link_expires_at).toLocaleString()}: only this link makes a test run (not counted for assignment, left out of exports, its end page shows TEST-RUN instead of the completion code). This browser resumes its test session; the link below always starts a new one (a refresh then starts over too). Reload the page for a fresh link.`),
     h("div", { class: "link-row" }, h("span", { class: "link-label" }, ""),
       h("span", { class: "link-actions" },
         h("a", { href: origin + links.test_run.path, target: "_blank", rel: "noopener", id: `open-test-${links.study_id}` }, "Open a test run"),

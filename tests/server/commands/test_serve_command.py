@@ -60,6 +60,6 @@ def test_serve_prints_each_studys_links_the_admin_address_and_warns_about_placeh
     out, err = capsys.readouterr()
     assert "Admin dashboard: http://127.0.0.1:8123/admin/" in out
     assert "Study ready: participant link http://127.0.0.1:8123/?study=ready&PROLIFIC_PID={{%PROLIFIC_PID%}}" in out
-    assert "http://127.0.0.1:8123/?study=shipped&test_run=1" in out
+    assert "test run         http://127.0.0.1:8123/?study=shipped#test=" in out
     assert "WARNING: study shipped: recruiting.completion_code is still the shipped placeholder" in err
     assert "study ready" not in err

@@ -36,13 +36,20 @@ def nginx_binary() -> str | None:
     return shutil.which("nginx") or next((p for p in ("/usr/sbin/nginx",) if os.access(p, os.X_OK)), None)
 
 
-def render(text: str, *, backends: list[str], http_port: int, https_port: int, folder: Path) -> str:
-    """``text`` (the repository's file) with its addresses replaced; raises if the file no longer has the
-    shape this test relies on (then the test and the file must change together)."""
+def render(text: str, *, backends: list[str], http_port: int, https_port: int, folder: Path,
+           play: list[str] | None = None) -> str:
+    """``text`` (the repository's file) with its addresses replaced (``play``: other servers for the websocket
+    upstream, the first block); raises if the file no longer has the shape this test relies on (then the test and
+    the file must change together)."""
+    blocks_seen = 0
+
     def upstream(block: re.Match[str]) -> str:
+        nonlocal blocks_seen
         first = UPSTREAM_LINE.match(block.group(0))
         assert first is not None
-        return "".join(f"{first.group(1)}server {b}{first.group(2) or ''};\n" for b in backends)
+        servers = play if play is not None and blocks_seen == 0 else backends
+        blocks_seen += 1
+        return "".join(f"{first.group(1)}server {b}{first.group(2) or ''};\n" for b in servers)
 
     rendered, blocks = re.subn(r"(?:^[ \t]*server app\d+:8000[^;]*;\n)+", upstream, text, flags=re.MULTILINE)
     replacements = [("listen 80;", f"listen 127.0.0.1:{http_port};"),
@@ -57,7 +64,7 @@ def render(text: str, *, backends: list[str], http_port: int, https_port: int, f
     temp = "".join(f"    {kind}_temp_path {folder}/{kind};\n"
                    for kind in ("client_body", "proxy", "fastcgi", "uwsgi", "scgi"))
     rendered = rendered.replace("http {\n", "http {\n" + temp, 1)
-    return f"pid {folder}/nginx.pid;\nerror_log {folder}/error.log warn;\n" + rendered
+    return f"pid {folder}/nginx.pid;\nerror_log {folder}/error.log notice;\n" + rendered
 
 
 def self_signed(folder: Path) -> None:
@@ -102,6 +109,36 @@ class NginxProxy:
                     return self
                 time.sleep(0.05)
         raise RuntimeError("nginx did not start listening")
+
+    def reload(self, play: list[str] | None = None) -> None:
+        """Reload nginx with ``play`` as the websocket upstream's servers (``None``: all backends again), as an
+        operator changing the set does. nginx keeps the websockets already open (its old workers serve them until
+        they close); new ones are hashed over the new set. Returns once the new workers answer."""
+        assert self.process is not None
+        conf = self.folder / "nginx.conf"
+        conf.write_text(render(CONFIG.read_text(encoding="utf-8"), backends=self.backends, play=play,
+                               http_port=self.http_port, https_port=self.https_port, folder=self.folder))
+        def shutting(pid: int) -> bool:
+            return f"{pid}#{pid}: gracefully shutting down" in self._log()
+
+        accepting = {pid for pid in self._workers() if not shutting(pid)}
+        self.process.send_signal(signal.SIGHUP)
+        deadline = time.monotonic() + 20
+        # Each accepting worker logs this once it stopped accepting connections (it keeps serving those it has).
+        while time.monotonic() < deadline:
+            if all(shutting(pid) for pid in accepting):
+                return
+            time.sleep(0.05)
+        raise RuntimeError(f"nginx did not reload: {self.error_log()}")
+
+    def _workers(self) -> set[int]:
+        assert self.process is not None
+        children = Path(f"/proc/{self.process.pid}/task/{self.process.pid}/children")
+        return {int(pid) for pid in children.read_text().split()} if children.exists() else set()
+
+    def _log(self) -> str:
+        log = self.folder / "error.log"
+        return log.read_text(errors="replace") if log.exists() else ""
 
     def error_log(self) -> str:
         log = self.folder / "error.log"

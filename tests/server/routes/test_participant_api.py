@@ -129,8 +129,8 @@ def test_the_websocket_refuses_bad_tokens_and_participants_not_in_a_trial(client
     assert message["code"] == "no_trial" and "consent" in message["message"]
 
 
-def test_a_placeholder_code_never_reaches_a_real_participant_but_test_runs_see_it(live_server, study_file):
-    from steakhouse_testing import Player, play_every_trial
+def test_a_placeholder_code_never_reaches_a_real_participant_and_test_runs_see_a_stand_in(live_server, study_file):
+    from steakhouse_testing import Player, play_every_trial, signed_test_code
 
     placeholders = {"completion_code": "REPLACE-WITH-YOUR-COMPLETION-CODE",
                     "completion_redirect_url": "https://example.org/done?cc={code}",
@@ -139,7 +139,8 @@ def test_a_placeholder_code_never_reaches_a_real_participant_but_test_runs_see_i
 
     async def finish(test_run: bool) -> tuple[dict[str, Any], dict[str, Any]]:
         player = Player(server.url)
-        joined = await player.http.post("/api/studies/tiny/join", json={"test_run": test_run})
+        body = {"test_link": signed_test_code()} if test_run else {}
+        joined = await player.http.post("/api/studies/tiny/join", json=body)
         player.token = joined.json()["token"]
         (await player.post("/api/session/consent", {"accept": True})).raise_for_status()
         (await player.post("/api/session/instructions_done")).raise_for_status()
@@ -159,6 +160,7 @@ def test_a_placeholder_code_never_reaches_a_real_participant_but_test_runs_see_i
     for completion in (real_view["completion"], real_code):
         assert completion["code"] is None and completion["redirect_url"] is None and completion["not_set_up"]
     assert "REPLACE-WITH" not in json.dumps([declined, real_view, real_code])
-    test_view, test_code = asyncio.run(finish(test_run=True))
-    assert test_view["completion"]["code"] == test_code["code"] == "REPLACE-WITH-YOUR-COMPLETION-CODE"
+    test_view, test_end = asyncio.run(finish(test_run=True))
+    assert test_view["completion"]["code"] == test_end["code"] == "TEST-RUN"
+    assert test_view["completion"]["redirect_url"] is None and test_view["completion"]["test_run"] is True
     assert "not_set_up" not in test_view["completion"]

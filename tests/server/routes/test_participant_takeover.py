@@ -10,7 +10,7 @@ import time
 from typing import Any
 
 import httpx
-from steakhouse_testing import Player, eventually, http_client
+from steakhouse_testing import Player, eventually, http_client, signed_test_code
 
 from server.admin.resume import link_secret, make_code, read_code
 from server.flow.service import ALREADY_STARTED
@@ -169,7 +169,39 @@ def test_recruiting_ids_are_compared_normalised(live_server, study_file):
         assert other.status_code == 200
     with server.services.store.transaction() as session:
         row = participants.by_public_id(session, first["participant_id"])
-        assert row is not None and row.recruit_id == "abc123" and row.recruiting["PROLIFIC_PID"] == "AbC123"
+        assert row is not None and row.recruit_id == "AbC123" and row.recruit_key == "abcl23"
+        assert row.recruiting["PROLIFIC_PID"] == "AbC123"
+
+
+PROLIFIC_ID = "5f3a9c1e2b7d4a6f8e0c1b2a"
+LOOK_ALIKES = {
+    "zero-width space": PROLIFIC_ID[:6] + "\u200b" + PROLIFIC_ID[6:],
+    "zero-width joiner": PROLIFIC_ID[:6] + "\u200d" + PROLIFIC_ID[6:],
+    "soft hyphen": PROLIFIC_ID[:6] + "\u00ad" + PROLIFIC_ID[6:],
+    "full-width letters": "".join(chr(ord(c) + 0xFEE0) for c in PROLIFIC_ID),
+    "combining accent": PROLIFIC_ID[:3] + "\u0301" + PROLIFIC_ID[3:],
+    "Cyrillic look-alike": PROLIFIC_ID.replace("a", "\u0430").replace("e", "\u0435").replace("c", "\u0441"),
+    "O for 0, l for 1": PROLIFIC_ID.replace("0", "O").replace("1", "l"),
+}
+
+
+def test_look_alike_ids_are_the_same_participant(live_server, study_file):
+    server = live_server([study_file()])
+    with httpx.Client(base_url=server.url, timeout=30) as client:
+        first = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": PROLIFIC_ID}}).json()
+        mine = {"Authorization": f"Bearer {first['token']}"}
+        itself = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": PROLIFIC_ID}})
+        assert itself.status_code == 409
+        for name, look_alike in LOOK_ALIKES.items():
+            assert look_alike != PROLIFIC_ID
+            other = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": look_alike}})
+            assert (other.status_code, other.json()) == (409, itself.json()), name
+            own = client.post("/api/studies/tiny/join", headers=mine,
+                              json={"recruiting": {"PROLIFIC_PID": look_alike}})
+            assert own.status_code == 200 and own.json()["participant_id"] == first["participant_id"], name
+    with server.services.store.transaction() as session:
+        rows = session.query(ParticipantRow).all()
+        assert [(r.recruit_id, r.public_id) for r in rows] == [(PROLIFIC_ID, first["participant_id"])]
 
 
 def test_a_study_that_requires_the_id_refuses_a_join_without_it(live_server, study_file):
@@ -179,33 +211,64 @@ def test_a_study_that_requires_the_id_refuses_a_join_without_it(live_server, stu
             refused = client.post("/api/studies/tiny/join", json={"recruiting": recruiting})
             assert refused.status_code == 422, refused.text
             assert refused.json()["detail"]["code"] == "recruit_id_required" and "PROLIFIC_PID" in refused.text
-        assert client.post("/api/studies/tiny/join", json={"test_run": True}).status_code == 200
+        ignored = client.post("/api/studies/tiny/join", json={"test_run": True})
+        assert ignored.status_code == 422, "a participant's own test_run is ignored: the id is still required"
+        assert client.post("/api/studies/tiny/join", json={"test_link": signed_test_code()}).status_code == 200
         assert client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "p"}}).status_code == 200
     with server.services.store.transaction() as session:
         assert session.query(ParticipantRow).count() == 2
 
 
-def test_a_session_whose_device_was_refused_is_claimed_by_the_next_browser(live_server, study_file):
+def test_a_session_whose_device_was_refused_continues_on_a_laptop_only_with_the_phones_code(live_server, study_file):
     server = live_server([study_file()])
     with httpx.Client(base_url=server.url, timeout=30) as client:
         phone = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "walker"}}).json()
         on_phone = {"Authorization": f"Bearer {phone['token']}"}
         view = client.post("/api/session/device", json=PHONE, headers=on_phone).json()
         assert view["device"]["ok"] is False and view["state"] == "consent"
-        laptop = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "walker"}})
+        code = view["handoff"]["code"]
+        assert client.get("/api/session", headers=on_phone).json()["handoff"]["code"] == code
+        walker = {"recruiting": {"PROLIFIC_PID": "walker"}}
+        alone = client.post("/api/studies/tiny/join", json=walker)
+        assert alone.status_code == 409 and alone.json()["detail"]["code"] == "handoff_code_required"
+        wrong = client.post("/api/studies/tiny/join", json={**walker, "handoff": "AAAAA-BBBBB"})
+        assert wrong.status_code == 409 and wrong.json()["detail"]["code"] == "handoff_code_wrong"
+        assert client.get("/api/session", headers=on_phone).status_code == 200, "the phone's session is untouched"
+        laptop = client.post("/api/studies/tiny/join", json={**walker, "handoff": f" {code.lower()} "})
         assert laptop.status_code == 200, laptop.text
         body = laptop.json()
         assert body["participant_id"] == phone["participant_id"] and body["token"] != phone["token"]
         assert body["rejoined"] is True
         on_laptop = {"Authorization": f"Bearer {body['token']}"}
         assert client.get("/api/session", headers=on_phone).status_code == 401, "the phone's token stops working"
-        assert client.post("/api/session/device", json=LAPTOP, headers=on_laptop).json()["device"]["ok"] is True
+        assert client.post("/api/studies/tiny/join", json={**walker, "handoff": code}).status_code == 409, "once"
+        passed = client.post("/api/session/device", json=LAPTOP, headers=on_laptop).json()
+        assert passed["device"]["ok"] is True and "handoff" not in passed
         assert client.post("/api/session/consent", json={"accept": True}, headers=on_laptop).status_code == 200
         # Once the device passed, the session is the laptop's: a third browser is refused as before.
-        third = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "walker"}})
-        assert third.status_code == 409
+        third = client.post("/api/studies/tiny/join", json=walker)
+        assert third.status_code == 409 and third.json()["detail"]["code"] == "already_started"
     _, kinds = stored(server, phone["participant_id"])
-    assert kinds.count("session_claimed") == 1 and kinds.count("join_refused") == 1
+    assert kinds.count("session_claimed") == 1 and kinds.count("handoff_refused") == 2  # wrong, then reused
+
+
+def test_wrong_hand_off_codes_lock_the_hand_off(live_server, study_file):
+    from server.flow.handoff import MAX_WRONG
+
+    server = live_server([study_file()])
+    with httpx.Client(base_url=server.url, timeout=30) as client:
+        phone = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "guessed"}}).json()
+        on_phone = {"Authorization": f"Bearer {phone['token']}"}
+        code = client.post("/api/session/device", json=PHONE, headers=on_phone).json()["handoff"]["code"]
+        guesses = [client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "guessed"},
+                                                               "handoff": f"GUESS-{n:05d}"}).json()["detail"]["code"]
+                   for n in range(MAX_WRONG + 3)]
+        right = client.post("/api/studies/tiny/join", json={"recruiting": {"PROLIFIC_PID": "guessed"},
+                                                             "handoff": code})
+    assert guesses == ["handoff_code_wrong"] * MAX_WRONG + ["handoff_locked"] * 3
+    assert right.status_code == 409 and right.json()["detail"]["code"] == "handoff_locked"
+    _, kinds = stored(server, phone["participant_id"])
+    assert kinds.count("handoff_refused") == MAX_WRONG, "the attempts beyond the lock store nothing"
 
 
 def test_a_session_past_its_first_step_is_not_claimed_even_if_its_device_is_refused_later(live_server, study_file):
