@@ -15,11 +15,21 @@ from analysis.anova import GG_THRESHOLD
 from analysis.apa import format_p, format_proportion
 from analysis.document import Block, BulletList, Heading, Paragraph, render_html, render_markdown, table
 from analysis.effect_sizes import BOOTSTRAP_RESAMPLES
-from analysis.options import AnalysisOptions
+from analysis.options import PER_GROUP, POOLED, AnalysisOptions
 from analysis.report_measure import measure_section
 from analysis.report_quality import ReportContext, quality_section
 from analysis.report_tables import interval, number
 from analysis.results import AnalysisResult
+
+SS_TYPE_TEXT = {3: "type III sums of squares, as afex", 2: "type II sums of squares, as pingouin"}
+FOLLOW_UP_TEXT = {
+    POOLED: "on the within-group covariance pooled over the groups (t and F on N − G df, as emmeans on an afex "
+            "model; the F of a factor with more than two levels is emmeans' joint test, without a sphericity "
+            "correction)",
+    PER_GROUP: "on that group's participants alone (paired t and one-way repeated-measures ANOVAs on n − 1 df "
+               "within the group)",
+}
+"""How the Method paragraph names a mixed design's conventions (:class:`analysis.options.AnalysisOptions`)."""
 
 
 def build_report(result: AnalysisResult, options: AnalysisOptions, context: ReportContext | None = None
@@ -46,11 +56,12 @@ def method_section(result: AnalysisResult, options: AnalysisOptions) -> list[Blo
         f"Design: {within[0]} between participants × {' × '.join(within[1:])} within participants (participant "
         f"column: {first.subject}); levels in the study's order ({levels}). Each measure was analysed with a mixed "
         f"(split-plot) ANOVA: {within[0]} against the participants-within-groups error term, every within effect "
-        f"and its interaction with {within[0]} against the participant × effect error term within groups (type III "
-        "sums of squares, as afex; sphericity of the within part from the pooled within-group covariance). "
-        f"Follow-ups: {within[0]} at each within cell (one-way between-participants ANOVA), each within factor "
-        f"within each group of {within[0]}; Holm within each family. Participants without a value in every cell of "
-        "a measure were left out of that measure (complete cases).")
+        f"and its interaction with {within[0]} against the participant × effect error term within groups "
+        f"({SS_TYPE_TEXT[options.ss_type]}; sphericity of the within part from the pooled within-group "
+        f"covariance). Follow-ups: {within[0]} at each within cell (one-way between-participants ANOVA), each "
+        f"within factor within each group of {within[0]} {FOLLOW_UP_TEXT[options.follow_up_error]}; Holm within "
+        "each family. Participants without a value in every cell of a measure were left out of that measure "
+        "(complete cases).")
         if options.between else Paragraph(
         f"Design: {' × '.join(within)}, all within participants (participant column: {first.subject}); "
         f"levels in the study's order ({levels}). Each measure was analysed with a repeated-measures "

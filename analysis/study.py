@@ -22,7 +22,7 @@ from sqlalchemy import Engine
 from analysis.errors import AnalysisInputError
 from analysis.exclusions import INVALID, LOW_ENGAGEMENT
 from analysis.export import ExportResult, export_study
-from analysis.options import AnalysisOptions
+from analysis.options import POOLED, AnalysisOptions
 from analysis.report_quality import ReportContext
 from analysis.results import AnalysisResult
 from analysis.run import analyze_long
@@ -48,13 +48,14 @@ class StudyAnalysis:
 
 
 def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, measures: Sequence[str] | None = None,
-                  include: Collection[str] = (), seed: int = 0, plots: bool = True, lmm: bool = False
-                  ) -> StudyAnalysis:
+                  include: Collection[str] = (), seed: int = 0, plots: bool = True, lmm: bool = False,
+                  ss_type: int = 3, follow_up_error: str = POOLED) -> StudyAnalysis:
     """Export ``study_id`` into ``<out_dir>/data`` and analyse ``measures`` (default: :data:`DEFAULT_MEASURES`
     and the study's scales) into ``out_dir``; ``include`` names exclusion rules whose rows are kept (with
     ``invalid`` the export itself keeps invalid trials in ``cells.csv``: ``export_study(include_invalid=True)``;
     without it they are left out there and listed in ``excluded.csv``), and ``"pilot"`` in it keeps simulated
-    pilot participants (left out of the export otherwise)."""
+    pilot participants (left out of the export otherwise). ``ss_type`` and ``follow_up_error``: the mixed design's
+    conventions (:class:`analysis.options.AnalysisOptions`)."""
     out = Path(out_dir)
     export = export_study(source, study_id, out / DATA_DIR,
                           include_invalid=INVALID.name in include or LOW_ENGAGEMENT.name in include,
@@ -77,7 +78,8 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
     ratings.update({s.column: _scale_range(s.items, ratings) for s in design.scales})
     options = AnalysisOptions(
         levels=design.levels, strict_levels=False, ratings=ratings, items=design.items, scales=design.scales,
-        include=frozenset(include), horizon=design.horizon, seed=seed, plots=plots, lmm=lmm,
+        include=frozenset(include), horizon=design.horizon, seed=seed, plots=plots, lmm=lmm, ss_type=ss_type,
+        follow_up_error=follow_up_error,
         title=f"{'Mixed' if between else 'Repeated-measures'} analysis: study {study_id}",
         between=between[0] if between else None)
     chosen = list(measures) if measures is not None else [*DEFAULT_MEASURES, *(s.column for s in design.scales)]
