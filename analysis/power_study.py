@@ -88,14 +88,14 @@ def pilot_table(source: Engine | str, study_id: str, out: Path, include: frozens
     return PilotTable(kept, within, between[0] if between else None, design, len(pilots))
 
 
-Task = tuple[MeasureData | GroupedData, tuple[int, ...], int, float, int, int, EffectSize | None]
+Task = tuple[MeasureData | GroupedData, tuple[int, ...], int, float, int, int, EffectSize | None, int]
 
 
 def _one(args: Task, on_step: Callable[[], None] = lambda: None) -> pd.DataFrame:
-    data, ns, simulations, alpha, seed, index, effect_size = args
+    data, ns, simulations, alpha, seed, index, effect_size, ss_type = args
     rng = np.random.default_rng([seed, index])
     if isinstance(data, GroupedData):
-        return mixed_measure_power(data, ns, simulations, alpha, rng, on_step)
+        return mixed_measure_power(data, ns, simulations, alpha, rng, on_step, ss_type)
     return measure_power(data, ns, simulations, alpha, rng, effect_size, on_step)
 
 
@@ -110,10 +110,10 @@ def power_study(source: Engine | str, study_id: str, out_dir: Path | str, ns: Se
                 measures: Sequence[str] | None = None, include: frozenset[str] = frozenset(),
                 on_measure: Callable[[str], None] = lambda name: None, plots: bool = True,
                 on_start: Callable[[int], None] = lambda steps: None, on_step: Callable[[int], None] = lambda k: None,
-                effect_size: EffectSize | None = None) -> PowerResult:
+                effect_size: EffectSize | None = None, ss_type: int = 3) -> PowerResult:
     """Power of every planned test of ``measures`` at each of ``ns`` (see the module docstring); ``on_start``
     gets the number of progress steps, ``on_step`` is called with each step count done, ``on_measure`` with each
-    measure done."""
+    measure done. ``ss_type``: the sums of squares of a mixed design's ANOVA (:mod:`analysis.mixed_anova`)."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     pilot = pilot_table(source, study_id, out, include)
@@ -131,7 +131,8 @@ def power_study(source: Engine | str, study_id: str, out_dir: Path | str, ns: Se
         [grouped_data(kept, m, within, between, SUBJECT, _groups(kept, between, design)) for m in chosen])
     per_measure = steps_per_measure(within, ns, effect_size)
     on_start(len(datas) * per_measure)
-    tasks: list[Task] = [(d, tuple(ns), simulations, alpha, seed, i, effect_size) for i, d in enumerate(datas)]
+    tasks: list[Task] = [(d, tuple(ns), simulations, alpha, seed, i, effect_size, ss_type)
+                         for i, d in enumerate(datas)]
     frames: list[pd.DataFrame] = []
     if jobs > 1 and len(tasks) > 1:
         with ProcessPoolExecutor(max_workers=jobs) as pool:
