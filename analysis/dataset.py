@@ -64,6 +64,8 @@ class Dataset:
     config: Mapping[str, Any] = field(default_factory=dict)
     """The study's resolved configuration as stored (the analysis reads factors, levels and scales from it; the
     data dictionary its questionnaire items and scales)."""
+    pilots_left_out: int = 0
+    """Simulated pilot participants in the store that the export left out (exported only with ``include_pilot``)."""
 
     @property
     def cells(self) -> pd.DataFrame:
@@ -107,7 +109,7 @@ def build_dataset(conn: Connection, study_id: str, include_invalid: bool = False
                          if (row := excluded_row(p, data.trials, used, design)) is not None],
     }
     tables = {name: _frame(rows[name], columns[name]) for name in FILES}
-    return Dataset(study_id, design, tables, columns, data.config)
+    return Dataset(study_id, design, tables, columns, data.config, data.pilots_left_out)
 
 
 def export_columns(design: ExportDesign) -> dict[str, tuple[Column, ...]]:

@@ -63,9 +63,8 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
     cells = read_cells(out)
     trials = pd.read_csv(out / DATA_DIR / "trials.csv", dtype={SUBJECT: str})
     if cells.empty:
-        raise AnalysisInputError(
-            f"study {study_id!r} has no analysable main trial (cells.csv is empty); "
-            f"see {out / DATA_DIR / 'excluded.csv'} and participants.csv")
+        raise AnalysisInputError(f"study {study_id!r} has no analysable main trial (cells.csv is empty); "
+                                 + _why_empty(export, out / DATA_DIR))
     design = StudyDesign.from_config(export.dataset.config)
     within, between = varied_factors(cells, design)
     if len(between) > 1:
@@ -86,6 +85,23 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
     result = analyze_long(attach_trial_columns(cells, trials), chosen, within, SUBJECT, out, options,
                           _context(export, trials, study_id, design, within))
     return StudyAnalysis(export, result, cells, design)
+
+
+def _why_empty(export: ExportResult, folder: Path) -> str:
+    """What to do about an export without cells: run the pilots that are stored, keep the invalid trials, or look
+    at who is listed where."""
+    hints = []
+    if export.dataset.pilots_left_out:
+        hints.append(f"the store holds {export.dataset.pilots_left_out} simulated pilot participant(s) of this "
+                     "study (steakhouse pilot), which are left out unless --include-pilot: add --include-pilot to "
+                     "analyse them")
+    invalid = export.dataset.excluded["category"].isin(["invalid", "low_engagement"]).sum()
+    if invalid:
+        hints.append(f"{invalid} participant(s) lost their cells to invalid or low-engagement trials: "
+                     "--include-invalid keeps those trials")
+    if export.dataset.tables["participants.csv"].empty and not hints:
+        hints.append("no participant has joined it yet")
+    return "; ".join([*hints, f"see {folder / 'excluded.csv'} and participants.csv"])
 
 
 def read_cells(out: Path) -> pd.DataFrame:

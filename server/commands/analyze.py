@@ -95,6 +95,9 @@ def handle(args: argparse.Namespace) -> int:
     missing = [flag for flag in ("dv", "within", "subject", "out") if getattr(args, flag) is None]
     if missing:
         raise UsageError(f"--csv needs {', '.join('--' + m for m in missing)}")
+    from server.commands.export import check_out
+
+    check_out(args.out, "plots")
     measures = _names(args.dv, "--dv")
     within = _names(args.within, "--within")
     if not 1 <= len(within) <= 3:
@@ -126,6 +129,9 @@ def _handle_study(args: argparse.Namespace, include: frozenset[str]) -> int:
         raise UsageError(f"--study takes the design from the study; drop {', '.join('--' + g for g in given)}")
     if args.out is None:
         raise UsageError("--study needs --out")
+    from server.commands.export import check_out
+
+    check_out(args.out, "data", "plots")
 
     from analysis.errors import AnalysisInputError
     from analysis.study import analyze_study

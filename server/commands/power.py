@@ -70,6 +70,9 @@ def handle(args: argparse.Namespace) -> int:
         raise UsageError("--simulations must be at least 10")
     if args.jobs < 1:
         raise UsageError("--jobs must be at least 1")
+    from server.commands.export import check_out
+
+    check_out(args.out, "data")
     from analysis.errors import AnalysisInputError
     from analysis.power_effect import EffectSize
     from analysis.power_study import power_study
@@ -97,6 +100,8 @@ def handle(args: argparse.Namespace) -> int:
     except AnalysisInputError as exc:
         raise UsageError(f"study {args.study}: {exc}") from exc
     progress.close()
+    for measure, reason in result.not_simulated.items():
+        print(f"warning: {measure} not simulated: {reason}", file=sys.stderr)
     for row in result.needed.itertuples(index=False):
         size = "" if row.scenario == "pilot" else f" with {row.scenario}"
         print(f"{row.measure} / {row.test}{size}: 80 % at n = {_n(row.n_80)}, 90 % at n = {_n(row.n_90)}")
