@@ -13,12 +13,13 @@ runs, exclusions by the experimenter, missing cells with why each is missing) an
 from __future__ import annotations
 
 from collections.abc import Collection, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import pandas as pd
 from sqlalchemy import Engine
 
+from analysis.end_of_study import END_FILE, end_of_study
 from analysis.errors import AnalysisInputError
 from analysis.exclusions import INVALID, LOW_ENGAGEMENT
 from analysis.export import ExportResult, export_study
@@ -82,8 +83,12 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
         title=f"{'Mixed' if between else 'Repeated-measures'} analysis: study {study_id}",
         between=between[0] if between else None)
     chosen = list(measures) if measures is not None else [*DEFAULT_MEASURES, *(s.column for s in design.scales)]
-    result = analyze_long(attach_trial_columns(cells, trials), chosen, within, SUBJECT, out, options,
-                          _context(export, trials, study_id, design, within))
+    context = _context(export, trials, study_id, design, within)
+    result = analyze_long(attach_trial_columns(cells, trials), chosen, within, SUBJECT, out, options, context)
+    if context.end_of_study is not None:
+        path = out / END_FILE
+        context.end_of_study.table.to_csv(path, index=False)
+        result = replace(result, files=(*result.files, path))
     return StudyAnalysis(export, result, cells, design)
 
 
@@ -143,7 +148,10 @@ def _context(export: ExportResult, trials: pd.DataFrame, study_id: str, design: 
                         & (trials[INVALID.column].astype(str).str.strip() != "")]
         invalid = tuple(f"participant {r.participant}, main trial {int(r.index) + 1} ({r.condition}, attempt "
                         f"{int(r.attempt)}): {getattr(r, INVALID.column)}" for r in marked.itertuples())
-    return ReportContext(summary, left_out, invalid, low_engagement_lines(trials))
+    tables = export.dataset.tables
+    end = end_of_study(tables["wide.csv"], tables["answers.csv"], export.dataset.config, export.dataset.design.between,
+                       f"{DATA_DIR}/answers.csv")
+    return ReportContext(summary, left_out, invalid, low_engagement_lines(trials), end)
 
 
 def low_engagement_lines(trials: pd.DataFrame) -> tuple[str, ...] | None:

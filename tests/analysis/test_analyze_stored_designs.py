@@ -154,6 +154,9 @@ def test_a_view_between_participants_gets_the_mixed_anova(stored, tmp_path) -> N
                                         "robot * kitchen", "view * robot * kitchen"]
     assert ticks.loc[ticks["effect"] == "view", "df2"].tolist() == [4], "6 participants in 2 groups"
     assert "mixed (split-plot) ANOVA" in (tmp_path / "report.md").read_text()
+    end = pd.read_csv(tmp_path / "end_of_study.csv")
+    assert end.set_index("group")["n"].to_dict() == {"all participants": 6, "view=top_down": 3,
+                                                     "view=first_person": 3}, "the end of study per group too"
 
 
 def test_a_field_of_view_between_participants_gets_the_mixed_anova(stored, tmp_path) -> None:
