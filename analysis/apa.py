@@ -35,6 +35,20 @@ def format_proportion(value: float, digits: int = 2) -> str:
     return _no_leading_zero(value, digits)
 
 
+def visible_digits(value: float, digits: int = 2, most: int = 4) -> int:
+    """The decimals that show ``value``'s first significant digit: ``digits``, or more for a small non-zero value
+    (η²G = .002, not .00), at most ``most``."""
+    while digits < most and value != 0 and math.isfinite(value) and round(abs(value), digits) == 0:
+        digits += 1
+    return digits
+
+
+def format_signed(value: float, significant: int = 3) -> str:
+    """``value`` to ``significant`` significant digits (``-0.481``, ``3.25e-05``), a zero written ``0``."""
+    text = f"{value:.{significant}g}"
+    return "0" if float(text) == 0 else text
+
+
 def format_df(df: float) -> str:
     """``26`` for whole degrees of freedom, ``25.47`` for corrected ones."""
     return str(round(df)) if float(df).is_integer() else f"{df:.2f}"
@@ -59,12 +73,14 @@ def apa_f_sentence(row: Mapping[str, Any]) -> str:
                                                                                    float(row["df2"]))
     f_value = float(row["F"])
     f_text = "n/a" if math.isnan(f_value) else f"{f_value:.2f}"
+    ges = float(row["ges"])
+    digits = visible_digits(ges)
     text = (f"F({format_df(df1)}, {format_df(df2)}) = {f_text}, "
             f"{p_clause(float(row['p_read'] if corrected else row['p']))}, "
-            f"η²G = {format_proportion(float(row['ges']))}")
+            f"η²G = {format_proportion(ges, digits)}")
     if "ges_ci_low" in row and not math.isnan(float(row["ges_ci_low"])):
-        text += f", 90% CI [{format_proportion(float(row['ges_ci_low']))}, " \
-                f"{format_proportion(float(row['ges_ci_high']))}]"
+        text += f", 90% CI [{format_proportion(float(row['ges_ci_low']), digits)}, " \
+                f"{format_proportion(float(row['ges_ci_high']), digits)}]"
     correction = str(row.get("correction") or "none")
     if correction in CORRECTIONS:
         eps = float(row["eps_gg"] if correction == "GG" else min(float(row["eps_hf"]), 1.0))

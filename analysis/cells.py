@@ -74,6 +74,22 @@ def non_numeric_values(df: pd.DataFrame, dv: str, within: Sequence[str], subject
     return (f"{len(bad)} value(s) of {dv} are not numbers: " + "; ".join(named) + more)
 
 
+def non_finite_values(df: pd.DataFrame, dv: str, within: Sequence[str], subject: str) -> str:
+    """Empty unless numeric ``dv`` holds an infinite value (``inf`` in a CSV file reads as a number); else which
+    rows: ``1 value(s) of ticks are not finite: row 4 (participant P01, robot=fov_aware, kitchen=none_3): inf``."""
+    if dv not in df.columns or not pd.api.types.is_numeric_dtype(df[dv]):
+        return ""
+    values = df[dv].astype(float)
+    bad = df[np.isinf(values)]
+    if bad.empty:
+        return ""
+    named = [f"row {df.index.get_loc(i) + 1} ({subject} {row[subject]}, "
+             f"{cell_label(within, tuple(row[f] for f in within))}): {row[dv]}"
+             for i, row in bad.head(NAMED_VALUES).iterrows()]
+    more = f"; and {len(bad) - NAMED_VALUES} more" if len(bad) > NAMED_VALUES else ""
+    return f"{len(bad)} value(s) of {dv} are not finite: " + "; ".join(named) + more
+
+
 def validate_design(df: pd.DataFrame, dv: str, within: Sequence[str], subject: str) -> None:
     """Check the columns, their types and the one-row-per-subject-and-cell shape of ``df``.
 

@@ -24,10 +24,10 @@ from analysis.dictionary import (
     EXCLUDED_COLUMNS,
     FLAG,
     INT,
-    PARTICIPANT_COLUMNS,
     TICK_COLUMNS,
     TRIAL_COLUMNS,
     Column,
+    participant_columns,
     wide_column,
     wide_columns,
 )
@@ -64,6 +64,8 @@ class Dataset:
     config: Mapping[str, Any] = field(default_factory=dict)
     """The study's resolved configuration as stored (the analysis reads factors, levels and scales from it; the
     data dictionary its questionnaire items and scales)."""
+    pilots_left_out: int = 0
+    """Simulated pilot participants in the store that the export left out (exported only with ``include_pilot``)."""
 
     @property
     def cells(self) -> pd.DataFrame:
@@ -107,7 +109,7 @@ def build_dataset(conn: Connection, study_id: str, include_invalid: bool = False
                          if (row := excluded_row(p, data.trials, used, design)) is not None],
     }
     tables = {name: _frame(rows[name], columns[name]) for name in FILES}
-    return Dataset(study_id, design, tables, columns, data.config)
+    return Dataset(study_id, design, tables, columns, data.config, data.pilots_left_out)
 
 
 def export_columns(design: ExportDesign) -> dict[str, tuple[Column, ...]]:
@@ -118,9 +120,10 @@ def export_columns(design: ExportDesign) -> dict[str, tuple[Column, ...]]:
         "ticks.csv": TICK_COLUMNS,
         "trials.csv": TRIAL_COLUMNS,
         "cells.csv": (*CELL_COLUMNS, *design.trial_value_columns),
-        "wide.csv": tuple(wide_columns(per_cell, design.conditions, design.end_value_columns, design.fields)),
+        "wide.csv": tuple(wide_columns(per_cell, design.within_cells, design.end_value_columns,
+                                       design.within_fields, design.between)),
         "answers.csv": ANSWER_COLUMNS,
-        "participants.csv": PARTICIPANT_COLUMNS,
+        "participants.csv": participant_columns(design.between),
         "excluded.csv": EXCLUDED_COLUMNS,
     }
 
@@ -246,11 +249,13 @@ def _wide_rows(participants: Sequence[StoredParticipant], cell_rows: list[dict[s
         cells = by_participant.get(p.public_id)
         if not cells:
             continue
-        row: dict[str, Any] = {"participant": p.public_id, "order_index": p.order_index}
+        row: dict[str, Any] = {"participant": p.public_id, **design.group_of(p.condition_order),
+                               "order_index": p.order_index}
         present = {design.cell_of(c["robot"], c["kitchen"], c["view"], c["fov_angle"]) for c in cells}
         row["complete"] = int(all(cond in present for cond in design.expected_cells(p.condition_order)))
         for cell in cells:
-            levels = design.cell_of(cell["robot"], cell["kitchen"], cell["view"], cell["fov_angle"])
+            levels = design.within_cell(design.cell_of(cell["robot"], cell["kitchen"], cell["view"],
+                                                       cell["fov_angle"]))
             for name in values:
                 row[wide_column(name, *levels)] = cell[name]
         row.update(_questionnaire_values(answers.get(p.id, {}).get(None, {}), design.end_items, design.end_scales,

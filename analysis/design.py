@@ -76,11 +76,37 @@ class ExportDesign:
         factors those of the participant's group (the between levels of their first assigned condition)."""
         if not self.between or not condition_order:
             return self.conditions
-        first = condition_order[0].split("@")
-        fields = self.fields
-        group = {fields.index(f): first[fields.index(f)] for f in self.between
-                 if f in fields and fields.index(f) < len(first)}
+        group = {self.fields.index(f): level for f, level in self.group_of(condition_order).items()}
         return tuple(c for c in self.conditions if all(c[i] == level for i, level in group.items()))
+
+    def group_of(self, condition_order: Sequence[str]) -> dict[str, str]:
+        """The participant's level of each between factor (from their first assigned condition; empty without
+        between factors or an order)."""
+        if not self.between or not condition_order:
+            return {}
+        first = condition_order[0].split("@")
+        return {f: first[self.fields.index(f)] for f in self.between
+                if f in self.fields and self.fields.index(f) < len(first)}
+
+    @property
+    def within_fields(self) -> tuple[str, ...]:
+        """The fields of a cell that vary within participants: :attr:`fields` without the between factors."""
+        return tuple(f for f in self.fields if f not in self.between)
+
+    def within_cell(self, cell: Sequence[str]) -> tuple[str, ...]:
+        """The levels of :attr:`within_fields` of a cell (a member of :attr:`conditions`)."""
+        return tuple(level for f, level in zip(self.fields, cell, strict=True) if f not in self.between)
+
+    @property
+    def within_cells(self) -> tuple[tuple[str, ...], ...]:
+        """The cells every participant plays, whatever their group (:meth:`within_cell` of each condition, in study
+        order): ``wide.csv`` has one column per measure and such a cell."""
+        return tuple(dict.fromkeys(self.within_cell(c) for c in self.conditions))
+
+    def between_levels(self, factor: str) -> tuple[str, ...]:
+        """The levels of a between factor in study order."""
+        i = self.fields.index(factor)
+        return tuple(dict.fromkeys(c[i] for c in self.conditions))
 
     def cell_of(self, robot: str, kitchen: str, view: str, fov_angle: float | None = None) -> tuple[str, ...]:
         """The cell (a member of ``conditions``) a trial with these levels belongs to."""

@@ -1,8 +1,8 @@
 """The data dictionary: every column of every exported file, with its type and meaning.
 
 The export builds its tables in the column order given here, so a column cannot be exported undocumented.
-Columns that depend on the study (questionnaire items, the wide file's ``<measure>__<robot>__<kitchen>``)
-are generated from the study's stored configuration.
+Columns that depend on the study (questionnaire items, the between factors, the wide file's
+``<measure>__<robot>__<kitchen>`` per within cell) are generated from the study's stored configuration.
 """
 
 from __future__ import annotations
@@ -253,15 +253,37 @@ def item_columns(items: Iterable[tuple[str, str, str]]) -> list[Column]:
     return [Column(item_column(q, i), INT, f"answer to {q}.{i}: “{text}”") for q, i, text in items]
 
 
-def wide_columns(measures: Sequence[Column], conditions: Sequence[tuple[str, ...]],
-                 end_items: Sequence[Column], fields: Sequence[str] = ("robot", "kitchen")) -> list[Column]:
+GROUPS = {"robot": "robot planner", "kitchen": "kitchen", "view": "view (top_down or first_person)",
+          "fov_angle": "field of view in degrees"}
+"""What a between factor's level is, for the description of its column."""
+
+
+def between_columns(between: Sequence[str]) -> list[Column]:
+    """One column per factor between participants: the participant's level (their group)."""
+    return [Column(f, TEXT, f"the participant's group: their {GROUPS.get(f, f)}, a factor between participants")
+            for f in between]
+
+
+def participant_columns(between: Sequence[str] = ()) -> tuple[Column, ...]:
+    """``participants.csv``'s columns: :data:`PARTICIPANT_COLUMNS` with the between factors after
+    ``condition_order``."""
+    cut = [c.name for c in PARTICIPANT_COLUMNS].index("condition_order") + 1
+    return (*PARTICIPANT_COLUMNS[:cut], *between_columns(between), *PARTICIPANT_COLUMNS[cut:])
+
+
+def wide_columns(measures: Sequence[Column], cells: Sequence[tuple[str, ...]],
+                 end_items: Sequence[Column], fields: Sequence[str] = ("robot", "kitchen"),
+                 between: Sequence[str] = ()) -> list[Column]:
+    """``wide.csv``'s columns: the participant, their level of each between factor, then one column per measure and
+    within cell (``cells``: the levels of the within ``fields``), then the end-of-study items and scales."""
     columns = [
         _PARTICIPANT,
+        *between_columns(between),
         Column("order_index", INT, "counterbalancing order assigned"),
         Column("complete", FLAG, "1 when the participant has a cell in every condition"),
     ]
     for measure in measures:
-        for cell in conditions:
+        for cell in cells:
             named = ", ".join(f"{factor} {level}" for factor, level in zip(fields, cell, strict=True))
             columns.append(Column(wide_column(measure.name, *cell), measure.type,
                                   f"{measure.description} — {named}"))
@@ -274,7 +296,9 @@ FILE_NOTES: dict[str, str] = {
     "trials.csv": "one row per trial attempt, practice and main, every participant, with its measures",
     "cells.csv": "the ANOVA input: one row per participant × condition (main trials only; participants "
                  "flagged as test run or excluded are left out and listed in excluded.csv)",
-    "wide.csv": "one row per participant of cells.csv, one column per measure × condition (for JASP / SPSS)",
+    "wide.csv": "one row per participant of cells.csv: one column per factor between participants (the "
+                "participant's group) and one per measure × within cell (for JASP / SPSS; wide.sav is the same file "
+                "for SPSS)",
     "answers.csv": "one row per questionnaire item answered, every participant",
     "participants.csv": "one row per participant of the study, with flags and progress",
     "excluded.csv": "participants not in the complete-case analysis, with the reason",

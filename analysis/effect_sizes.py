@@ -40,12 +40,14 @@ def partial_eta2_ci(f_value: float, df1: float, df2: float, level: float = ETA_C
     return (low, high)
 
 
-def dz_ci(t_value: float, n: int, level: float = 0.95) -> tuple[float, float]:
+def dz_ci(t_value: float, n: int, level: float = 0.95, df: int | None = None) -> tuple[float, float]:
     """``(low, high)`` of Cohen's d_z for a paired t on n pairs (noncentral-t inversion); NaN where the noncentral
-    t cannot be evaluated."""
-    if not (math.isfinite(t_value) and n >= 2):
+    t cannot be evaluated. ``df`` is the t's degrees of freedom when its SD is not the n pairs' own (n − 1): N − G
+    for the pooled within-group SD of a mixed design's follow-ups (:mod:`analysis.pooled_followups`)."""
+    df = n - 1 if df is None else df
+    if not (math.isfinite(t_value) and n >= 1 and df >= 1):
         return (math.nan, math.nan)
-    tail, df = (1 - level) / 2, n - 1
+    tail = (1 - level) / 2
 
     def cdf(delta: float) -> float:
         value = float(stats.nct.cdf(t_value, df, delta))

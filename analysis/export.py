@@ -5,7 +5,8 @@ Files (columns in ``data_dictionary.md`` / ``data_dictionary.csv``, written alon
     ticks.csv         one row per stored world step, every trial attempt
     trials.csv        one row per trial attempt (practice and main) with its measures
     cells.csv         participant × condition: the repeated-measures ANOVA input
-    wide.csv          one row per participant, <measure>__<robot>__<kitchen> columns (JASP / SPSS)
+    wide.csv          one row per participant: a column per between factor, <measure>__<robot>__<kitchen> per
+                      within cell (JASP / SPSS)
     wide.sav          the same as an SPSS file, with variable and value labels (analysis.spss)
     answers.csv       questionnaire answers
     participants.csv  every participant with flags and progress
@@ -87,8 +88,9 @@ def write_dataset(dataset: Dataset, out_dir: Path | str) -> ExportResult:
         writer = csv.DictWriter(handle, fieldnames=["file", "column", "type", "unit", "description"])
         writer.writeheader()
         writer.writerows(rows(dataset.columns, dataset.config))
+    groups = {f: dataset.design.between_levels(f) for f in dataset.design.between}
     files.insert(files.index(out / "wide.csv") + 1, write_sav(dataset.tables["wide.csv"], dataset.columns["wide.csv"],
-                                                               dataset.config, out / SAV_FILE))
+                                                               dataset.config, out / SAV_FILE, groups))
     files += [out / name for name in DICTIONARY_FILES]
     return ExportResult(dataset, out, tuple(files))
 

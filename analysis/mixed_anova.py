@@ -8,12 +8,18 @@ K B = 0 has the SSCP H = (KB)ᵀ (K(XᵀX)⁻¹Kᵀ)⁻¹ (KB), and the univaria
     F = (tr H / (q d)) / (tr E / ((N − G) d))   on (q d, (N − G) d) df,
 
 q the rows of K, d the columns of L (the univariate tests of R's ``car::Anova`` on a multivariate linear model,
-which ``afex::aov_car`` reports: type III sums of squares, so unequal group sizes are handled as there). The
-effects:
+which ``afex::aov_car`` reports). The effects:
 
 * the between factor: L = 1/√C (the participants' scaled means), K the G − 1 group codes;
 * a within effect W: L = L_W, K = the intercept row;
 * the interaction between × W: L = L_W, K the group codes.
+
+Sums of squares of type III (``ss_type=3``, the default, as ``afex``): every hypothesis in the full model above, so
+a within effect is tested on the unweighted mean of the group means. Type II (``ss_type=2``, as ``pingouin``'s
+``mixed_anova`` and ``afex``/``car`` with ``type = 2``): a within effect is tested in the model without the
+interaction with the between factor, which contains it, i.e. on the participants' grand mean, H = N z̄ z̄ᵀ
+(weighted by the group sizes). The between effect and the interactions are the same in both types, and with
+equal groups so are the within effects.
 
 With equal groups these are the textbook split-plot sums of squares (Maxwell & Delaney 2004, ch. 12 and 14;
 ``tests/analysis/test_mixed_anova.py`` computes them the textbook way too). Sphericity of a within effect (and its
@@ -49,26 +55,41 @@ def group_codes(groups: Sequence[int], n_groups: int) -> np.ndarray:
     return x
 
 
-def hypothesis_ss(x: np.ndarray, z: np.ndarray, rows: np.ndarray) -> tuple[float, float, np.ndarray]:
-    """``(tr H, tr E, E)`` of the hypothesis ``rows`` B = 0 for responses ``z`` (N × d) on the design ``x``."""
+SS_TYPES = (2, 3)
+"""The sums of squares the mixed ANOVA computes (see the module docstring); 3 is the default."""
+
+
+def hypothesis_ss(x: np.ndarray, z: np.ndarray, rows: np.ndarray, grand_mean: bool = False
+                  ) -> tuple[float, float, np.ndarray]:
+    """``(tr H, tr E, E)`` of the hypothesis ``rows`` B = 0 for responses ``z`` (N × d) on the design ``x``; with
+    ``grand_mean`` (a within effect of type II) H is N z̄ z̄ᵀ instead."""
     xtx_inv = np.linalg.pinv(x.T @ x)
     beta = xtx_inv @ x.T @ z
     residual = z - x @ beta
     error = residual.T @ residual
+    if grand_mean:
+        return len(z) * float(z.mean(axis=0) @ z.mean(axis=0)), float(np.trace(error)), error
     kb = rows @ beta
     h = kb.T @ np.linalg.pinv(rows @ xtx_inv @ rows.T) @ kb
     return float(np.trace(h)), float(np.trace(error)), error
 
 
+def check_ss_type(ss_type: int) -> None:
+    if ss_type not in SS_TYPES:
+        raise ValueError(f"sums of squares of type {ss_type}: the mixed ANOVA computes type 2 or 3")
+
+
 def mixed_anova_table(values: np.ndarray, groups: Sequence[int], n_groups: int, levels: Sequence[int],
-                      within: Sequence[str], between: str, intervals: bool = True) -> pd.DataFrame:
+                      within: Sequence[str], between: str, intervals: bool = True, ss_type: int = 3
+                      ) -> pd.DataFrame:
     """The ANOVA rows (``ANOVA_COLUMNS``) of participants × cells ``values`` whose between level is ``groups[s]``:
-    the between effect, then each within effect followed by its interaction with the between factor. Without
-    ``intervals`` the partial η² intervals are left empty (the power simulation reads only the tests)."""
+    the between effect, then each within effect followed by its interaction with the between factor, with sums of
+    squares of ``ss_type`` (2 or 3). Without ``intervals`` the partial η² intervals are left empty."""
+    check_ss_type(ss_type)
     n, n_cells = values.shape
     dof = n - n_groups
     total = float(((values - values.mean()) ** 2).sum())
-    (ss_b, ss_sb), within_parts = _sums(values, groups, n_groups, levels, within)
+    (ss_b, ss_sb), within_parts = _sums(values, groups, n_groups, levels, within, ss_type)
     error_total = ss_sb + sum(part[4] for part in within_parts)
     spherical = Sphericity(1, math.nan, math.nan, math.nan, math.nan, 1.0, 1.0)
     rows = [_row(between, n_groups - 1, dof, ss_b, ss_sb, total, error_total, spherical, intervals)]
@@ -82,7 +103,7 @@ def mixed_anova_table(values: np.ndarray, groups: Sequence[int], n_groups: int, 
 
 def mixed_ges_bootstrap(values: np.ndarray, groups: Sequence[int], n_groups: int, levels: Sequence[int],
                         within: Sequence[str], rng: np.random.Generator,
-                        resamples: int = BOOTSTRAP_RESAMPLES) -> list[tuple[float, float]]:
+                        resamples: int = BOOTSTRAP_RESAMPLES, ss_type: int = 3) -> list[tuple[float, float]]:
     """Percentile intervals of each effect's η²G (rows in :func:`mixed_anova_table` order): participants drawn with
     replacement within their group, so every resample keeps the groups' sizes. The groups' sizes being fixed, every
     resample has the same design, so the sums of squares of all resamples are computed at once (the same sums as
@@ -97,7 +118,7 @@ def mixed_ges_bootstrap(values: np.ndarray, groups: Sequence[int], n_groups: int
     ss, error_total = [ss_b], ss_sb
     for effect in effects_of(within):
         z = stack @ effect_contrasts(levels, effect)
-        ss_w, ss_err = _stacked_ss(x, z, intercept)
+        ss_w, ss_err = _stacked_ss(x, z, intercept, grand_mean=ss_type == 2)
         ss += [ss_w, _stacked_ss(x, z, codes)[0]]
         error_total = error_total + ss_err
     hypothesis = np.stack(ss, axis=1)
@@ -106,18 +127,23 @@ def mixed_ges_bootstrap(values: np.ndarray, groups: Sequence[int], n_groups: int
     return [percentile_interval(column) for column in ges.T]
 
 
-def _stacked_ss(x: np.ndarray, z: np.ndarray, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _stacked_ss(x: np.ndarray, z: np.ndarray, rows: np.ndarray, grand_mean: bool = False
+                ) -> tuple[np.ndarray, np.ndarray]:
     """:func:`hypothesis_ss`'s ``(tr H, tr E)`` for a stack of responses ``z`` (resamples × N × d) on one design."""
     xtx_inv = np.linalg.pinv(x.T @ x)
     fit = xtx_inv @ x.T
+    residual = z - x @ (fit @ z)
+    error = (residual ** 2).sum(axis=(1, 2))
+    if grand_mean:
+        mean = z.mean(axis=1)
+        return z.shape[1] * (mean ** 2).sum(axis=1), error
     kb = (rows @ fit) @ z
     middle = np.linalg.pinv(rows @ xtx_inv @ rows.T)
-    residual = z - x @ (fit @ z)
-    return np.einsum("rqd,qp,rpd->r", kb, middle, kb), (residual ** 2).sum(axis=(1, 2))
+    return np.einsum("rqd,qp,rpd->r", kb, middle, kb), error
 
 
-def _sums(values: np.ndarray, groups: Sequence[int], n_groups: int, levels: Sequence[int], within: Sequence[str]
-          ) -> tuple[tuple[float, float], list[tuple[str, int, float, float, float, np.ndarray]]]:
+def _sums(values: np.ndarray, groups: Sequence[int], n_groups: int, levels: Sequence[int], within: Sequence[str],
+          ss_type: int) -> tuple[tuple[float, float], list[tuple[str, int, float, float, float, np.ndarray]]]:
     """``(SS_between, SS_S/B)`` and, per within effect, ``(name, d, SS_W, SS_B×W, SS_error, error SSCP)``."""
     x = group_codes(groups, n_groups)
     intercept, codes = np.eye(n_groups)[:1], np.eye(n_groups)[1:]
@@ -126,7 +152,7 @@ def _sums(values: np.ndarray, groups: Sequence[int], n_groups: int, levels: Sequ
     for effect in effects_of(within):
         contrast = effect_contrasts(levels, effect)
         z = values @ contrast
-        ss_w, ss_err, error = hypothesis_ss(x, z, intercept)
+        ss_w, ss_err, error = hypothesis_ss(x, z, intercept, grand_mean=ss_type == 2)
         parts.append((effect_name(within, effect), contrast.shape[1], ss_w, hypothesis_ss(x, z, codes)[0], ss_err,
                       error))
     return (ss_b, ss_sb), parts

@@ -2,13 +2,22 @@
 
 * The between factor at each within cell: a one-way between-participants ANOVA of that cell's values (F on
   (G − 1, N − G) df; η² as its η²G); with two groups also the mean difference and its 95 % CI (Student's t, the
-  same test). Holm within the family (the between factor across the cells).
-* Each within factor within each group (and each combination of the other within factors' levels): the one-way
-  repeated-measures test of :func:`analysis.followups.slice_effect` on that group's participants (``at``:
+  same test). Holm within the family (the between factor across the cells). The same in both conventions below
+  (``emmeans``' joint test of the between factor at a cell is this ANOVA).
+* Each within factor within each group (and each combination of the other within factors' levels, ``at``:
   ``view=first_person, kitchen=mid_2``), Holm within the factor's family.
-* Pairwise: each within factor with more than two levels within each group (:mod:`analysis.pairwise`, ``at``
-  starting with the group); a between factor with more than two levels on the participants' means over all cells
-  (Student's t for independent groups; ``dz`` empty: the groups are not paired).
+* Pairwise: each within factor with more than two levels within each group (``at`` starting with the group); a
+  between factor with more than two levels on the participants' means over all cells (``dz`` empty: the groups
+  are not paired).
+
+Two conventions for the error of the within-group tests (``error``):
+
+* ``pooled`` (the default, as ``emmeans`` on an ``afex`` model): the within-group covariance pooled over every
+  group, N − G df (:mod:`analysis.pooled_followups`); a between factor's pairs on the variance pooled over every
+  group.
+* ``per-group``: each group's participants alone, as a separate analysis of each group would: the one-way
+  repeated-measures test of :func:`analysis.followups.slice_effect` (n_g − 1 df, sphericity-corrected as the
+  omnibus table), paired t tests (:mod:`analysis.pairwise`), and Student's t on the two groups compared.
 """
 
 from __future__ import annotations
@@ -24,24 +33,55 @@ from scipy import stats
 from analysis.cells import factor_levels, slices
 from analysis.descriptives import DESCRIPTIVE_STATS, cell_descriptives
 from analysis.followups import SIMPLE_EFFECT_COLUMNS, holm, holm_family, slice_effect
+from analysis.options import PER_GROUP, POOLED
 from analysis.pairwise import PAIRWISE_COLUMNS, pairwise_comparisons
+from analysis.pooled_followups import (
+    PooledDesign,
+    pooled_design,
+    pooled_group_pair,
+    pooled_pairs,
+    pooled_simple_effect,
+)
 
 
-def mixed_simple_effects(df: pd.DataFrame, dv: str, within: Sequence[str], between: str, subject: str
-                         ) -> pd.DataFrame:
+def mixed_simple_effects(df: pd.DataFrame, dv: str, within: Sequence[str], between: str, subject: str,
+                         error: str = POOLED) -> pd.DataFrame:
     within = list(within)
+    _check(error)
+    design = pooled_design(df, dv, within, between, subject) if error == POOLED else None
     # slices() over the factors other than the between one: every within cell, in design order
     blocks = [holm_family([between_effect(part, dv, between, label) for label, part in slices(df, within, between)])]
     for factor in within:
         family = []
-        for group in factor_levels(df, between):
+        for g, group in enumerate(factor_levels(df, between)):
             part = df[df[between] == group]
             here = f"{between}={group}"
+            others = [f for f in within if f != factor]
+            combos = itertools.product(*(factor_levels(part, f) for f in others))
             pieces = slices(part, within, factor) if len(within) > 1 else iter([("", part)])
-            family += [slice_effect(piece, dv, factor, subject, ", ".join(filter(None, (here, label))))
-                       for label, piece in pieces]
+            for (label, piece), combo in zip(pieces, combos, strict=True):
+                row = slice_effect(piece, dv, factor, subject, ", ".join(filter(None, (here, label))))
+                if design is not None:
+                    row = _pooled_row(row, design, g, factor, dict(zip(others, combo, strict=True)))
+                family.append(row)
         blocks.append(holm_family(family))
     return pd.concat(blocks, ignore_index=True)[SIMPLE_EFFECT_COLUMNS]
+
+
+def _pooled_row(row: pd.DataFrame, design: PooledDesign, group: int, factor: str, at: dict[str, object]
+                ) -> pd.DataFrame:
+    """The per-group ``row`` of a simple effect (its η²G, levels and mean difference are the group's) with the test
+    on the pooled covariance."""
+    tested = pooled_simple_effect(design, group, factor, at)
+    out = row.copy()
+    for column, value in tested.items():
+        out[column] = [value]
+    return out
+
+
+def _check(error: str) -> None:
+    if error not in (POOLED, PER_GROUP):
+        raise ValueError(f"follow-up error {error!r}: {POOLED} or {PER_GROUP}")
 
 
 def between_effect(part: pd.DataFrame, dv: str, between: str, label: str) -> pd.DataFrame:
@@ -71,18 +111,25 @@ def between_effect(part: pd.DataFrame, dv: str, between: str, label: str) -> pd.
     return pd.DataFrame([row]).reindex(columns=SIMPLE_EFFECT_COLUMNS)
 
 
-def mixed_pairwise(df: pd.DataFrame, dv: str, within: Sequence[str], between: str, subject: str) -> pd.DataFrame:
+def mixed_pairwise(df: pd.DataFrame, dv: str, within: Sequence[str], between: str, subject: str,
+                   error: str = POOLED) -> pd.DataFrame:
+    _check(error)
+    within = list(within)
+    design = pooled_design(df, dv, within, between, subject) if error == POOLED else None
     blocks = []
-    for group in factor_levels(df, between):
-        block = pairwise_comparisons(df[df[between] == group], dv, within, subject)
-        if not block.empty:
-            here = f"{between}={group}"
-            block["at"] = [", ".join(filter(None, (here, str(at)))) for at in block["at"]]
-            blocks.append(block)
+    for g, group in enumerate(factor_levels(df, between)):
+        here = f"{between}={group}"
+        if design is None:
+            block = pairwise_comparisons(df[df[between] == group], dv, within, subject)
+            if not block.empty:
+                block["at"] = [", ".join(filter(None, (here, str(at)))) for at in block["at"]]
+                blocks.append(block)
+            continue
+        blocks += _pooled_pairwise(design, g, here, df[df[between] == group])
     levels = factor_levels(df, between)
     if len(levels) > 2:
         means = df.groupby([between, subject], observed=True)[dv].mean()
-        rows = [_independent(between, means, a, b) for a, b in itertools.combinations(levels, 2)]
+        rows = [_independent(between, means, a, b, error) for a, b in itertools.combinations(levels, 2)]
         block = pd.DataFrame(rows).reindex(columns=PAIRWISE_COLUMNS)
         block["p_holm"] = holm(block["p"])
         blocks.append(block)
@@ -91,14 +138,45 @@ def mixed_pairwise(df: pd.DataFrame, dv: str, within: Sequence[str], between: st
     return pd.concat(blocks, ignore_index=True)[PAIRWISE_COLUMNS]
 
 
-def _independent(between: str, means: pd.Series, a: object, b: object) -> dict[str, object]:
+def _pooled_pairwise(design: PooledDesign, group: int, here: str, part: pd.DataFrame) -> list[pd.DataFrame]:
+    """The families of :func:`analysis.pairwise.pairwise_comparisons` (marginal means, then each slice) of one group,
+    tested on the pooled covariance."""
+    blocks = []
+    for f, factor in enumerate(design.within):
+        if len(design.levels[f]) < 3:
+            continue
+        others = [o for o in design.within if o != factor]
+        families: list[tuple[str, dict[str, object]]] = [("", {})]
+        if others:
+            combos = itertools.product(*(design.levels[design.within.index(o)] for o in others))
+            labels = (label for label, _ in slices(part, list(design.within), factor))
+            families += [(label, dict(zip(others, combo, strict=True)))
+                         for label, combo in zip(labels, combos, strict=True)]
+        for label, at in families:
+            block = pd.DataFrame(pooled_pairs(design, group, factor, at))
+            block["at"] = ", ".join(filter(None, (here, label)))
+            block["p_holm"] = holm(block["p"])
+            blocks.append(block)
+    return blocks
+
+
+def _independent(between: str, means: pd.Series, a: object, b: object, error: str) -> dict[str, object]:
     x, y = means.loc[a].to_numpy(dtype=float), means.loc[b].to_numpy(dtype=float)
-    t, df, p, low, high = student_t(x, y)
-    note = "independent groups (Student's t on the participants' means over all cells)"
+    if error == POOLED:
+        groups = means.index.get_level_values(between)
+        codes = np.asarray(pd.Categorical(groups).codes)
+        names = list(pd.Categorical(groups).categories)
+        t, df, p, low, high = pooled_group_pair(means.to_numpy(dtype=float), codes, names.index(a), names.index(b))
+        note = ("independent groups (t on the participants' means over all cells, the variance pooled over every "
+                "group)")
+    else:
+        t, df, p, low, high = student_t(x, y)
+        note = "independent groups (Student's t on the participants' means over all cells)"
     if math.isnan(t):
         note += "; not testable: " + ("too few participants" if df < 1 else "no variance within the groups")
+    se = math.nan if math.isnan(t) else (high - low) / (2 * float(stats.t.ppf(0.975, df)))
     return {"factor": between, "at": "", "level_1": a, "level_2": b, "n": len(x) + len(y),
-            "mean_1": float(x.mean()), "mean_2": float(y.mean()), "mean_diff": float(x.mean() - y.mean()),
+            "mean_1": float(x.mean()), "mean_2": float(y.mean()), "mean_diff": float(x.mean() - y.mean()), "se": se,
             "ci95_low": low, "ci95_high": high, "t": t, "df": df, "p": p, "note": note}
 
 

@@ -63,13 +63,13 @@ def analyze_mixed_measure(df: pd.DataFrame, measure: str, within: Sequence[str],
     values, subjects = wide_matrix(clean, measure, within, subject)
     index = group_index(clean, subjects, between, subject, groups)
     levels = levels_of(clean, within)
-    anova = mixed_anova_table(values, index, len(groups), levels, within, between)
+    anova = mixed_anova_table(values, index, len(groups), levels, within, between, ss_type=options.ss_type)
     rng = np.random.default_rng([options.seed, zlib.crc32(measure.encode())])
-    intervals = mixed_ges_bootstrap(values, index, len(groups), levels, within, rng)
+    intervals = mixed_ges_bootstrap(values, index, len(groups), levels, within, rng, ss_type=options.ss_type)
     anova["ges_ci_low"] = [low for low, _ in intervals]
     anova["ges_ci_high"] = [high for _, high in intervals]
-    simple = mixed_simple_effects(clean, measure, within, between, subject)
-    pairwise = mixed_pairwise(clean, measure, within, between, subject)
+    simple = mixed_simple_effects(clean, measure, within, between, subject, options.follow_up_error)
+    pairwise = mixed_pairwise(clean, measure, within, between, subject, options.follow_up_error)
     notes += [f"{row.effect}: {row.note}" for row in anova.itertuples() if row.note]
     notes += [f"simple effect of {row.factor} at {row.at}: {row.note}" for row in simple.itertuples() if row.note]
     notes.append(NOT_RUN)

@@ -8,6 +8,11 @@ from dataclasses import dataclass, field
 from analysis.levels import LevelOrder
 from analysis.study_design import RatingItem, ScaleSpec
 
+POOLED, PER_GROUP = "pooled", "per-group"
+"""The error of a mixed design's within-group follow-ups (:mod:`analysis.mixed_followups`): the within-group
+covariance pooled over the groups (the default, as ``emmeans`` on an ``afex`` model) or each group's own."""
+FOLLOW_UP_ERRORS = (POOLED, PER_GROUP)
+
 
 @dataclass(frozen=True, slots=True)
 class AnalysisOptions:
@@ -38,3 +43,7 @@ class AnalysisOptions:
     between: str | None = None
     """A factor between participants (one level per participant): the analysis is the mixed ANOVA
     (:mod:`analysis.mixed_run`)."""
+    ss_type: int = 3
+    """Sums of squares of the mixed ANOVA: 3 (as ``afex``) or 2 (as ``pingouin``); :mod:`analysis.mixed_anova`."""
+    follow_up_error: str = POOLED
+    """The error of a mixed design's within-group follow-ups, one of :data:`FOLLOW_UP_ERRORS`."""

@@ -23,7 +23,7 @@ from typing import Any
 import pandas as pd
 from scipy import stats
 
-from analysis.apa import format_p
+from analysis.apa import format_p, format_signed
 
 ORDER_COLUMNS = ["measure", "n", "positions", "slope", "se", "z", "p", "order_effect", "carryover_chi2",
                  "carryover_df", "carryover_p", "sentence", "note"]
@@ -54,8 +54,8 @@ class OrderCheck:
         if self.order_effect is None:
             return f"Order was not checked for {self.measure}: {self.note}."
         found = "An order effect was found" if self.order_effect else "No order effect was found"
-        text = (f"{found} for {self.measure}: each later position changed it by {self.slope:.3g} "
-                f"(SE {self.se:.3g}, z = {self.z:.2f}, p {_p(self.p)}).")
+        text = (f"{found} for {self.measure}: each later position changed it by {format_signed(self.slope)} "
+                f"(SE {format_signed(self.se)}, z = {self.z:.2f}, p {_p(self.p)}).")
         if not math.isnan(self.carryover_p):
             differs = "differed" if self.carryover_p < ALPHA else "did not differ detectably"
             text += (f" The condition effects {differs} between early and late positions (position × factor, "

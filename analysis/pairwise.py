@@ -9,6 +9,10 @@ adjusted for multiplicity), t, p and the Holm-adjusted p within its family (Holm
 one ``at``, and Cohen's d_z = mean difference / SD of the differences (Cohen 1988, p. 48; Lakens 2013) with its exact 95
 % CI from the noncentral t (:mod:`analysis.effect_sizes`). d_z is the standardised effect the paired test itself
 estimates; divide by √(2(1 − r)) for a d on the scale of the raw SD (Lakens 2013, eq. 9).
+
+These are the comparisons of a design within participants (one group: ``emmeans``' multivariate model is this paired
+t). In a mixed design ``emmeans`` pools the covariance over the groups instead; :mod:`analysis.mixed_followups`
+does that by default (:mod:`analysis.pooled_followups`) and uses these per-group tests only with ``per-group``.
 """
 
 from __future__ import annotations

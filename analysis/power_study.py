@@ -41,6 +41,9 @@ from analysis.study_design import StudyDesign
 TARGETS = (0.8, 0.9)
 SMALL_PILOT = 10
 """Below this many pilot participants the report warns that the resampled population is too small."""
+MIN_PILOTS = 2
+"""A measure is simulated from at least this many complete pilot participants (in each group of a mixed design):
+one participant resampled is one person repeated, with no spread to resample."""
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -49,6 +52,20 @@ class PowerResult:
     needed: pd.DataFrame
     pilot_participants: int
     files: tuple[Path, ...]
+    not_simulated: dict[str, str]
+    """Measures with too few complete pilot participants, and why (the others were simulated)."""
+
+
+def too_few(data: MeasureData | GroupedData) -> str:
+    """Why ``data`` has too few complete pilot participants to simulate (empty when it has enough)."""
+    if isinstance(data, GroupedData):
+        counts = np.bincount(np.asarray(data.groups, dtype=int), minlength=len(data.group_names))
+        short = [f"{name} {count}" for name, count in zip(data.group_names, counts, strict=True)
+                 if count < MIN_PILOTS]
+        return (f"{', '.join(short)} complete pilot participant(s) in the group(s) of {data.between}; each group "
+                f"needs {MIN_PILOTS}") if short else ""
+    n = data.values.shape[0]
+    return f"{n} complete pilot participant(s); at least {MIN_PILOTS} are needed" if n < MIN_PILOTS else ""
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -88,14 +105,14 @@ def pilot_table(source: Engine | str, study_id: str, out: Path, include: frozens
     return PilotTable(kept, within, between[0] if between else None, design, len(pilots))
 
 
-Task = tuple[MeasureData | GroupedData, tuple[int, ...], int, float, int, int, EffectSize | None]
+Task = tuple[MeasureData | GroupedData, tuple[int, ...], int, float, int, int, EffectSize | None, int]
 
 
 def _one(args: Task, on_step: Callable[[], None] = lambda: None) -> pd.DataFrame:
-    data, ns, simulations, alpha, seed, index, effect_size = args
+    data, ns, simulations, alpha, seed, index, effect_size, ss_type = args
     rng = np.random.default_rng([seed, index])
     if isinstance(data, GroupedData):
-        return mixed_measure_power(data, ns, simulations, alpha, rng, on_step)
+        return mixed_measure_power(data, ns, simulations, alpha, rng, on_step, ss_type)
     return measure_power(data, ns, simulations, alpha, rng, effect_size, on_step)
 
 
@@ -110,10 +127,10 @@ def power_study(source: Engine | str, study_id: str, out_dir: Path | str, ns: Se
                 measures: Sequence[str] | None = None, include: frozenset[str] = frozenset(),
                 on_measure: Callable[[str], None] = lambda name: None, plots: bool = True,
                 on_start: Callable[[int], None] = lambda steps: None, on_step: Callable[[int], None] = lambda k: None,
-                effect_size: EffectSize | None = None) -> PowerResult:
+                effect_size: EffectSize | None = None, ss_type: int = 3) -> PowerResult:
     """Power of every planned test of ``measures`` at each of ``ns`` (see the module docstring); ``on_start``
     gets the number of progress steps, ``on_step`` is called with each step count done, ``on_measure`` with each
-    measure done."""
+    measure done. ``ss_type``: the sums of squares of a mixed design's ANOVA (:mod:`analysis.mixed_anova`)."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     pilot = pilot_table(source, study_id, out, include)
@@ -129,9 +146,18 @@ def power_study(source: Engine | str, study_id: str, out_dir: Path | str, ns: Se
     datas: list[MeasureData | GroupedData] = (
         [measure_data(kept, m, within, SUBJECT) for m in chosen] if between is None else
         [grouped_data(kept, m, within, between, SUBJECT, _groups(kept, between, design)) for m in chosen])
+    short = {d.measure: reason for d in datas if (reason := too_few(d))}
+    if len(short) == len(datas):
+        raise AnalysisInputError("too few pilot participants to simulate: " + "; ".join(
+            f"{m}: {reason}" for m, reason in short.items()) + f". Run more (steakhouse pilot --participants "
+            f"{SMALL_PILOT * 2} or more)")
+    # i stays the measure's position among those chosen: its generator, whichever others are left out
+    simulated = [(i, d) for i, d in enumerate(datas) if d.measure not in short]
+    datas = [d for _, d in simulated]
     per_measure = steps_per_measure(within, ns, effect_size)
     on_start(len(datas) * per_measure)
-    tasks: list[Task] = [(d, tuple(ns), simulations, alpha, seed, i, effect_size) for i, d in enumerate(datas)]
+    tasks: list[Task] = [(d, tuple(ns), simulations, alpha, seed, i, effect_size, ss_type)
+                         for i, d in simulated]
     frames: list[pd.DataFrame] = []
     if jobs > 1 and len(tasks) > 1:
         with ProcessPoolExecutor(max_workers=jobs) as pool:
@@ -151,8 +177,9 @@ def power_study(source: Engine | str, study_id: str, out_dir: Path | str, ns: Se
     needed.to_csv(files[1], index=False)
     if plots and not table.empty:
         files.append(_plot(table, out / "power.png", alpha))
-    files.append(_report(table, needed, out / "power.md", study_id, n_pilots, simulations, alpha, between))
-    return PowerResult(table, needed, n_pilots, tuple(files))
+    files.append(_report(table, needed, out / "power.md", study_id, n_pilots, simulations, alpha, between,
+                         short, plotted=files[-1].name == "power.png"))
+    return PowerResult(table, needed, n_pilots, tuple(files), short)
 
 
 def _groups(kept: pd.DataFrame, between: str, design: StudyDesign) -> list[str]:
@@ -201,7 +228,7 @@ def _plot(table: pd.DataFrame, path: Path, alpha: float) -> Path:
 
 
 def _report(table: pd.DataFrame, needed: pd.DataFrame, path: Path, study_id: str, n_pilots: int,
-            simulations: int, alpha: float, between: str | None) -> Path:
+            simulations: int, alpha: float, between: str | None, short: dict[str, str], plotted: bool) -> Path:
     lines = [f"# Power analysis: study {study_id}", "",
              f"Simulated from {n_pilots} pilot participants (steakhouse pilot: simulated participants, not people): "
              f"{simulations} resamples with replacement at each n, α = {alpha:g}, the tests `analyze` runs "
@@ -226,7 +253,10 @@ def _report(table: pd.DataFrame, needed: pd.DataFrame, path: Path, study_id: str
         lines += ["", f"**Only {n_pilots} pilot participants**: resampling so few people under-represents the "
                       "spread of a population, and the power estimates are too optimistic. Run more "
                       f"(`steakhouse pilot --participants {SMALL_PILOT * 2}` or more)."]
-    lines += ["", "Power at each n: `power.csv`; plot: `power.png`."]
+    if short:
+        lines += ["", "Not simulated (too few complete pilot participants):", "",
+                  *(f"- {measure}: {reason}" for measure, reason in short.items())]
+    lines += ["", "Power at each n: `power.csv`" + ("; plot: `power.png`." if plotted else ".")]
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
     return path
 

@@ -15,11 +15,23 @@ from analysis.anova import GG_THRESHOLD
 from analysis.apa import format_p, format_proportion
 from analysis.document import Block, BulletList, Heading, Paragraph, render_html, render_markdown, table
 from analysis.effect_sizes import BOOTSTRAP_RESAMPLES
-from analysis.options import AnalysisOptions
+from analysis.options import PER_GROUP, POOLED, AnalysisOptions
+from analysis.report_end import end_of_study_section
 from analysis.report_measure import measure_section
 from analysis.report_quality import ReportContext, quality_section
 from analysis.report_tables import interval, number
 from analysis.results import AnalysisResult
+from analysis.typeset import typeset
+
+SS_TYPE_TEXT = {3: "type III sums of squares, as afex", 2: "type II sums of squares, as pingouin"}
+FOLLOW_UP_TEXT = {
+    POOLED: "on the within-group covariance pooled over the groups (t and F on N − G df, as emmeans on an afex "
+            "model; the F of a factor with more than two levels is emmeans' joint test, without a sphericity "
+            "correction)",
+    PER_GROUP: "on that group's participants alone (paired t and one-way repeated-measures ANOVAs on n − 1 df "
+               "within the group)",
+}
+"""How the Method paragraph names a mixed design's conventions (:class:`analysis.options.AnalysisOptions`)."""
 
 
 def build_report(result: AnalysisResult, options: AnalysisOptions, context: ReportContext | None = None
@@ -32,9 +44,10 @@ def build_report(result: AnalysisResult, options: AnalysisOptions, context: Repo
     blocks += method_section(result, options)
     blocks += finished_section(result.tables.get("finished.csv"))
     blocks += reliability_section(result.tables.get("reliability.csv"))
+    blocks += end_of_study_section(context.end_of_study if context else None)
     for measure in result.measures:
         blocks += measure_section(measure)
-    return blocks
+    return typeset(blocks)
 
 
 def method_section(result: AnalysisResult, options: AnalysisOptions) -> list[Block]:
@@ -46,11 +59,12 @@ def method_section(result: AnalysisResult, options: AnalysisOptions) -> list[Blo
         f"Design: {within[0]} between participants × {' × '.join(within[1:])} within participants (participant "
         f"column: {first.subject}); levels in the study's order ({levels}). Each measure was analysed with a mixed "
         f"(split-plot) ANOVA: {within[0]} against the participants-within-groups error term, every within effect "
-        f"and its interaction with {within[0]} against the participant × effect error term within groups (type III "
-        "sums of squares, as afex; sphericity of the within part from the pooled within-group covariance). "
-        f"Follow-ups: {within[0]} at each within cell (one-way between-participants ANOVA), each within factor "
-        f"within each group of {within[0]}; Holm within each family. Participants without a value in every cell of "
-        "a measure were left out of that measure (complete cases).")
+        f"and its interaction with {within[0]} against the participant × effect error term within groups "
+        f"({SS_TYPE_TEXT[options.ss_type]}; sphericity of the within part from the pooled within-group "
+        f"covariance). Follow-ups: {within[0]} at each within cell (one-way between-participants ANOVA), each "
+        f"within factor within each group of {within[0]} {FOLLOW_UP_TEXT[options.follow_up_error]}; Holm within "
+        "each family. Participants without a value in every cell of a measure were left out of that measure "
+        "(complete cases).")
         if options.between else Paragraph(
         f"Design: {' × '.join(within)}, all within participants (participant column: {first.subject}); "
         f"levels in the study's order ({levels}). Each measure was analysed with a repeated-measures "
@@ -65,12 +79,13 @@ def method_section(result: AnalysisResult, options: AnalysisOptions) -> list[Blo
                   f"Greenhouse–Geisser corrected test is read when ε_GG ≤ {GG_THRESHOLD}, the Huynh–Feldt "
                   "corrected test (ε_HF capped at 1) otherwise (Huynh & Feldt, 1976; Girden, 1992). The sentences "
                   "below use the degrees of freedom and p of the test read; the table shows all of them."),
-        Paragraph("Follow-ups: simple main effects of every factor at every combination of the other factors' "
-                  "levels (one-way repeated-measures ANOVAs with their own error term, Holm-adjusted within each "
-                  "factor); for factors with more than two levels, paired t tests between all pairs of levels on "
-                  "the participants' marginal means (Holm-adjusted within the factor), with the mean difference "
-                  "and its 95% CI and Cohen's d_z (mean difference / SD of the differences) with its exact 95% CI "
-                  "(noncentral t). Rating measures also get Wilcoxon signed-rank and Friedman tests."),
+        *([] if options.between else [Paragraph(
+            "Follow-ups: simple main effects of every factor at every combination of the other factors' levels "
+            "(one-way repeated-measures ANOVAs with their own error term, Holm-adjusted within each factor); for "
+            "factors with more than two levels, paired t tests between all pairs of levels on the participants' "
+            "marginal means (Holm-adjusted within the factor), with the mean difference and its 95% CI and "
+            "Cohen's d_z (mean difference / SD of the differences) with its exact 95% CI (noncentral t). Rating "
+            "measures also get Wilcoxon signed-rank and Friedman tests.")]),
         Paragraph("Effect sizes: generalized eta squared η²G (Olejnik & Algina, 2003; Bakeman, 2005) with a 90% "
                   f"percentile bootstrap CI ({BOOTSTRAP_RESAMPLES} resamples of participants, seed {options.seed}), "
                   "and partial eta squared with a 90% CI from the noncentral F distribution (Steiger, 2004). "

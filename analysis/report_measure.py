@@ -76,18 +76,19 @@ def apa_sentences(result: MeasureResult) -> list[str]:
         difference = ""
         if not pd.isna(row["mean_diff"]):
             difference = (f"; {row['level_1']} − {row['level_2']}: M_diff = {number(row['mean_diff'])}, 95% CI "
-                          f"{interval(row['ci95_low'], row['ci95_high'])}, d_z = {float(row['dz']):.2f}")
-        lines.append(f"Effect of {row['factor']} at {row['at']}: {apa_f_sentence(row)}{holm}{difference}.")
+                          f"{interval(row['ci95_low'], row['ci95_high'])}{_dz(row['dz'])}")
+        lines.append(f"Effect of {row['factor']} at {_at(str(row['at']))}: {apa_f_sentence(row)}{holm}{difference}.")
     for _, row in result.pairwise.iterrows():
-        where = f" at {row['at']}" if row["at"] else ""
+        where = f" at {_at(str(row['at']))}" if row["at"] else ""
         if row["note"]:
             lines.append(f"{row['level_1']} vs {row['level_2']}{where}: {row['note']}.")
             continue
         lines.append(
             f"{row['level_1']} vs {row['level_2']}{where}: M_diff = {number(row['mean_diff'])}, 95% CI "
             f"{interval(row['ci95_low'], row['ci95_high'])}, t({format_df(float(row['df']))}) = "
-            f"{float(row['t']):.2f}, {p_clause(float(row['p']))} (Holm-adjusted {p_clause(float(row['p_holm']))}), "
-            f"d_z = {float(row['dz']):.2f}, 95% CI {interval(row['dz_ci_low'], row['dz_ci_high'], digits=2)}.")
+            f"{number(row['t'], 2)}, {p_clause(float(row['p']))} (Holm-adjusted {p_clause(float(row['p_holm']))})"
+            + (f", d_z = {number(row['dz'], 2)}, 95% CI {interval(row['dz_ci_low'], row['dz_ci_high'], digits=2)}."
+               if not pd.isna(row["dz"]) else "."))
     for _, row in result.rank_tests.iterrows():
         if row["note"]:
             lines.append(f"{row['test']} ({row['factor']}): {row['note']}.")
@@ -98,6 +99,18 @@ def apa_sentences(result: MeasureResult) -> list[str]:
             lines.append(f"Wilcoxon signed-rank ({row['factor']}: {row['levels']}): V = {float(row['statistic']):g}, "
                          f"{p_clause(float(row['p']))}, r = {format_proportion(float(row['effect_size']))}.")
     return lines
+
+
+def _dz(dz: object) -> str:
+    """``, d_z = 0.47`` (empty for a difference between groups, which has none)."""
+    return "" if pd.isna(dz) else f", d_z = {number(dz, 2)}"  # type: ignore[call-overload]
+
+
+def _at(label: str) -> str:
+    """``fov_angle=90, kitchen=none_3`` → ``fov_angle=90 and kitchen=none_3`` (the typesetting writes the levels
+    as words)."""
+    parts = label.split(", ")
+    return label if len(parts) < 2 else ", ".join(parts[:-1]) + " and " + parts[-1]
 
 
 def normality_line(result: MeasureResult) -> str:

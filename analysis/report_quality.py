@@ -9,7 +9,9 @@ from dataclasses import dataclass
 import pandas as pd
 
 from analysis.apa import format_proportion
+from analysis.censoring import CENSORED_MEASURES
 from analysis.document import Block, BulletList, Heading, Paragraph, table
+from analysis.end_of_study import EndOfStudy
 from analysis.exclusions import INVALID, LOW_ENGAGEMENT
 from analysis.report_measure import normality_line
 from analysis.results import AnalysisResult
@@ -27,6 +29,8 @@ class ReportContext:
     """Main trials the server marked invalid (``None``: the export does not record robot health)."""
     low_engagement_trials: tuple[str, ...] | None = None
     """Main trials the server marked low-engagement (``None``: the export does not record engagement)."""
+    end_of_study: EndOfStudy | None = None
+    """The end-of-study questionnaire's answers and where the free text is (a stored study's export)."""
 
 
 def quality_section(result: AnalysisResult, context: ReportContext | None) -> list[Block]:
@@ -97,7 +101,7 @@ def _low_engagement(result: AnalysisResult, context: ReportContext) -> list[Bloc
 
 
 def _censoring(result: AnalysisResult) -> list[Block]:
-    blocks: list[Block] = [Heading(3, "Trials that reached the horizon (ticks censored)")]
+    blocks: list[Block] = [Heading(3, "Trials that reached the horizon")]
     censoring = result.tables.get("censoring.csv")
     if censoring is None:
         return [*blocks, Paragraph("The table has no finished column: censoring was not checked.")]
@@ -105,8 +109,19 @@ def _censoring(result: AnalysisResult) -> list[Block]:
         (str(r.cell), str(int(r.n)), str(int(r.reached_horizon)), "n/a" if pd.isna(r.share) else
          format_proportion(float(r.share), 2)) for r in censoring.itertuples()]))
     censored = int((censoring["reached_horizon"] > 0).sum())
-    blocks.append(Paragraph(
-        f"{censored} cell(s) have trials that reached the horizon; their ticks are the horizon, not the time needed "
-        "(see the note under ticks and the analysis of finished)." if censored else
-        "Every trial finished before the horizon: ticks is not censored."))
+    capped = [r.measure for r in result.measures if r.measure in CENSORED_MEASURES]
+    names = " and ".join(capped)
+    if not censored:
+        blocks.append(Paragraph("Every trial finished before the horizon" + (f": {names} is not censored."
+                                                                             if capped else ".")))
+    elif capped:
+        blocks.append(Paragraph(
+            f"{censored} cell(s) have trials that reached the horizon; in those trials {names} "
+            f"{'is' if len(capped) == 1 else 'are'} the horizon, not the time needed (see the note under {names} "
+            "and the analysis of finished)."))
+    else:
+        blocks.append(Paragraph(
+            f"{censored} cell(s) have trials that reached the horizon. No measure analysed here is capped by it "
+            f"({', '.join(CENSORED_MEASURES)} would be), but those trials stopped before every order was "
+            "delivered: read the analysis of finished beside the measures."))
     return blocks

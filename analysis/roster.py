@@ -53,7 +53,8 @@ def participant_row(p: StoredParticipant, trials: Sequence[StoredTrial], used: U
     mine = [t for t in trials if t.participant_id == p.id and t.status == "finished"]
     return {
         "participant": p.public_id, "recruit_id": p.recruit_id, "recruiting": json.dumps(p.recruiting, sort_keys=True),
-        "order_index": p.order_index, "condition_order": ";".join(p.condition_order), "status": p.status,
+        "order_index": p.order_index, "condition_order": ";".join(p.condition_order),
+        **design.group_of(p.condition_order), "status": p.status,
         "state": p.state, "step": p.step, "steps": p.steps, "test_run": int(p.test_run), "pilot": int(p.pilot),
         "excluded": int(p.excluded),
         "exclusion_reason": p.exclusion_reason, "created_at": iso_time(p.created_at),

@@ -42,7 +42,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from analysis.cells import non_numeric_values, require_columns, validate_design
+from analysis.cells import non_finite_values, non_numeric_values, require_columns, validate_design
 from analysis.censoring import censoring_table, finished_tests
 from analysis.errors import AnalysisInputError
 from analysis.exclusions import RULES, apply_exclusions, missing_reasons
@@ -79,11 +79,17 @@ def analyze_long(df: pd.DataFrame, measures: Sequence[str], within: Sequence[str
     if options.between:
         check_between(table, options.between, subject)
     table = score_scales(table, options.items, options.scales) if options.scales else table
+    infinite = [text for m in measures if (text := non_finite_values(table, m, within, subject))]
+    if infinite:
+        raise AnalysisInputError("; ".join(infinite) + ". A cell holds a number or is empty (a missing value): "
+                                 "correct the file or empty those cells")
     unreadable = {m: non_numeric_values(table, m, within, subject) for m in measures}
     for measure in measures:
         validate_design(table.assign(**{measure: pd.to_numeric(table[measure], errors="coerce")})
                         if unreadable[measure] else table, measure, within, subject)
     kept, exclusions = apply_exclusions(table, within, subject, options.include)
+    if kept.empty:
+        raise AnalysisInputError(_all_excluded(exclusions, len(table)))
     has_finished = options.finished in kept.columns
     censoring = censoring_table(kept, within, options.finished) if has_finished else None
     out = Path(out_dir)
@@ -172,6 +178,8 @@ def _check_arguments(df: pd.DataFrame, measures: Sequence[str], within: Sequence
         raise AnalysisInputError(f"measures must be a list of column names, got the string {measures!r}")
     if not measures:
         raise AnalysisInputError("no measure given")
+    if df.empty:
+        raise AnalysisInputError("the table has no rows (a header only): nothing to analyse")
     if len(set(measures)) != len(measures):
         raise AnalysisInputError(f"a measure is named twice: {list(measures)}")
     if not 1 <= len(within) <= MAX_FACTORS or len(set(within)) != len(within):
@@ -183,6 +191,16 @@ def _check_arguments(df: pd.DataFrame, measures: Sequence[str], within: Sequence
     if options.between in (*within, subject):
         raise AnalysisInputError(f"the between factor {options.between!r} is also a within factor or the subject")
     return tuple(within)
+
+
+def _all_excluded(exclusions: pd.DataFrame, rows: int) -> str:
+    """The message when the exclusion rules leave no row: how many each rule took, and the option that keeps them."""
+    taken = exclusions[exclusions["included"] == 0].groupby("rule", sort=False).size()
+    by_rule = {rule.name: rule for rule in RULES}
+    parts = [f"{count} by rule {name} ({by_rule[name].label}s; kept with {by_rule[name].option})"
+             for name, count in taken.items()]
+    return (f"all {rows} row(s) were left out by the exclusion rules: " + ", ".join(parts)
+            + "; nothing is left to analyse (the rows are listed either way with the option)")
 
 
 def check_between(table: pd.DataFrame, between: str, subject: str) -> None:

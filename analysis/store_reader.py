@@ -17,7 +17,7 @@ from dataclasses import dataclass, replace
 from datetime import datetime
 from typing import Any
 
-from sqlalchemy import Connection, Engine, inspect, select
+from sqlalchemy import Connection, Engine, func, inspect, select
 from sqlalchemy.exc import SQLAlchemyError
 
 from analysis.errors import AnalysisInputError
@@ -168,6 +168,8 @@ class StudyData:
     participants: tuple[StoredParticipant, ...]
     trials: tuple[StoredTrial, ...]
     answers: tuple[StoredAnswer, ...]
+    pilots_left_out: int = 0
+    """Simulated pilot participants of the study in the store that were not read (``include_pilot`` false)."""
 
 
 def open_engine(url: str) -> Engine:
@@ -201,7 +203,13 @@ def read_study(conn: Connection, study_id: str, include_pilot: bool = False) -> 
         raise UnknownStudyError(f"no study {study_id!r} in the store; studies stored: {known}")
     return StudyData(id=study_id, title=study.title, config_hash=study.config_hash, config=dict(study.config),
                      participants=_participants(conn, study_id, include_pilot),
-                     trials=_trials(conn, study_id, include_pilot), answers=_answers(conn, study_id, include_pilot))
+                     trials=_trials(conn, study_id, include_pilot), answers=_answers(conn, study_id, include_pilot),
+                     pilots_left_out=0 if include_pilot else _pilot_count(conn, study_id))
+
+
+def _pilot_count(conn: Connection, study_id: str) -> int:
+    p = ParticipantRow
+    return int(conn.scalar(select(func.count(p.id)).where(p.study_id == study_id, p.pilot.is_(True))) or 0)
 
 
 def _check_schema(conn: Connection) -> None:

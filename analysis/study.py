@@ -13,16 +13,17 @@ runs, exclusions by the experimenter, missing cells with why each is missing) an
 from __future__ import annotations
 
 from collections.abc import Collection, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import pandas as pd
 from sqlalchemy import Engine
 
+from analysis.end_of_study import END_FILE, end_of_study
 from analysis.errors import AnalysisInputError
 from analysis.exclusions import INVALID, LOW_ENGAGEMENT
 from analysis.export import ExportResult, export_study
-from analysis.options import AnalysisOptions
+from analysis.options import POOLED, AnalysisOptions
 from analysis.report_quality import ReportContext
 from analysis.results import AnalysisResult
 from analysis.run import analyze_long
@@ -51,13 +52,14 @@ class StudyAnalysis:
 
 
 def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, measures: Sequence[str] | None = None,
-                  include: Collection[str] = (), seed: int = 0, plots: bool = True, lmm: bool = False
-                  ) -> StudyAnalysis:
+                  include: Collection[str] = (), seed: int = 0, plots: bool = True, lmm: bool = False,
+                  ss_type: int = 3, follow_up_error: str = POOLED) -> StudyAnalysis:
     """Export ``study_id`` into ``<out_dir>/data`` and analyse ``measures`` (default: :data:`DEFAULT_MEASURES`
     and the study's scales) into ``out_dir``; ``include`` names exclusion rules whose rows are kept (with
     ``invalid`` the export itself keeps invalid trials in ``cells.csv``: ``export_study(include_invalid=True)``;
     without it they are left out there and listed in ``excluded.csv``), and ``"pilot"`` in it keeps simulated
-    pilot participants (left out of the export otherwise)."""
+    pilot participants (left out of the export otherwise). ``ss_type`` and ``follow_up_error``: the mixed design's
+    conventions (:class:`analysis.options.AnalysisOptions`)."""
     out = Path(out_dir)
     export = export_study(source, study_id, out / DATA_DIR,
                           include_invalid=INVALID.name in include or LOW_ENGAGEMENT.name in include,
@@ -65,9 +67,8 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
     cells = read_cells(out)
     trials = pd.read_csv(out / DATA_DIR / "trials.csv", dtype={SUBJECT: str})
     if cells.empty:
-        raise AnalysisInputError(
-            f"study {study_id!r} has no analysable main trial (cells.csv is empty); "
-            f"see {out / DATA_DIR / 'excluded.csv'} and participants.csv")
+        raise AnalysisInputError(f"study {study_id!r} has no analysable main trial (cells.csv is empty); "
+                                 + _why_empty(export, out / DATA_DIR))
     design = StudyDesign.from_config(export.dataset.config)
     within, between = varied_factors(cells, design)
     if len(between) > 1:
@@ -80,13 +81,35 @@ def analyze_study(source: Engine | str, study_id: str, out_dir: Path | str, meas
     ratings.update({s.column: _scale_range(s.items, ratings) for s in design.scales})
     options = AnalysisOptions(
         levels=design.levels, strict_levels=False, ratings=ratings, items=design.items, scales=design.scales,
-        include=frozenset(include), horizon=design.horizon, seed=seed, plots=plots, lmm=lmm,
+        include=frozenset(include), horizon=design.horizon, seed=seed, plots=plots, lmm=lmm, ss_type=ss_type,
+        follow_up_error=follow_up_error,
         title=f"{'Mixed' if between else 'Repeated-measures'} analysis: study {study_id}",
         between=between[0] if between else None)
     chosen = list(measures) if measures is not None else [*DEFAULT_MEASURES, *(s.column for s in design.scales)]
-    result = analyze_long(attach_trial_columns(cells, trials), chosen, within, SUBJECT, out, options,
-                          _context(export, trials, study_id, design, within))
+    context = _context(export, trials, study_id, design, within)
+    result = analyze_long(attach_trial_columns(cells, trials), chosen, within, SUBJECT, out, options, context)
+    if context.end_of_study is not None:
+        path = out / END_FILE
+        context.end_of_study.table.to_csv(path, index=False)
+        result = replace(result, files=(*result.files, path))
     return StudyAnalysis(export, result, cells, design)
+
+
+def _why_empty(export: ExportResult, folder: Path) -> str:
+    """What to do about an export without cells: run the pilots that are stored, keep the invalid trials, or look
+    at who is listed where."""
+    hints = []
+    if export.dataset.pilots_left_out:
+        hints.append(f"the store holds {export.dataset.pilots_left_out} simulated pilot participant(s) of this "
+                     "study (steakhouse pilot), which are left out unless --include-pilot: add --include-pilot to "
+                     "analyse them")
+    invalid = export.dataset.excluded["category"].isin(["invalid", "low_engagement"]).sum()
+    if invalid:
+        hints.append(f"{invalid} participant(s) lost their cells to invalid or low-engagement trials: "
+                     "--include-invalid keeps those trials")
+    if export.dataset.tables["participants.csv"].empty and not hints:
+        hints.append("no participant has joined it yet")
+    return "; ".join([*hints, f"see {folder / 'excluded.csv'} and participants.csv"])
 
 
 def read_cells(out: Path) -> pd.DataFrame:
@@ -128,7 +151,10 @@ def _context(export: ExportResult, trials: pd.DataFrame, study_id: str, design: 
                         & (trials[INVALID.column].astype(str).str.strip() != "")]
         invalid = tuple(f"participant {r.participant}, main trial {int(r.index) + 1} ({r.condition}, attempt "
                         f"{int(r.attempt)}): {getattr(r, INVALID.column)}" for r in marked.itertuples())
-    return ReportContext(summary, left_out, invalid, low_engagement_lines(trials))
+    tables = export.dataset.tables
+    end = end_of_study(tables["wide.csv"], tables["answers.csv"], export.dataset.config, export.dataset.design.between,
+                       f"{DATA_DIR}/answers.csv")
+    return ReportContext(summary, left_out, invalid, low_engagement_lines(trials), end)
 
 
 def low_engagement_lines(trials: pd.DataFrame) -> tuple[str, ...] | None:

@@ -9,7 +9,9 @@ import asyncio
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
-from pilot.client import Outcome, Seat, SimulatedParticipant
+import httpx
+
+from pilot.client import Outcome, Seat, SimulatedParticipant, tls_context
 from pilot.progress import Progress
 
 
@@ -18,6 +20,28 @@ class PilotResult:
     outcomes: list[Outcome] = field(default_factory=list)
     failures: list[str] = field(default_factory=list)
     seconds: float = 0.0
+    invalid_trials: int | None = None
+    """Trials of these participants the server marked invalid (robot decisions past their deadline); ``None`` when
+    the server could not be asked."""
+    low_engagement_trials: int | None = None
+    """Trials of these participants the server marked low-engagement (played without them taking part)."""
+
+
+async def trial_health(seat: Seat, outcomes: Sequence[Outcome]) -> tuple[int, int] | None:
+    """``(invalid, low-engagement)`` trials of the participants of ``outcomes``, as the server's admin list of
+    participants counts them; ``None`` when it cannot be read."""
+    ids = {o.participant_id for o in outcomes if o.participant_id}
+    try:
+        async with httpx.AsyncClient(base_url=seat.base_url, timeout=60, verify=tls_context()) as http:
+            response = await http.get("/api/admin/participants", params={"study_id": seat.loaded.id},
+                                      headers={"Authorization": f"Bearer {seat.admin_token}"})
+    except httpx.HTTPError:
+        return None
+    if response.status_code >= 400:
+        return None
+    mine = [row for row in response.json() if row.get("participant_id") in ids]
+    return (sum(int(row.get("invalid_trials", 0)) for row in mine),
+            sum(int(row.get("low_engagement_trials", 0)) for row in mine))
 
 
 async def run_pilot(seat: Seat, participants: int, jobs: int, seed: int, progress: Progress | None = None,
@@ -44,6 +68,9 @@ async def run_pilot(seat: Seat, participants: int, jobs: int, seed: int, progres
 
     await asyncio.gather(*(one(i) for i in range(participants)))
     result.seconds = loop.time() - started
+    health = await trial_health(seat, result.outcomes)
+    if health is not None:
+        result.invalid_trials, result.low_engagement_trials = health
     if progress:
         progress.close()
     return result

@@ -55,6 +55,13 @@ def register(subparsers: Any) -> None:
                    help="anova (default): the (mixed) ANOVA on complete cases; lmm: also a linear mixed model "
                         "(statsmodels, random intercept per participant) on every row, for unbalanced or "
                         "incomplete data, its formula printed")
+    p.add_argument("--ss-type", type=int, choices=(2, 3), default=3,
+                   help="mixed designs: sums of squares of type 3 (default, as R's afex and JASP) or 2 (as "
+                        "pingouin, and afex or JASP set to type II); the same with equal groups")
+    p.add_argument("--follow-up-error", choices=("pooled", "per-group"), default="pooled",
+                   help="mixed designs: the error of the follow-ups within each group: the within-group covariance "
+                        "pooled over the groups, N - G df (default, as emmeans on an afex model), or each group's "
+                        "own (as analysing each group alone)")
     p.add_argument("--out", metavar="DIR", type=Path, help="output folder (created if needed)")
     p.add_argument("--levels", metavar="FACTOR=A,B,...", action="append", default=[],
                    help="with --csv: the order of a factor's levels (repeat per factor; default: order of first "
@@ -89,6 +96,9 @@ def handle(args: argparse.Namespace) -> int:
     missing = [flag for flag in ("dv", "within", "subject", "out") if getattr(args, flag) is None]
     if missing:
         raise UsageError(f"--csv needs {', '.join('--' + m for m in missing)}")
+    from server.commands.export import check_out
+
+    check_out(args.out, "plots")
     measures = _names(args.dv, "--dv")
     within = _names(args.within, "--within")
     if not 1 <= len(within) <= 3:
@@ -104,7 +114,8 @@ def handle(args: argparse.Namespace) -> int:
         options = AnalysisOptions(levels=parse_level_option(args.levels), ratings=_ratings(args.ratings),
                                   include=include, seed=args.seed, plots=not args.no_plots,
                                   between=args.between.strip() if args.between else None,
-                                  lmm=args.model == "lmm")
+                                  lmm=args.model == "lmm", ss_type=args.ss_type,
+                                  follow_up_error=args.follow_up_error)
         result = analyze_long(df, measures, within, args.subject, args.out, options)
     except AnalysisInputError as exc:
         raise UsageError(f"{args.csv}: {exc}") from exc
@@ -119,6 +130,9 @@ def _handle_study(args: argparse.Namespace, include: frozenset[str]) -> int:
         raise UsageError(f"--study takes the design from the study; drop {', '.join('--' + g for g in given)}")
     if args.out is None:
         raise UsageError("--study needs --out")
+    from server.commands.export import check_out
+
+    check_out(args.out, "data", "plots")
 
     from analysis.errors import AnalysisInputError
     from analysis.study import analyze_study
@@ -127,7 +141,8 @@ def _handle_study(args: argparse.Namespace, include: frozenset[str]) -> int:
     measures = _names(args.dv, "--dv") if args.dv is not None else None
     try:
         done = analyze_study(database_url(args.database_url), args.study, args.out, measures, include, args.seed,
-                             plots=not args.no_plots, lmm=args.model == "lmm")
+                             plots=not args.no_plots, lmm=args.model == "lmm", ss_type=args.ss_type,
+                             follow_up_error=args.follow_up_error)
     except AnalysisInputError as exc:
         raise UsageError(f"study {args.study}: {exc}") from exc
     for row in done.export.dataset.excluded.itertuples():

@@ -14,6 +14,8 @@ Without ``--database-url`` the store is the one ``steakhouse serve`` uses by def
 from __future__ import annotations
 
 import argparse
+import os
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -56,10 +58,26 @@ def database_url(value: str | None) -> str:
     return settings.database_url
 
 
+def check_out(path: Path, *inside: str) -> None:
+    """Refuse an ``--out`` that cannot be the output folder, before anything is read or written: ``path`` (or a
+    folder above it, or the sub-folder ``inside`` a command writes to) is an existing file, or the nearest folder
+    that exists cannot be written."""
+    for target in (path, *(path / name for name in inside)):
+        if target.exists() and not target.is_dir():
+            where = "" if target == path else f" holds {target.name}, which"
+            raise UsageError(f"--out {path}{where} is a file, not a folder; name a folder (it is created if needed)")
+    existing = next((p for p in (path, *path.parents) if p.exists()), Path("."))
+    if not existing.is_dir():
+        raise UsageError(f"--out {path}: {existing} is a file, not a folder")
+    if not os.access(existing, os.W_OK | os.X_OK):
+        raise UsageError(f"--out {path}: cannot write in {existing} (permission denied)")
+
+
 def handle(args: argparse.Namespace) -> int:
     from analysis.errors import AnalysisInputError
     from analysis.export import export_study
 
+    check_out(args.out)
     url = database_url(args.database_url)
     try:
         result = export_study(url, args.study, args.out, include_invalid=args.include_invalid,
@@ -70,5 +88,8 @@ def handle(args: argparse.Namespace) -> int:
     print(f"study {args.study}: {len(tables['participants.csv'])} participants, {len(tables['trials.csv'])} trial "
           f"attempts, {len(tables['cells.csv'])} cells, {len(tables['excluded.csv'])} participants listed in "
           "excluded.csv")
+    if result.dataset.pilots_left_out:
+        print(f"note: {result.dataset.pilots_left_out} simulated pilot participant(s) of this study were left out; "
+              "--include-pilot exports them", file=sys.stderr)
     print(f"wrote {len(result.files)} files to {result.out_dir}")
     return 0

@@ -110,10 +110,19 @@ def _run(args: argparse.Namespace, loaded: Any, config: Any, base_url: str, toke
     trials = sum(o.trials for o in result.outcomes)
     interrupts = sum(o.interrupts for o in result.outcomes)
     print(f"pilot of study {loaded.id}: {len(result.outcomes)} of {args.participants} simulated participants "
-          f"finished ({sum(o.completed for o in result.outcomes)} completed), {trials} trials, {interrupts} "
+          f"finished ({sum(o.completed for o in result.outcomes)} completed), {trials} trials "
+          f"({health_summary(result.invalid_trials, result.low_engagement_trials)}), {interrupts} "
           f"interrupts, in {seconds:.1f} s (load average {load_before:.2f} at start, "
           f"{os.getloadavg()[0]:.2f} at end, {os.cpu_count()} CPUs)")
     for failure in result.failures:
         print(f"failed: {failure}", file=sys.stderr)
     print(f"analyse with: steakhouse analyze --study {loaded.id} --include-pilot --out results/{loaded.id}-pilot")
     return 1 if result.failures else 0
+
+
+def health_summary(invalid: int | None, low: int | None) -> str:
+    """How many trials the analysis will leave out, as the server marked them."""
+    if invalid is None or low is None:
+        return "invalid and low-engagement trials not counted: the server's participant list could not be read"
+    text = f"{invalid} robot-invalid, {low} low-engagement"
+    return text + (": left out of the analysis unless --include-invalid" if invalid or low else "")

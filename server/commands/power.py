@@ -42,6 +42,9 @@ def register(subparsers: Any) -> None:
     p.add_argument("--effect", metavar="eta2g=V",
                    help="also the power of each omnibus effect set to this generalized η² (e.g. eta2g=0.1), "
                         "beside the pilot's own effect sizes")
+    p.add_argument("--ss-type", type=int, choices=(2, 3), default=3,
+                   help="a design with a factor between participants: sums of squares of type 3 (default, as "
+                        "analyze) or 2")
     p.add_argument("--include-invalid", action="store_true", help="keep trials the server marked invalid")
     p.add_argument("--no-plots", action="store_true", help="skip power.png")
     p.add_argument("--database-url", metavar="URL",
@@ -67,6 +70,9 @@ def handle(args: argparse.Namespace) -> int:
         raise UsageError("--simulations must be at least 10")
     if args.jobs < 1:
         raise UsageError("--jobs must be at least 1")
+    from server.commands.export import check_out
+
+    check_out(args.out, "data")
     from analysis.errors import AnalysisInputError
     from analysis.power_effect import EffectSize
     from analysis.power_study import power_study
@@ -86,7 +92,7 @@ def handle(args: argparse.Namespace) -> int:
         result = power_study(database_url(args.database_url), args.study, args.out, ns,
                              simulations=args.simulations, alpha=args.alpha, jobs=args.jobs, seed=args.seed,
                              measures=measures, include=include, plots=not args.no_plots,
-                             effect_size=effect_size, on_step=progress.advance,
+                             effect_size=effect_size, on_step=progress.advance, ss_type=args.ss_type,
                              on_measure=lambda name: None if progress.tty else print(
                                  f"power: {name} done ({progress.done}/{progress.total} steps)", file=sys.stderr,
                                  flush=True),
@@ -94,6 +100,8 @@ def handle(args: argparse.Namespace) -> int:
     except AnalysisInputError as exc:
         raise UsageError(f"study {args.study}: {exc}") from exc
     progress.close()
+    for measure, reason in result.not_simulated.items():
+        print(f"warning: {measure} not simulated: {reason}", file=sys.stderr)
     for row in result.needed.itertuples(index=False):
         size = "" if row.scenario == "pilot" else f" with {row.scenario}"
         print(f"{row.measure} / {row.test}{size}: 80 % at n = {_n(row.n_80)}, 90 % at n = {_n(row.n_90)}")

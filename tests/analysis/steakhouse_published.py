@@ -63,3 +63,46 @@ def agrees(actual: float, printed: str) -> bool:
         return f"{actual:.{digits - 1}e}" == f"{float(printed):.{digits - 1}e}"
     decimals = len(printed.split(".")[1]) if "." in printed else 0
     return round(actual, decimals) == float(printed)
+
+
+# O'Brien & Kaiser (1985), "MANOVA method for analyzing repeated measures designs", Psychological Bulletin 97(2),
+# Table 7: 16 subjects, treatment between (control, A, B) × phase (pre, post, fup) × hour (1-5) within, columns
+# pre.1 … pre.5, post.1 … post.5, fup.1 … fup.5 (R's carData::OBrienKaiser; afex's obk.long in long form). The
+# reference values of afex and emmeans for it are in tests/analysis/reference/afex_emmeans.csv.
+OBRIEN_KAISER_TREATMENT = ("control",) * 5 + ("A",) * 4 + ("B",) * 7
+OBRIEN_KAISER = np.array([
+    [1, 2, 4, 2, 1, 3, 2, 5, 3, 2, 2, 3, 2, 4, 4],
+    [4, 4, 5, 3, 4, 2, 2, 3, 5, 3, 4, 5, 6, 4, 1],
+    [5, 6, 5, 7, 7, 4, 5, 7, 5, 4, 7, 6, 9, 7, 6],
+    [5, 4, 7, 5, 4, 2, 2, 3, 5, 3, 4, 4, 5, 3, 4],
+    [3, 4, 6, 4, 3, 6, 7, 8, 6, 3, 4, 3, 6, 4, 3],
+    [7, 8, 7, 9, 9, 9, 9, 10, 8, 9, 9, 10, 11, 9, 6],
+    [5, 5, 6, 4, 5, 7, 7, 8, 10, 8, 8, 9, 11, 9, 8],
+    [2, 3, 5, 3, 2, 2, 4, 8, 6, 5, 6, 6, 7, 5, 6],
+    [3, 3, 4, 6, 4, 4, 5, 6, 4, 1, 5, 4, 7, 5, 4],
+    [4, 4, 5, 3, 4, 6, 7, 6, 8, 8, 8, 8, 9, 7, 8],
+    [3, 3, 4, 2, 3, 5, 4, 7, 5, 4, 5, 6, 8, 6, 5],
+    [6, 7, 8, 6, 3, 9, 10, 11, 9, 6, 8, 7, 10, 8, 7],
+    [5, 5, 6, 8, 6, 4, 6, 6, 8, 6, 7, 7, 8, 10, 8],
+    [2, 2, 3, 1, 2, 5, 6, 7, 5, 2, 6, 7, 8, 6, 3],
+    [2, 2, 3, 4, 4, 6, 6, 7, 9, 7, 7, 7, 8, 6, 7],
+    [4, 5, 7, 5, 4, 7, 7, 8, 6, 7, 7, 8, 10, 8, 7],
+], dtype=float)
+
+
+def obrien_kaiser_long() -> pd.DataFrame:
+    """OBRIEN_KAISER in long form: id, treatment, phase, hour (``"1"`` … ``"5"``), value."""
+    rows = [{"id": f"s{s + 1}", "treatment": OBRIEN_KAISER_TREATMENT[s], "phase": phase, "hour": str(hour + 1),
+             "value": OBRIEN_KAISER[s, p * 5 + hour]}
+            for s in range(len(OBRIEN_KAISER)) for p, phase in enumerate(("pre", "post", "fup")) for hour in range(5)]
+    return pd.DataFrame(rows)
+
+
+def to_digits(actual: float, reference: float, digits: int = 4) -> bool:
+    """Whether ``actual`` agrees with ``reference`` to ``digits`` significant digits: within half a unit of the
+    reference's ``digits``-th significant digit. A reference below 1e-10 in size is a zero written with rounding
+    error (e.g. −4.4e-16 for a difference of equal means), and agrees with anything that small."""
+    if abs(reference) < 1e-10:
+        return bool(abs(actual) < 1e-10)
+    unit = 10.0 ** (np.floor(np.log10(abs(reference))) - (digits - 1))
+    return bool(abs(actual - reference) <= unit / 2)

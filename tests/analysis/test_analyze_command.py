@@ -42,7 +42,8 @@ def test_end_to_end_writes_all_files_with_exact_headers(csv_file, tmp_path, caps
                 assert (out / "plots" / f"{measure}_{kind}.{ext}").is_file()
     excluded = (out / "excluded.csv").read_text()
     assert "ticks,P02,\"missing cell robot=fov_aware, kitchen=none_3\"" in excluded
-    assert "participant P02: missing cell robot=fov_aware, kitchen=none_3" in (out / "report.md").read_text()
+    assert "participant P02: missing cell robot fov_aware, kitchen none_3" in (out / "report.md").read_text(), \
+        "levels in words in the report's prose"
     assert "ticks: n = 7 of 8 subjects, 1 excluded" in capsys.readouterr().out
 
 

@@ -143,13 +143,21 @@ def test_a_view_between_participants_gets_the_mixed_anova(stored, tmp_path) -> N
     assert (people["complete"] == 1).all(), "complete in their own group's conditions"
     assert pd.read_csv(tmp_path / "data" / "excluded.csv").empty
     wide = pd.read_csv(tmp_path / "data" / "wide.csv")
-    assert (wide["complete"] == 1).all() and "ticks__stay__none_3__first_person" in wide.columns
+    assert (wide["complete"] == 1).all() and sorted(wide["view"]) == ["first_person"] * 3 + ["top_down"] * 3
+    assert [c for c in wide.columns if c.startswith("ticks__")] == [
+        "ticks__stay__none_3", "ticks__stay__mid_2", "ticks__baseline__none_3", "ticks__baseline__mid_2"], \
+        "one column per within cell, whatever the group"
+    assert not wide.filter(like="__").isna().any().any(), "no cell left empty by the other group's columns"
+    assert people.set_index("participant")["view"].to_dict() == wide.set_index("participant")["view"].to_dict()
     anova = pd.read_csv(tmp_path / "anova.csv")
     ticks = anova[anova["measure"] == "ticks"]
     assert ticks["effect"].tolist() == ["view", "robot", "view * robot", "kitchen", "view * kitchen",
                                         "robot * kitchen", "view * robot * kitchen"]
     assert ticks.loc[ticks["effect"] == "view", "df2"].tolist() == [4], "6 participants in 2 groups"
     assert "mixed (split-plot) ANOVA" in (tmp_path / "report.md").read_text()
+    end = pd.read_csv(tmp_path / "end_of_study.csv")
+    assert end.set_index("group")["n"].to_dict() == {"all participants": 6, "view=top_down": 3,
+                                                     "view=first_person": 3}, "the end of study per group too"
 
 
 def test_a_field_of_view_between_participants_gets_the_mixed_anova(stored, tmp_path) -> None:
@@ -165,9 +173,12 @@ def test_a_field_of_view_between_participants_gets_the_mixed_anova(stored, tmp_p
     assert practice.to_dict() == cells.drop_duplicates("participant").set_index("participant")["fov_angle"].to_dict(), \
         "each participant practised at their group's angle"
     assert set(pd.read_csv(data / "ticks.csv")["fov_angle"]) == {90, 150}
-    assert (pd.read_csv(data / "participants.csv")["complete"] == 1).all()
-    wide = pd.read_csv(data / "wide.csv")
-    assert (wide["complete"] == 1).all() and {"ticks__stay__none_3__90", "ticks__stay__none_3__150"} <= set(wide)
+    people = pd.read_csv(data / "participants.csv", dtype={"fov_angle": str})
+    assert (people["complete"] == 1).all() and sorted(people["fov_angle"]) == ["150"] * 3 + ["90"] * 3
+    wide = pd.read_csv(data / "wide.csv", dtype={"fov_angle": str})
+    assert (wide["complete"] == 1).all() and "ticks__stay__none_3" in wide and "ticks__stay__none_3__90" not in wide
+    groups = people.set_index("participant")["fov_angle"]
+    assert wide.set_index("participant")["fov_angle"].to_dict() == groups.to_dict()
     anova = pd.read_csv(tmp_path / "anova.csv")
     ticks = anova[anova["measure"] == "ticks"]
     assert ticks["effect"].tolist() == ["fov_angle", "robot", "fov_angle * robot", "kitchen", "fov_angle * kitchen",
@@ -176,3 +187,38 @@ def test_a_field_of_view_between_participants_gets_the_mixed_anova(stored, tmp_p
     descriptives = pd.read_csv(tmp_path / "descriptives.csv", dtype={"fov_angle": str})
     assert descriptives["fov_angle"].drop_duplicates().tolist() == ["90", "150"], "the study's order"
     assert "mixed (split-plot) ANOVA" in (tmp_path / "report.md").read_text()
+
+
+def test_wide_sav_opens_as_spss_needs_it_and_gives_analyzes_mixed_anova(stored, tmp_path) -> None:
+    """SPSS's GLM Repeated Measures takes one variable per within cell and the group as a coded between factor:
+    wide.sav read with pyreadstat, reshaped by this test alone, gives the F of every effect that analyze gives
+    (the split-plot sums of squares computed the textbook way, tests/analysis/test_mixed_anova.py)."""
+    import pyreadstat
+    from test_mixed_anova import textbook
+
+    assert analyze(stored, "groups", tmp_path, "--dv", "ticks,kb_gap_mean") == 0
+    sav, meta = pyreadstat.read_sav(str(tmp_path / "data" / "wide.sav"))
+    assert meta.variable_value_labels["view"] == {1.0: "top_down", 2.0: "first_person"}
+    measure = meta.variable_measure
+    assert measure["participant"] == measure["view"] == measure["complete"] == measure["order_index"] == "nominal"
+    assert measure["ticks__stay__none_3"] == measure["kb_gap_mean__stay__none_3"] == "scale"
+    assert measure["q.a__stay__none_3"] == measure["end.age"] == "ordinal", "ratings are ordinal"
+    formats = {name: str(kind) for name, kind in meta.original_variable_types.items()}
+    assert formats["ticks__stay__none_3"].endswith(".0") and formats["complete"] == "F1.0"
+    assert formats["view"].endswith(".0") and formats["participant"].startswith("A")
+    assert not formats["kb_gap_mean__stay__none_3"].endswith(".0"), "a mean keeps its decimals"
+    anova = pd.read_csv(tmp_path / "anova.csv")
+    for dv in ("ticks", "kb_gap_mean"):
+        rows = [{"participant": person, "view": meta.variable_value_labels["view"][code], "robot": robot,
+                 "kitchen": kitchen, dv: value}
+                for person, code, *cells in sav[["participant", "view", *(f"{dv}__{r}__{k}" for r, k in CELLS)]]
+                .itertuples(index=False)
+                for (robot, kitchen), value in zip(CELLS, cells, strict=True)]
+        expected = textbook(pd.DataFrame(rows), dv, "view", ["robot", "kitchen"], "participant")
+        ours = anova[anova["measure"] == dv].set_index("effect")
+        for effect, (ss, error, df1, df2) in expected.items():
+            assert ours.loc[effect, "F"] == pytest.approx((ss / df1) / (error / df2), rel=1e-9), (dv, effect)
+            assert (ours.loc[effect, "df1"], ours.loc[effect, "df2"]) == (df1, df2)
+
+
+CELLS = [("stay", "none_3"), ("stay", "mid_2"), ("baseline", "none_3"), ("baseline", "mid_2")]

@@ -146,9 +146,9 @@ def test_export_then_analyze_matches_pingouin_on_the_exported_cells(played, tmp_
     gap = complete.groupby("robot")["kb_gap_mean"].mean()
     assert gap["baseline"] > gap["stay"]
 
-    assert f"participant {ids['partial']}: missing cell robot=" in report
+    assert f"participant {ids['partial']}: missing cell robot " in report
     assert report.index("## Data quality") < report.index("## Method")
-    assert f"participant {ids['partial']} (incomplete): missing cell robot=" in report
+    assert f"participant {ids['partial']} (incomplete): missing cell robot " in report
     assert "not played; participant in_progress" in report
     assert f"participant {ids['excluded']} (excluded): excluded by the experimenter: did not follow the " \
            "instructions" in report

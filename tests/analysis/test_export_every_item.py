@@ -130,6 +130,34 @@ def test_analyze_runs_on_the_study_and_analyses_the_after_trial_scale(stored, tm
     assert (out / "data" / "wide.csv").is_file() and (out / "report.md").is_file()
 
 
+def test_the_report_covers_the_end_of_study_questionnaire_and_says_where_free_text_is(stored, tmp_path):
+    """Descriptives of every end-of-study rating and scale, the scale's textbook α (one response per participant,
+    the reversed item reversed) as pingouin computes it, the choices counted, and the free-text answers counted and
+    located."""
+    import pingouin as pg
+
+    url, _ = stored
+    out = tmp_path / "results"
+    assert main(["analyze", "--study", STUDY, "--out", str(out), "--database-url", url, "--no-plots"]) == 0
+    end = pd.read_csv(out / "end_of_study.csv")
+    wide = pd.read_csv(out / "data" / "wide.csv")
+    liking = end[end["question"] == "end.liking"].iloc[0]
+    assert (liking["n"], liking["mean"], liking["sd"]) == (PEOPLE, pytest.approx(wide["end.liking"].mean()),
+                                                           pytest.approx(wide["end.liking"].std()))
+    scale = end[end["question"] == "end.experience"].iloc[0]
+    alpha, _ = pg.cronbach_alpha(pd.DataFrame({"liking": wide["end.liking"], "ease": 6 - wide["end.ease"]}))
+    assert scale["alpha"] == pytest.approx(alpha, rel=1e-12)
+    device = end[end["question"] == "end.device"].set_index("option")["count"].to_dict()
+    assert device == {o: int((wide["end.device"] == i).sum()) for i, o in enumerate(["Mouse", "Trackpad", "Other"])}
+    report = (out / "report.md").read_text(encoding="utf-8")
+    section = report.split("## Questionnaires at the end of the study, and free text")[1].split("\n## ")[0]
+    assert "| end.experience | all participants | 4 |" in section
+    assert "| end.device | all participants | Mouse |" in section
+    assert "they are in data/answers.csv (column text" in section
+    assert "- end.strategy (end of study, “Any comments?”): 4 answer(s)" in section
+    assert f"- post.comment (after each main trial, “Anything?”): {2 * PEOPLE} answer(s)" in section
+
+
 def test_the_admin_zip_holds_the_same_export(stored, tmp_path):
     from server.app import create_app
     from server.settings import Settings

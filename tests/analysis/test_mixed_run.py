@@ -26,9 +26,8 @@ def test_the_mixed_analysis_and_its_follow_ups(tmp_path) -> None:
     june = df[df["Time"] == "June"]
     ref = stats.f_oneway(*(june.loc[june["Group"] == g, "Scores"] for g in ("Control", "Meditation")))
     assert simple.loc[("Group", "Time=June"), "F"] == pytest.approx(ref.statistic, rel=1e-10)
-    meditation = df[df["Group"] == "Meditation"]
-    rm = pg.rm_anova(data=meditation, dv="Scores", within="Time", subject="Subject", correction=True)
-    assert simple.loc[("Time", "Group=Meditation"), "F"] == pytest.approx(rm.at[0, "F"], rel=1e-10)
+    # the default pools the within-group covariance (N − G = 58 df): tests/analysis/test_mixed_conventions.py
+    assert simple.loc[("Time", "Group=Meditation"), "df2"] == 58
     assert simple.loc[("Group", "Time=June"), "mean_diff"] == pytest.approx(
         june.loc[june["Group"] == "Control", "Scores"].mean()
         - june.loc[june["Group"] == "Meditation", "Scores"].mean())
@@ -106,3 +105,18 @@ def test_the_lmm_keeps_participants_with_a_missing_cell(tmp_path) -> None:
     lmm = pd.read_csv(tmp_path / "lmm.csv")
     assert result.measures[0].n_used == 21 and (lmm["n_subjects"] == 24).all() and (lmm["n_obs"] == 141).all()
     assert result.formulas == ("ticks ~ view * robot * kitchen + (1 | participant)",)
+
+
+def test_the_per_group_follow_ups_are_each_groups_own_analysis(tmp_path) -> None:
+    df = pg.read_dataset("mixed_anova")
+    analyze_long(df, ["Scores"], ["Time"], "Subject", tmp_path,
+                 AnalysisOptions(between="Group", plots=False, follow_up_error="per-group"))
+    simple = pd.read_csv(tmp_path / "simple_effects.csv").set_index(["factor", "at"])
+    meditation = df[df["Group"] == "Meditation"]
+    rm = pg.rm_anova(data=meditation, dv="Scores", within="Time", subject="Subject", correction=True)
+    assert simple.loc[("Time", "Group=Meditation"), "F"] == pytest.approx(rm.at[0, "F"], rel=1e-10)
+    pairs = pd.read_csv(tmp_path / "pairwise.csv").set_index(["at", "level_1", "level_2"])
+    wide = meditation.pivot(index="Subject", columns="Time", values="Scores")
+    paired = stats.ttest_rel(wide["August"], wide["January"])
+    assert pairs.loc[("Group=Meditation", "August", "January"), "t"] == pytest.approx(paired.statistic, rel=1e-10)
+    assert pairs.loc[("Group=Meditation", "August", "January"), "df"] == 29

@@ -11,6 +11,7 @@ from analysis.options import AnalysisOptions
 from analysis.report import build_report
 from analysis.report_measure import apa_sentences
 from analysis.run import analyze_long
+from analysis.typeset import prose
 
 
 def test_report_lists_exclusions_sentences_tables_and_plots(cells, tmp_path) -> None:
@@ -23,10 +24,10 @@ def test_report_lists_exclusions_sentences_tables_and_plots(cells, tmp_path) -> 
     for text in (md, page):
         assert text.index("Data quality") < text.index("Method") < text.index("Results")
         assert "n used = 11 of 12 participants (1 left out by the complete-case rule)" in text
-        assert "participant P09: missing cell robot=fov_aware, kitchen=mid_2" in text
+        assert "participant P09: missing cell robot fov_aware, kitchen mid_2" in text
         assert "Main effect of robot: F(1, 10) = " in text
-        assert "Effect of robot at kitchen=mid_2: F(1, 10) = " in text
-        assert "Effect of kitchen at robot=baseline: F(1, 10) = " in text
+        assert "Effect of robot at kitchen mid_2: F(1, 10) = " in text
+        assert "Effect of kitchen at robot baseline: F(1, 10) = " in text
         assert "Holm-adjusted p" in text
         assert "95% CI (within)" in text
     assert "![ticks: ticks_interaction](plots/ticks_interaction.png)" in md
@@ -35,7 +36,7 @@ def test_report_lists_exclusions_sentences_tables_and_plots(cells, tmp_path) -> 
     assert "| fov_aware | mid_2 | 11 |" in md
     sentences = apa_sentences(result.measures[0])
     assert len(sentences) == 3 + 4
-    assert all(sentence in md for sentence in sentences)
+    assert all(prose(sentence) in md for sentence in sentences)
 
 
 def test_corrected_degrees_of_freedom_reach_the_sentence_and_the_rule_is_stated(tmp_path) -> None:
@@ -68,3 +69,24 @@ def test_no_measure_is_said_explicitly(tmp_path) -> None:
                           "s", tmp_path, AnalysisOptions(plots=False))
     blocks = build_report(result.__class__((), result.tables, (), tmp_path, ()), AnalysisOptions())
     assert "No measure was analysed." in render_markdown(blocks)
+
+
+def test_the_prose_is_typeset(cells, tmp_path) -> None:
+    """A real minus sign, levels in words, brackets inside parentheses, and an η²G with its first digit showing."""
+    df = cells()
+    df["ticks"] = df["ticks"] - 150
+    df = df[~((df["participant"] == "P03") & (df["robot"] == "baseline") & (df["kitchen"] == "mid_2"))]
+    analyze_long(df, ["ticks"], ["robot", "kitchen"], "participant", tmp_path, AnalysisOptions(plots=False))
+    md = (tmp_path / "report.md").read_text()
+    assert "M_diff = −" in md and "M_diff = -" not in md and "[−" in md
+    assert "kitchen=" not in md.split("## Method")[0].replace("| robot=", "").replace("| kitchen=", ""), \
+        "no factor=level in the prose of the data-quality section"
+    assert prose("missing cell robot=a, kitchen=b (main trial 3 abandoned (grace_expired))") == \
+        "missing cell robot a, kitchen b (main trial 3 abandoned [grace_expired])"
+    assert prose("changed it by -0.481 on 2026-12-07 for P-03, t(9) = -2.10, [-0.36, -.05]") == \
+        "changed it by −0.481 on 2026-12-07 for P-03, t(9) = −2.10, [−0.36, −.05]"
+    from analysis.apa import apa_f_sentence
+
+    row = {"df1": 1, "df2": 14, "F": 0.19, "p": 0.666, "ges": 0.0021, "ges_ci_low": 0.0, "ges_ci_high": 0.063}
+    assert apa_f_sentence(row) == "F(1, 14) = 0.19, p = .666, η²G = .002, 90% CI [.000, .063]"
+    assert apa_f_sentence({**row, "ges": 0.031}).endswith("η²G = .03, 90% CI [.00, .06]")

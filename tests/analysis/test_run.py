@@ -115,6 +115,12 @@ def test_finished_censoring_and_order_tables_when_the_columns_are_there(cells, t
     assert result.tables["finished.csv"]["test"].iloc[0] == "Cochran's Q"
     assert "censored at the horizon" in " ".join(result.measures[0].notes)
     assert result.tables["order.csv"]["positions"].iloc[0] == 4
+    md = (tmp_path / "report.md").read_text()
+    assert "3 cell(s) have trials that reached the horizon; in those trials ticks is the horizon" in md
+    analyze_long(df, ["interrupts"], WITHIN, "participant", tmp_path / "other", FAST)
+    md = (tmp_path / "other" / "report.md").read_text()
+    assert "No measure analysed here is capped by it (ticks would be)" in md and "trials ticks" not in md, \
+        "the sentence names the measures analysed, not ticks when ticks is not one"
 
 
 def test_the_published_crash_now_reports_not_testable(tmp_path) -> None:
@@ -176,4 +182,4 @@ def test_a_non_numeric_cell_is_named_and_the_other_measures_still_run(cells, tmp
     anova = pd.read_csv(tmp_path / "anova.csv")
     assert anova.loc[anova["measure"] == "ticks", "note"].str.contains("row 7").all()
     assert np.isfinite(anova.loc[anova["measure"] == "interrupts", "F"]).all()
-    assert expected.split(": ", 1)[1] in (tmp_path / "report.md").read_text()
+    assert expected.split(": ", 1)[1].replace("=", " ") in (tmp_path / "report.md").read_text()

@@ -48,6 +48,9 @@ def test_a_pilot_goes_through_the_flow_is_marked_and_is_exported_only_when_asked
         assert {(p.pilot, p.pilot_pace, p.status) for p in people} == {(True, "fast", "completed")}
         assert session.query(TrialRow).filter(TrialRow.status == "finished").count() == 9
         assert session.query(AnswerRow).count() > 0
+        invalid = session.query(TrialRow).filter(TrialRow.invalid_reason.is_not(None)).count()
+        low = session.query(TrialRow).filter(TrialRow.engagement_reason.is_not(None)).count()
+    assert (result.invalid_trials, result.low_engagement_trials) == (invalid, low), "the summary counts them"
     _exports_leave_pilots_out_unless_asked(loaded.id, db_url, tmp_path)
 
 
@@ -97,6 +100,15 @@ def _exports_leave_pilots_out_unless_asked(study_id: str, db_url: str, tmp_path)
     table = pd.read_csv(power / "power.csv")
     assert set(table["n"]) == {4, 8} and set(table["measure"]) == {"ticks", "interrupts"}
     assert table["power"].between(0, 1).all() and (table["pilot_n"] == 3).all()
+
+
+def test_the_summary_says_how_many_trials_the_analysis_leaves_out() -> None:
+    from server.commands.pilot import health_summary
+
+    assert health_summary(0, 0) == "0 robot-invalid, 0 low-engagement"
+    assert health_summary(2, 1) == ("2 robot-invalid, 1 low-engagement: left out of the analysis unless "
+                                    "--include-invalid")
+    assert "not counted" in health_summary(None, None)
 
 
 @pytest.mark.store_agnostic
