@@ -103,7 +103,7 @@ def test_a_flood_of_messages_stores_a_bounded_number_of_rows_and_the_game_goes_o
     assert sum(d["by_kind"].get("focus", 0) for d in dropped) == len(refused)
     assert all(set(d["by_kind"]) <= {"focus", "interrupt", "connect"} for d in dropped)
     assert reconnects + sum(1 for kind, _ in stored if kind == "connect") == 2
-    # At most one row per flush of the flood, plus the reconnection's own when it was counted (it comes after the close).
+    # At most one row per flush of the flood, plus the reconnection's own when it was counted (after the close).
     assert len(dropped) <= elapsed / 1.0 + 2 + reconnects, "the drops are coalesced"
     assert not any(kind == "error" for kind, _ in stored), "refusals for the rate do not store rows"
     print(f"\n{flood} focus messages in {elapsed:.2f} s: {accepted} stored, {len(refused)} refused, "
