@@ -6,8 +6,10 @@ kept in the store (``server.game.health_keeper``) and the stall hints (``server.
 
 The clock:
 
-- ``fixed_rate``: a step every ``1 / tick_rate_hz`` seconds; ``wait_for_participant``: a step only when
-  the avatar has something to do (a queued interrupt or a subtask), never faster than the tick rate.
+- ``fixed_rate``: a step every ``1 / tick_rate_hz`` seconds; ``wait_for_participant`` (the paper's clock): a
+  step only for an action of the participant's (a key's one action, or a step of their task that moves, turns
+  or works: a task whose next step would do nothing ends with its reason instead, ``server.game.steps``),
+  never faster than the tick rate.
 - **The world is paused while no participant is connected** (the researcher's choice: a dropped
   connection must not cost the participant ticks); the next step comes one period after they return.
 - Tick lateness = actual start of a step − its scheduled start (logged per tick). A late step does not
@@ -263,7 +265,7 @@ class LiveGame:
                 scheduled = pacing.scheduled(now, last_start, next_at)
             if scheduled > now:
                 await asyncio.sleep(scheduled - now)
-            if not link.connected.is_set():
+            if not link.connected.is_set() or not self._may_step():
                 continue
             started = time.monotonic()
             choice = await self._take_decision()
@@ -289,6 +291,19 @@ class LiveGame:
             log.info("trial %d (participant %s) reached its wall-clock limit of %.0f s", self.meta.trial_id,
                      self.meta.participant, pacing.times.limit_s or 0.0)
         await self.end("finished", reason)
+
+    def _may_step(self) -> bool:
+        """The paper's clock steps only for the participant's actions (``server.game.steps``): a subtask whose next
+        step would do nothing they chose ends, they are told why (and sent the unchanged state, their task gone),
+        and the world does not step. Asked right before each step, after any message that came meanwhile."""
+        if self.pacing.mode != "wait_for_participant":
+            return True
+        refused = self.engine.refused_step()
+        if refused is None:
+            return True
+        self._blocked(refused)
+        self.link.send(self.state_message())
+        return False
 
     async def _wait_for_participant(self) -> None:
         """``wait_for_participant``: the cook has nothing to do, so the world waits for the participant's next
@@ -344,9 +359,9 @@ class LiveGame:
     def _blocked(self, blocked: Blocked) -> None:
         """Tell the participant why their subtask is not getting anywhere; log it when the subtask ended."""
         if blocked.ended:
+            place = {"place": blocked.reason.place} if blocked.reason.place else {}
             self.event("subtask_blocked", {"subtask": blocked.subtask.value if blocked.subtask else None,
-                                           "reason": blocked.reason.code,
-                                           "item": blocked.reason.item})
+                                           "reason": blocked.reason.code, "item": blocked.reason.item, **place})
         self.link.send(snapshot.blocked_message(blocked))
 
     def _watch_stall(self, outcome: TickOutcome) -> None:

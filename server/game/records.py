@@ -14,8 +14,9 @@ def tick_row(trial_id: int, outcome: TickOutcome, choice: RobotChoice, lateness_
     """Joint action, the subtask the participant's action came from, modelled KB and world summaries, the
     KB-gap components and their sum, robot in the participant's FOV, lateness and decision time, the robot's
     decision record, the full world, KB and controller state (replay and resume read them), and the step's
-    world events (who loaded, chopped, washed, plated, delivered, or bumped into the other), and the seconds the
-    round has run while the participant was connected (its limit's clock)."""
+    world events (who loaded, chopped, washed, plated, delivered, or bumped into the other), what the
+    participant's cook did in the step (``controller.step``: ``server.game.steps``), and the seconds the round has
+    run while the participant was connected (its limit's clock)."""
     return {
         "trial_id": trial_id, "tick": outcome.tick, "recorded_at": utcnow(),
         "human_action": outcome.human_action.value, "robot_action": outcome.robot_action.value,
@@ -25,6 +26,6 @@ def tick_row(trial_id: int, outcome: TickOutcome, choice: RobotChoice, lateness_
         "lateness_ms": round(lateness_ms, 3),
         "decision_ms": None if choice.decision_ms is None else round(choice.decision_ms, 3),
         "robot_missed": choice.missed, "robot_info": choice.info, "world_state": outcome.world.to_dict(),
-        "kb_state": outcome.kb.to_dict(), "controller": controller,
+        "kb_state": outcome.kb.to_dict(), "controller": {**controller, "step": outcome.step},
         "world_events": [event.to_dict() for event in outcome.events], "round_seconds": round(round_seconds, 3),
     }

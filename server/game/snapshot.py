@@ -39,7 +39,7 @@ def hello(meta: TrialMeta, engine: TrialEngine, *, mode: str, rate: float, resum
 
 def blocked_message(blocked: Blocked) -> BlockedMessage:
     return BlockedMessage(subtask=blocked.subtask.value if blocked.subtask else None, reason=blocked.reason.code,
-                          item=blocked.reason.item, ended=blocked.ended)
+                          item=blocked.reason.item, place=blocked.reason.place, ended=blocked.ended)
 
 
 def state(engine: TrialEngine, *, mode: str, rate: float, ack: int) -> State:

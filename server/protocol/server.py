@@ -20,7 +20,8 @@ from study_config.study.views import ViewName
 BlockedReason = Literal[
     "hands_full", "hands_empty", "needs_item", "nothing_there", "counter_empty", "grill_busy", "steak_cooking",
     "board_busy", "nothing_to_chop", "no_garnish", "not_chopped", "already_chopped", "sink_busy", "nothing_to_wash",
-    "already_washed", "no_clean_plate", "robot_in_way", "no_way", "unknown_place", "stuck"]
+    "already_washed", "no_clean_plate", "robot_in_way", "no_way", "unknown_place", "stuck", "no_steak",
+    "taken_by_robot", "filled_by_robot", "done_by_robot"]
 """Why a subtask is not getting anywhere (``blocked`` messages; docs/protocol.md lists each with its words)."""
 
 
@@ -152,7 +153,10 @@ class Blocked(ServerMessage):
     """``null``: an ``interact`` key (an interrupt) that did nothing, for the reason given."""
     reason: BlockedReason
     item: str | None = None
-    """The object the reason names: what is needed (``needs_item``) or what is in hand (``hands_full``)."""
+    """The object the reason names: what is needed (``needs_item``), what is in hand (``hands_full``), or what the
+    robot took, put or worked on (``taken_by_robot``, ``filled_by_robot``, ``done_by_robot``)."""
+    place: str | None = None
+    """Where the robot did it (``grill``, ``board``, ``sink``, ``counter``) for the ``…_by_robot`` reasons."""
     ended: bool
 
 

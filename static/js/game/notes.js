@@ -19,6 +19,7 @@ export class TaskNote {
     this.node = h("p", { class: "task-note", id: "task-note", role: "status", "aria-live": "polite", hidden: true },
       this.text);
     this.timer = 0;
+    this.waits = false;
   }
 
   /** Say `text` (`kind`: `info` or `blocked`) for `ms` milliseconds. */
@@ -30,10 +31,12 @@ export class TaskNote {
     this.timer = window.setTimeout(() => this.clear(), ms);
   }
 
-  /** A server `blocked` message: why the current task did nothing, or why it stopped. */
+  /** A server `blocked` message: why the current task did nothing, or why it stopped. On the paper's clock
+   * (`waits`: the kitchen waits for the participant) a cooking steak needs the participant to let time pass. */
   blocked(message) {
     const why = blockedText(message);
-    const text = message.ended ? `${subtaskLabel(message.subtask)} stopped: ${why}.` : `${why}.`;
+    const wait = this.waits && message.reason === "steak_cooking" ? " Press . (stay) to let it cook." : "";
+    const text = (message.ended ? `${subtaskLabel(message.subtask)} stopped: ${why}.` : `${why}.`) + wait;
     this.node.dataset.reason = message.reason;
     this.say(text, "blocked", message.ended ? ENDED_MS : NOTICE_MS);
   }
