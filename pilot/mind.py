@@ -13,6 +13,12 @@ Each frame, with its KB (:mod:`pilot.perception`) and the subtask the server say
    robot in view beside it): with probability ``sidestep_probability`` a move interrupt to a free neighbour.
 4. Otherwise a heartbeat, so the pilot's pace knows it has acted.
 
+On the paper's clock (``wait_for_participant``), a task refused because the station it needs is still at work
+(:data:`WAIT_REASONS`: the steak is still cooking, the onion not chopped yet) is waited for as the page says: the
+simulated participant presses "." (stay) every ``wait_tap_seconds`` while the station it faces is at work
+(:func:`faced_station_working`), at most ``wait_taps`` times, and then chooses again (``pilot.client``). The world
+moves only for those presses; the simulated human of the paper waited at the station, stepping the world.
+
 Randomness comes from the ``numpy.random.Generator`` passed in (one per trial, from the pilot's seed).
 """
 
@@ -47,6 +53,10 @@ class Message:
 
 
 HEARTBEAT = Message("heartbeat")
+STAY = Message("interrupt", (("action", "stay"),))
+WAIT_REASONS = frozenset({"steak_cooking", "not_chopped"})
+"""Refusals that time answers: the station the task needs is still at work."""
+WORKING = frozenset({"cooking", "chopping", "washing"})
 
 
 @dataclass(frozen=True, slots=True)
@@ -151,3 +161,12 @@ def sidestep(layout: Layout, pos: Pos, robot: Pos, rng: np.random.Generator) -> 
 
 def interrupt(action: str) -> Message:
     return Message("interrupt", (("action", action),))
+
+
+def faced_station_working(state: Mapping[str, Any]) -> bool:
+    """Whether the cell the cook faces (always in view) is a station still at work in this frame."""
+    you = state["you"]
+    x, y = Direction(you["facing"]).ahead((you["x"], you["y"]))
+    cell = next((c for c in state["cells"] if (c["x"], c["y"]) == (x, y)), None)
+    station = cell.get("station") if cell is not None else None
+    return station is not None and station["state"] in WORKING

@@ -170,6 +170,15 @@ class TrialRow(Base):
     engagement_reason: Mapped[str | None] = mapped_column(String(200), nullable=True)
     """Why the main trial is ``low_engagement`` (``server.flow.engagement``); NULL when the participant took
     part."""
+    task_steps: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """The participant's task steps: their cook's interactions that changed the world (``store.activity``; NULL
+    until the trial ended, and for trials stored before revision 0010)."""
+    robot_task_steps: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """The robot's task steps."""
+    stand_ticks: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """World steps in which the participant had no executable action (``server.game.steps``)."""
+    think_seconds: Mapped[float | None] = mapped_column(Float, nullable=True)
+    """Wall-clock seconds the cook had nothing to do while the participant was connected (deciding)."""
 
 
 class TickRow(Base):

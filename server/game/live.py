@@ -295,15 +295,16 @@ class LiveGame:
     def _may_step(self) -> bool:
         """The paper's clock steps only for the participant's actions (``server.game.steps``): a subtask whose next
         step would do nothing they chose ends, they are told why (and sent the unchanged state, their task gone),
-        and the world does not step. Asked right before each step, after any message that came meanwhile."""
+        and the world does not step; nor does it for a cook left with nothing to do meanwhile (a ``stop``). Asked
+        right before each step, after any message that came meanwhile."""
         if self.pacing.mode != "wait_for_participant":
             return True
         refused = self.engine.refused_step()
-        if refused is None:
-            return True
-        self._blocked(refused)
-        self.link.send(self.state_message())
-        return False
+        if refused is not None:
+            self._blocked(refused)
+            self.link.send(self.state_message())
+            return False
+        return self.pacing.fast or self.engine.controller.has_action()
 
     async def _wait_for_participant(self) -> None:
         """``wait_for_participant``: the cook has nothing to do, so the world waits for the participant's next

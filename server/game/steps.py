@@ -18,18 +18,16 @@ task before such a step, so the world does not move for it; ``wait`` steps are b
 
 from __future__ import annotations
 
-from typing import Literal
-
 from planner.events import Event, EventKind
 from planner.geometry import Action
 from planner.layout import Layout
 from planner.rules import Rules
 from planner.state import WorldState
 from planner.step import step
+from store.activity import NOT_EXECUTABLE, StepKind
 
-StepKind = Literal["key", "walk", "work", "wait", "stand", "idle"]
-NOT_EXECUTABLE: frozenset[StepKind] = frozenset({"stand", "idle"})
-"""The steps in which the participant had no executable action."""
+__all__ = ["NOT_EXECUTABLE", "StepKind", "acted", "step_kind", "would_act"]
+
 
 
 def acted(events: tuple[Event, ...], agent: str = "human") -> bool:

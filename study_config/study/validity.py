@@ -29,6 +29,10 @@ think 0.5–3 s per choice): their highest per-trial idle share was 70.8 % (``fi
 about 10 s, within reach of a slow but real player), while a participant who never acts has 100 %."""
 
 
+DEFAULT_MIN_TASK_STEP_PCT = 0.0
+"""A main trial in which the participant made less than this share of the team's task steps is low-engagement."""
+
+
 RoundStatus = Literal["running", "abandoned", "low_engagement", "robot_invalid", "finished"]
 RUNNING: RoundStatus = "running"
 ABANDONED: RoundStatus = "abandoned"
@@ -64,6 +68,10 @@ class Validity(StudyModel):
     min_participant_actions: int = Field(default=1, ge=0)
     """A main trial with fewer of the participant's actions (task choices plus interrupts) is
     ``low_engagement``: the robot played it alone."""
+    min_task_step_pct: float = Field(default=DEFAULT_MIN_TASK_STEP_PCT, ge=0, le=100)
+    """A main trial in which the participant made less than this share of the team's task steps (interactions
+    that changed the world), in %, is ``low_engagement``: the robot did the work while they held or tapped a key,
+    or chose tasks that got nowhere (0 turns the rule off)."""
     max_idle_pct: float = Field(default=DEFAULT_MAX_IDLE_PCT, ge=0, le=100)
     """A main trial whose cook had nothing to do (no task, no key waiting) for more than this share of its tick
     periods (``idle_pct``; in ``wait_for_participant`` the time the world waited counts at the tick rate) is

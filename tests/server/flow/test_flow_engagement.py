@@ -23,12 +23,12 @@ def test_a_round_with_no_actions_or_an_idle_cook_is_low_engagement():
     rules = Validity()
     assert engagement_problem(PLAYED, rules) is None
     idle = replace(PLAYED, selections=0, interrupts=0, idle_ticks=120)
-    assert engagement_problem(idle, rules) == "low_engagement: 0 participant action(s), fewer than 1"
+    assert str(engagement_problem(idle, rules)) == "low_engagement: 0 participant action(s), fewer than 1"
     # Under the waiting clock the idle share is the waited time at the tick rate: 200 s at 5 Hz = 1000 periods.
     waited = replace(PLAYED, idle_ticks=0, waited_seconds=200.0)
     assert waited.idle_pct == pytest.approx(100 * 1000 / 1120)
     assert engagement_problem(waited, rules) is None, "89.3 % is within the default 95 %"
-    assert engagement_problem(waited, Validity(max_idle_pct=80)) == ("low_engagement: the cook was idle 89.3 % of "
+    assert str(engagement_problem(waited, Validity(max_idle_pct=80))) == ("low_engagement: the cook was idle 89.3 % of "
                                                                      "the round, more than 80 %")
     assert engagement_problem(PLAYED, Validity(min_participant_actions=16)) is not None
     assert replace(PLAYED, ticks=0, idle_ticks=0).idle_pct is None
