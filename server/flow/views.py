@@ -63,7 +63,8 @@ def session_view(loaded: LoadedStudy, row: ParticipantRow,
         "device": _device(row, study.device),
         "notice": "round_ended_away" if facts is not None and facts.previous_ended_away else None,
     }
-    texts = study_length(study).placeholders()
+    texts = study_length(study, (sum(s.trial_kind == "practice" for s in trial_steps),
+                                 sum(s.trial_kind == "main" for s in trial_steps))).placeholders()
     if phase is Phase.CONSENT:
         view["consent"] = fill_placeholders(study.consent, texts)
     elif phase is Phase.INSTRUCTIONS:
@@ -79,7 +80,8 @@ def session_view(loaded: LoadedStudy, row: ParticipantRow,
                          "kind_total": sum(1 for s in progress.plan if s.trial_kind == step.trial_kind),
                          "scored": step.trial_kind == "main",
                          "status": facts.current if facts is not None else None,
-                         "view": step.view or DEFAULT_VIEW, "websocket": "/ws/play"}
+                         "view": step.view or DEFAULT_VIEW, "websocket": "/ws/play",
+                         "kitchen_waits": study.timing.mode == "wait_for_participant"}
     elif phase is Phase.QUESTIONNAIRE:
         questionnaire = next(q for q in study.questionnaires if q.id == step.questionnaire)
         view["questionnaire"] = {
