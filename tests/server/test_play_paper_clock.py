@@ -58,3 +58,42 @@ def test_a_refused_step_moves_nothing_and_says_why_while_keys_and_walks_step(liv
     steps = [r.controller["step"] for r in rows]
     assert steps[0] == "key" and set(steps[1:meat["tick"]]) <= {"walk", "work", "wait"}
     assert steps[meat["tick"] - 1] == "work"
+
+
+def test_a_waiting_participant_is_reminded_warned_counted_down_and_told_the_true_reason(live_server, study_file):
+    clock = ManualClock()
+    timing = {**PAPER, "idle_nudge_seconds": 10, "max_round_seconds": 120}
+    server = live_server([study_file(timing=timing, recruiting={"screen_out_code": "OUT-1"})], clock=clock)
+
+    async def scenario():
+        player = Player(server.url)
+        await player.ready()
+        sock = await player.socket()
+        await sock.until(lambda m: m["type"] == "state")
+        await sock.send("interrupt", action="stay")  # one key: an action, no task step
+        await sock.until(lambda m: m["type"] == "state" and m["tick"] == 1)
+        clock.advance(10.0)
+        first = await sock.until(lambda m: m["type"] == "nudge")
+        clock.advance(10.0)
+        second = await sock.until(lambda m: m["type"] == "nudge")
+        warned = await sock.until(lambda m: m["type"] == "warning")
+        clock.advance(40.0)  # 60 s left
+        countdown = await sock.until(lambda m: m["type"] == "countdown")
+        last_warning = await sock.until(lambda m: m["type"] == "warning")
+        clock.advance(60.0)
+        end = await sock.until(lambda m: m["type"] == "trial_end")
+        await sock.close()
+        session = await player.session()
+        await player.close()
+        return first, second, warned, countdown, last_warning, end, session, sock.received
+
+    first, second, warned, countdown, last_warning, end, session, received = asyncio.run(scenario())
+    assert (first["repeat"], second["repeat"]) == (1, 2), "the nudge repeats"
+    assert warned["rule"] == "idle" and warned["seconds_left"] == 100
+    assert countdown["seconds_left"] == 60 and last_warning["seconds_left"] == 60
+    assert not any(m["type"] == "warning" for m in received[:received.index(second)]), "not at the first nudge"
+    assert (end["reason"], end["next"]) == ("time_limit", "screened_out")
+    completion = session["completion"]
+    assert completion["reason"] == "low_engagement"
+    assert completion["detail"]["rule"] == "idle" and completion["detail"]["round"] == 1
+    assert completion["detail"]["value"] > 99 and completion["detail"]["limit"] == 95

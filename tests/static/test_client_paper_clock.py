@@ -79,3 +79,43 @@ def test_on_the_fixed_clock_a_held_key_repeats(study_server, new_page):
     page.wait_for_function("() => true")
     time.sleep(0.3)
     assert len(sent) > 1 and set(sent) == {"stay"}, sent
+
+
+def test_a_waiting_participant_sees_the_countdown_and_is_warned_while_they_can_still_act(study_server, new_page):
+    page, _ = new_page()
+    page.goto(study_server.link("browser_paper_clock_warned", PROLIFIC_PID="paper-clock-warned-1"))
+    for selector in ("#consent-agree", "#instructions-done"):
+        page.wait_for_selector(selector)
+        page.click(selector)
+    page.wait_for_selector("#clock-note")
+    assert page.inner_text("#clock-note").startswith("The kitchen waits for you")
+    page.click("#start-round")
+    wait_drawn(page)
+    page.wait_for_function("() => !document.querySelector('#hud-countdown').hidden", timeout=TIMEOUT_MS)
+    shown = page.inner_text("#hud-countdown")
+    assert shown in {f"Round ends in {m}:{s:02d}" for m in (0, 1) for s in range(60) if m * 60 + s <= 60}, shown
+    page.wait_for_function("() => (document.querySelector('#task-note').dataset.reason || '')"
+                           ".startsWith('would_not_count')", timeout=TIMEOUT_MS)
+    assert page.inner_text("#task-note") == "Take part, or this round will not count: choose a task."
+    screenshot(page, "paper_clock_warned")
+
+
+def test_the_end_page_states_each_rule_as_measured_and_nothing_untrue(module_page):
+    got = module_page.evaluate("""async () => {
+      const { screenedOutText } = await import('/js/pages/finish.js');
+      const detail = (rule, value, limit) => ({ reason: 'low_engagement', detail: { rule, value, limit, round: 2 } });
+      return {
+        none: screenedOutText(detail('no_actions', 0, 1)),
+        idle: screenedOutText(detail('idle', 99.6, 95)),
+        steps: screenedOutText(detail('task_steps', 3.2, 10)),
+        legacy: screenedOutText({ reason: 'low_engagement' }),
+        away: screenedOutText({ reason: 'abandoned_rounds' }),
+      };
+    }""")
+    assert got["none"].startswith("In round 2 you did not choose a task or press a key, so that round cannot count.")
+    assert got["idle"].startswith("In round 2 your cook stood with nothing to do for 99.6 % of the round (this study "
+                                  "allows at most 95 %)")
+    assert got["steps"].startswith("In round 2 the robot did almost all of the work: your cook did 3.2 % of the "
+                                   "team's steps (this study asks for at least 10 %)")
+    assert all("completion code" in text for text in got.values())
+    assert "no task chosen" not in got["legacy"] and "connection" in got["away"]

@@ -12,6 +12,14 @@ import { subtaskLabel } from "../labels.js";
 const NOTICE_MS = 3500;
 const ENDED_MS = 6000;
 const HINT_MS = 8000;
+const WARNING_MS = 20000;
+
+/** Why the round would not count if it ended now (server/flow/engagement.py's rules), and what to do. */
+export const WARNINGS = {
+  no_actions: "Take part, or this round will not count: choose a task.",
+  idle: "Choose your next task, or this round will not count.",
+  task_steps: "The robot is doing all the work: choose tasks, or this round will not count.",
+};
 
 export class TaskNote {
   constructor() {
@@ -39,6 +47,12 @@ export class TaskNote {
     const text = (message.ended ? `${subtaskLabel(message.subtask)} stopped: ${why}.` : `${why}.`) + wait;
     this.node.dataset.reason = message.reason;
     this.say(text, "blocked", message.ended ? ENDED_MS : NOTICE_MS);
+  }
+
+  /** A server `warning`: the round so far would not count (its `rule`); said until the participant acts. */
+  warning(message) {
+    this.node.dataset.reason = `would_not_count:${message.rule}`;
+    this.say(WARNINGS[message.rule] || WARNINGS.no_actions, "warning", WARNING_MS);
   }
 
   /** A server `stall_hint`: the team got nothing done for a while; a hint from what the participant knows. */

@@ -180,6 +180,12 @@ function playRound(root, ctx, onFinished) {
     onNudge(message) {
       note.say(message.text, "nudge", 8000);
     },
+    onCountdown(message) {
+      hud.countDown(message.seconds_left);
+    },
+    onWarning(message) {
+      note.warning(message);
+    },
     onStallHint(message) {
       note.hint(message);
     },
@@ -220,6 +226,7 @@ function playRound(root, ctx, onFinished) {
   const activity = new Activity((type, fields) => conn.send(type, fields), { idleMs: IDLE_MS });
 
   function cleanup() {
+    hud.pauseCountdown();
     window.removeEventListener("beforeunload", confirmLeaving);
     conn.stop();
     if (view) view.destroy();
