@@ -33,7 +33,7 @@ from store.tables import EventRow, TickRow, TrialRow
 
 KEY_ACTIONS = frozenset({"up", "down", "left", "right", "stay", "interact"})
 
-StepKind = Literal["key", "walk", "work", "wait", "stand", "idle"]
+StepKind = Literal["key", "walk", "work", "wait", "look", "stand", "idle"]
 """What the participant's cook did in a world step (``ticks.controller.step``, written by ``server.game.steps``)."""
 NOT_EXECUTABLE: frozenset[str] = frozenset({"stand", "idle"})
 """The steps in which the participant had no executable action."""

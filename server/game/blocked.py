@@ -30,9 +30,10 @@ from server.game.changes import Category, Changes
 from server.game.needs import NEEDS, NOTHING, SOMETHING, hands_fit
 from server.protocol.server import BlockedReason
 
-Intent = Literal["interact", "move", "wait", "no_target", "idle"]
+Intent = Literal["interact", "move", "wait", "no_target", "look", "idle"]
 """What the cook tried this step for its subtask: interact with the target it faces, move toward it, wait for
-the way to clear, or nothing because no target is known (``idle``: no subtask)."""
+the way to clear, nothing because no target is known, or (the paper's clock) look at a target the participant
+sees but does not know yet (``idle``: no subtask)."""
 
 NOTICE_AFTER_MOVES = 3
 """Steps a move must stay blocked before the participant is told (the robot often steps aside at once)."""
@@ -214,6 +215,6 @@ class Stall:
         (a new reason; a blocked move only after :data:`NOTICE_AFTER_MOVES` steps)."""
         ticks = 0 if moved_on else self.ticks + 1
         latest = reason if reason is not None else (None if moved_on else self.reason)
-        due = intent not in ("move", "wait") or ticks >= NOTICE_AFTER_MOVES
+        due = intent not in ("move", "wait", "look") or ticks >= NOTICE_AFTER_MOVES
         tell = reason is not None and reason != self.told and due
         return Stall(ticks, latest, reason if tell else self.told), tell

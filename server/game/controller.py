@@ -95,6 +95,8 @@ class ParticipantController:
         """Who last changed each cell (``server.game.changes``): a refusal there names what the robot did."""
         self.aims: tuple[Pos, ...] = ()
         """The cells the current subtask was heading for at its last step (its targets on the modelled KB)."""
+        self.looking = False
+        """The paper's clock: this step looks at a target the participant sees but does not know yet."""
 
     def select(self, subtask: Subtask, held: str | Unchecked | None = UNCHECKED) -> Blocked | None:
         """Make ``subtask`` the current one (dropping queued interrupts), unless it cannot work with ``held``
@@ -144,27 +146,35 @@ class ParticipantController:
         elif action is not Action.STAY:
             self.intent = "move"
         else:
-            self.intent = "wait" if wants_move else "no_target"
+            self.intent = "wait" if wants_move else "look" if self.looking else "no_target"
         return action, "subtask"
 
-    def refuse_step(self, world: WorldState, kb: KnowledgeBase, rng: np.random.Generator) -> Blocked | None:
+    def refuse_step(self, world: WorldState, kb: KnowledgeBase, rng: np.random.Generator,
+                    look_steps: int = 0) -> Blocked | None:
         """The paper's clock, before a step: when the current subtask's next step (the one :meth:`decide` would
         take with ``rng``, the avatar's generator of this tick) would do nothing the participant chose — no target
         known, an interaction that would do nothing, or a way blocked for :data:`PATIENCE_STEPS` steps — the
         subtask ends here with its reason (``ended``) and the world must not step for it. ``None``: the step
-        goes ahead (a key waiting, no subtask, or a step that moves, turns or works)."""
+        goes ahead (a key waiting, no subtask, or a step that moves, turns or works).
+
+        One exception keeps reasons true: a target the participant sees in their view now but does not know yet
+        (their modelled KB takes a change in after ``kb_delay`` steps in view, docs/domain.md §3) is looked at for
+        up to ``look_steps`` steps (the study's ``kb_delay``) rather than refused with "The grill is busy" while
+        they watch it stand free; those steps are ``look`` in the record."""
         subtask = self.subtask
         if self.queue or subtask is None:
             return None
         watch = self.robot_watch.seen(world)
         action, wants_move = avatar_move(self.model, self.angle, world, kb, subtask, watch, rng)
         reason: Reason | None = None
+        self.looking = False
         if action is Action.INTERACT:
             if not would_act(self.layout, world, self.rules):
                 reason = interaction_reason(self.layout, world, self.rules) or Reason("stuck")
                 reason = explained(reason, self.changes, (self._faced(world),))
         elif action is Action.STAY and not wants_move:
-            reason = explained(no_target_reason(subtask), self.changes, self.aims)
+            self.looking = self.stall.ticks < look_steps and self._sees_target(world, subtask)
+            reason = None if self.looking else explained(no_target_reason(subtask), self.changes, self.aims)
         elif action is Action.STAY and self.stall.ticks >= PATIENCE_STEPS:
             reason = self.stall.reason or self._blocked_way(world)
         if reason is None:
@@ -173,6 +183,12 @@ class ParticipantController:
         self.stall = Stall()
         self.worked = False
         return Blocked(subtask, reason, ended=True)
+
+    def _sees_target(self, world: WorldState, subtask: Subtask) -> bool:
+        """Whether a target of ``subtask`` in the world itself is in the participant's view now."""
+        human = world.human
+        seen = view(self.layout, human.pos, human.facing, self.angle).cells
+        return any(cell in seen for cell in targets(self.layout, subtask, world, self.rules))
 
     def believed(self, world: WorldState, kb: KnowledgeBase) -> Believed:
         return self.model.believed(world, kb)
@@ -226,6 +242,8 @@ class ParticipantController:
 
     def _why(self, after: WorldState, moved_on: bool) -> Reason | None:
         """Why this step of the subtask did nothing, from what the participant can see now."""
+        if self.intent == "look":
+            return None
         if self.intent == "interact":
             reason = interaction_reason(self.layout, after, self.rules)
             return None if reason is None else explained(reason, self.changes, (self._faced(after),))

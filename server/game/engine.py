@@ -83,7 +83,8 @@ class TrialEngine:
         nothing they chose (``ParticipantController.refuse_step``); the world must then not step."""
         if self.done:
             return None
-        return self.controller.refuse_step(self.world, self.kb, avatar_rng(self.seed, self.world.tick))
+        return self.controller.refuse_step(self.world, self.kb, avatar_rng(self.seed, self.world.tick),
+                                           look_steps=self.kb_delay)
 
     def advance(self, robot_action: Action) -> TickOutcome:
         """Step the world once with the participant's action and ``robot_action``."""
@@ -96,7 +97,7 @@ class TrialEngine:
         world, events = step(self.layout, before, {"human": human_action, "robot": robot_action}, self.rules)
         kb = update_kb(self.kb, self.layout, world, angle=self.angle, kb_delay=self.kb_delay,
                        own_events=[e for e in events if e.agent == "human"])
-        kind = step_kind(source, human_action, before, world, events, self.controller.intent == "wait")
+        kind = step_kind(source, human_action, before, world, events, self.controller.intent)
         finished = self.controller.observe(before, world, kb)
         blocked = self.controller.review(before, world, events, kb)
         self.world, self.kb, self.last_events = world, kb, events

@@ -7,6 +7,8 @@ Every stored tick says what the participant's cook did in it (``ticks.controller
 - ``walk``: a step along the chosen task's path (a move or a turn);
 - ``work``: an interaction of the task that changed the world (picked up, put down, chopped, …);
 - ``wait``: the task's path waited for the robot to clear the way (or bumped into it);
+- ``look``: the paper's clock: the task looked at a target the participant sees but does not know yet (their
+  modelled KB takes a change in after the study's ``kb_delay`` steps in view), at most ``kb_delay`` steps;
 - ``stand``: the task did nothing the participant chose: no target known, or an interaction that did nothing;
 - ``idle``: no task and no key (only the fixed clock steps then).
 
@@ -42,9 +44,9 @@ def would_act(layout: Layout, world: WorldState, rules: Rules) -> bool:
 
 
 def step_kind(source: str, action: Action, before: WorldState, after: WorldState,
-              events: tuple[Event, ...], wanted_move: bool) -> StepKind:
+              events: tuple[Event, ...], intent: str) -> StepKind:
     """What the participant's cook did in the step from ``before`` to ``after`` (``source``: ``interrupt``,
-    ``subtask`` or ``idle``; ``wanted_move``: the task's path wanted to move on but stayed for the robot)."""
+    ``subtask`` or ``idle``; ``intent``: what the task tried, ``server.game.blocked.Intent``)."""
     if source == "interrupt":
         return "key"
     if source != "subtask":
@@ -52,6 +54,6 @@ def step_kind(source: str, action: Action, before: WorldState, after: WorldState
     if action is Action.INTERACT:
         return "work" if acted(events) else "stand"
     if action is Action.STAY:
-        return "wait" if wanted_move else "stand"
+        return "wait" if intent == "wait" else "look" if intent == "look" else "stand"
     h0, h1 = before.human, after.human
     return "walk" if (h0.pos, h0.facing) != (h1.pos, h1.facing) else "wait"

@@ -38,14 +38,15 @@ def beside(layout: Layout, target: Pos) -> tuple[Pos, Direction]:
 
 def frames_until_reply(loaded: LoadedStudy, engine: TrialEngine, config: ParticipantConfig,
                        frames: int) -> list[dict[str, Any]]:
-    """The messages answering ``frames`` frames of a world that stands still (the participant watching)."""
+    """The messages answering ``frames`` frames, one a tick, of a world that stands still (the participant
+    watching)."""
     layout = engine.layout
     seen = Perception(layout.width, layout.height, tuple(loaded.layouts.values()))
     mind = Mind(last=engine.controller.subtask)
     rng = np.random.default_rng(3)
     out = []
-    for _ in range(frames):
-        frame = snapshot.state(engine, mode="fixed_rate", rate=5.0, ack=0).model_dump(mode="json")
+    for tick in range(frames):
+        frame = {**snapshot.state(engine, mode="fixed_rate", rate=5.0, ack=0).model_dump(mode="json"), "tick": tick}
         seen, mind, body = respond(mind, seen, frame, NEEDS_BY_NAME, loaded, config, rng)
         out.append(body)
     return out
@@ -84,13 +85,13 @@ def test_it_corrects_in_one_step_by_putting_the_meat_on_a_free_counter(paper) ->
     seen = Perception(layout.width, layout.height, tuple(paper.layouts.values()))
     mind, rng = Mind(last=Subtask.DROP_MEAT), np.random.default_rng(3)
     watching = ParticipantConfig(notice_probability=0.0)
-    for _ in range(3):
-        frame = snapshot.state(engine, mode="fixed_rate", rate=5.0, ack=0).model_dump(mode="json")
+    for tick in range(3):
+        frame = {**snapshot.state(engine, mode="fixed_rate", rate=5.0, ack=0).model_dump(mode="json"), "tick": tick}
         seen, mind, _ = respond(mind, seen, frame, NEEDS_BY_NAME, paper, watching, rng)
     counter = next(c for c in layout.counters if _reachable_side(layout, c))
     pos, facing = beside(layout, counter)
     engine.world = replace(engine.world, human=AgentState(pos, facing, MEAT))
-    frame = snapshot.state(engine, mode="fixed_rate", rate=5.0, ack=0).model_dump(mode="json")
+    frame = {**snapshot.state(engine, mode="fixed_rate", rate=5.0, ack=0).model_dump(mode="json"), "tick": 3}
     correcting = ParticipantConfig(notice_probability=1.0, stop_weight=0, replace_weight=0, correct_weight=1)
     _, _, body = respond(mind, seen, frame, NEEDS_BY_NAME, paper, correcting, rng)
     assert body == {"type": "interrupt", "action": "interact"}
@@ -120,3 +121,13 @@ def test_whole_trials_have_interrupts_and_get_the_dishes_out(paper) -> None:
             delivered += paper.rules.orders - trial.engine.world.orders_left
     assert interrupts > 0
     assert delivered >= 8
+
+
+def test_a_frame_sent_again_at_the_same_tick_teaches_nothing(paper) -> None:
+    """The paper's clock tells a refused step with the unchanged state: the KB rule counts ticks, not frames."""
+    engine = carrying_meat_to_a_busy_grill(paper)
+    layout = engine.layout
+    seen = Perception(layout.width, layout.height, tuple(paper.layouts.values()))
+    frame = snapshot.state(engine, mode="wait_for_participant", rate=5.0, ack=0).model_dump(mode="json")
+    once = seen.observe(frame, 120.0, 3)
+    assert once.observe(frame, 120.0, 3) is once

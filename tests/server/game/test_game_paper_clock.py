@@ -176,3 +176,15 @@ def test_the_robot_taking_a_steak_is_remembered_from_the_world_steps_themselves(
     engine.controller.select(Subtask.PICKUP_STEAK, CLEAN_PLATE)
     refused = engine.refused_step()
     assert refused is not None and refused.reason == Reason("taken_by_robot", "steak", "grill")
+
+
+def test_a_free_grill_the_participant_sees_but_does_not_know_yet_is_looked_at_not_refused():
+    # Their knowledge still has the grill busy; they stand facing it, free. "The grill is busy" would be false.
+    engine = engine_at(world_with(pos=GRILL_SPOT, facing=Direction.EAST, held=MEAT, grill=None))
+    engine.kb = replace(engine.kb, grills=(4,), streaks=())
+    engine.kb_delay = 3
+    engine.controller.select(Subtask.DROP_MEAT, MEAT)
+    outcomes, refused = paper_steps(engine, 10)
+    assert refused == [] and engine.world.grills != (None,), "the meat went on once what they saw had registered"
+    assert [o.step for o in outcomes] == ["look"] * 3 + ["work"]
+    assert all(o.blocked is None for o in outcomes), "no false notice meanwhile"
