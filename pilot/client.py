@@ -32,9 +32,10 @@ from websockets.exceptions import ConnectionClosed
 
 from pilot.answers import answer
 from pilot.config import ParticipantConfig
-from pilot.mind import STAY, WAIT_REASONS, Mind, decide, faced_station_working
+from pilot.mind import STAY, WAIT_REASONS, Mind, decide, faced_station_working, told_refused
 from pilot.perception import Perception
 from pilot.scripts import Script
+from planner.subtasks import Subtask
 from study_config.catalog import LoadedStudy
 
 
@@ -276,9 +277,11 @@ class SimulatedParticipant:
                             continue
                         seen, mind, body = respond(mind, seen, message, needs, loaded, config, rng, angle)
                         await send(ws, body)
-                    elif (kind == "blocked" and realtime and paper_clock and message["ended"]
-                          and message["reason"] in WAIT_REASONS and (thinking is None or thinking.done())):
-                        thinking = asyncio.create_task(wait_then_choose(ws))
+                    elif kind == "blocked" and message["ended"] and message["subtask"] and latest:
+                        mind = told_refused(mind, Subtask(message["subtask"]), int(latest["tick"]))
+                        if (realtime and paper_clock and message["reason"] in WAIT_REASONS
+                                and (thinking is None or thinking.done())):
+                            thinking = asyncio.create_task(wait_then_choose(ws))
                     elif (kind == "ack" and realtime and message["subtask"] is None and not message["queued"]
                           and latest and (thinking is None or thinking.done())):
                         # Stopped, or a choice refused: under wait_for_participant no frame comes until it acts.

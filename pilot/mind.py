@@ -4,7 +4,9 @@ Each frame, with its KB (:mod:`pilot.perception`) and the subtask the server say
 
 1. **No subtask running**: after ``decision_latency_ticks`` frames it chooses, by the simulated human's rule
    (docs/domain.md §4, paper §IV-A: uniformly at random among the subtasks available in its KB), or, with
-   probability ``error_rate``, at random among the subtasks that fit what the cook holds (``hello.needs``).
+   probability ``error_rate``, at random among the subtasks that fit what the cook holds (``hello.needs``). It
+   reads the page: a task the page just said cannot work (a ``blocked`` that ended it) is not chosen again before
+   the world moves on; when its rule offers only that task, it chooses among the others that fit its hands.
 2. **A subtask running that what it now sees makes pointless or impossible** (not available in its KB any
    more, or no believed target left): noticed with probability ``notice_probability`` per frame, then handled
    by a stop interrupt, a replacing choice, or a one-step correction (``interact`` to put what it holds on the
@@ -24,7 +26,7 @@ Randomness comes from the ``numpy.random.Generator`` passed in (one per trial, f
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -69,6 +71,16 @@ class Mind:
     pose: tuple[Pos, str] | None = None
     interrupts: int = 0
     kb_gap_sum: float = 0.0
+    refused: frozenset[Subtask] = frozenset()
+    """Tasks the page said cannot work (a ``blocked`` that ended them) at tick :attr:`refused_at`: not chosen again
+    before the world has moved on."""
+    refused_at: int | None = None
+
+
+def told_refused(mind: Mind, subtask: Subtask, tick: int) -> Mind:
+    """The mind after the page said ``subtask`` cannot work (at ``tick``)."""
+    before = mind.refused if mind.refused_at == tick else frozenset()
+    return replace(mind, refused=before | {subtask}, refused_at=tick)
 
 
 def fits(subtask: Subtask, held: str | None, needs: Mapping[str, str]) -> bool:
@@ -88,6 +100,8 @@ def decide(mind: Mind, seen: Perception, state: Mapping[str, Any], needs: Mappin
     running = Subtask(state["subtask"]) if state["subtask"] else None
     still = mind.still + 1 if running is not None and pose == mind.pose else 0
     mind = replace(mind, pose=pose, still=still)
+    if mind.refused and state.get("tick") != mind.refused_at:
+        mind = replace(mind, refused=frozenset(), refused_at=None)
     if hud["orders_left"] == 0 or hud["ticks_left"] == 0 or seen.kb is None:
         return HEARTBEAT, mind
     kb, layout, held = seen.kb, seen.layout, you["held"]
@@ -96,7 +110,7 @@ def decide(mind: Mind, seen: Perception, state: Mapping[str, Any], needs: Mappin
     if running is None:
         if mind.idle + 1 < config.decision_latency_ticks:
             return HEARTBEAT, replace(mind, idle=mind.idle + 1)
-        choice = choose(believed, rules, mind.last, held, needs, config, rng)
+        choice = choose(believed, rules, mind.last, held, needs, config, rng, avoid=mind.refused)
         return Message("select_subtask", (("subtask", choice.value),)), replace(mind, idle=0, last=choice)
     mind = replace(mind, last=running, idle=0)
     if pointless(running, believed, layout, rules) and rng.random() < config.notice_probability:
@@ -111,12 +125,15 @@ def decide(mind: Mind, seen: Perception, state: Mapping[str, Any], needs: Mappin
 
 
 def choose(believed: Believed, rules: Rules, last: Subtask | None, held: str | None, needs: Mapping[str, str],
-           config: ParticipantConfig, rng: np.random.Generator, avoid: Subtask | None = None) -> Subtask:
-    """The simulated human's rule, or with probability ``error_rate`` any subtask that fits the hands."""
+           config: ParticipantConfig, rng: np.random.Generator, avoid: Collection[Subtask] = ()) -> Subtask:
+    """The simulated human's rule, or with probability ``error_rate`` any subtask that fits the hands; never one of
+    ``avoid`` (a task just refused, or the one being replaced) while another fits the hands."""
     if rng.random() < config.error_rate:
-        options = tuple(s for s in Subtask if fits(s, held, needs) and s is not avoid)
+        options = tuple(s for s in Subtask if fits(s, held, needs) and s not in avoid)
     else:
-        options = tuple(s for s in available(believed, rules, last) if s is not avoid)
+        options = tuple(s for s in available(believed, rules, last) if s not in avoid)
+    if not options:
+        options = tuple(s for s in Subtask if fits(s, held, needs) and s not in avoid)
     if not options:
         options = available(believed, rules, last)
     return options[int(rng.integers(len(options)))]
@@ -138,7 +155,7 @@ def react(mind: Mind, running: Subtask, believed: Believed, seen: Perception, st
         return interrupt("interact"), replace(mind, interrupts=mind.interrupts + 1)
     if draw < stop or (draw >= stop + replace_w and rng.random() < 0.5):
         return interrupt("stop"), replace(mind, interrupts=mind.interrupts + 1, last=None, idle=0)
-    choice = choose(believed, rules, running, you["held"], needs, config, rng, avoid=running)
+    choice = choose(believed, rules, running, you["held"], needs, config, rng, avoid=(running,))
     return Message("select_subtask", (("subtask", choice.value),)), replace(mind, last=choice)
 
 
