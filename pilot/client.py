@@ -21,7 +21,7 @@ import contextlib
 import functools
 import json
 import ssl
-from collections.abc import Callable
+from collections.abc import Awaitable, Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -112,6 +112,9 @@ class Seat:
     keep_frames: bool = False
     script: Script | None = None
     """Play every round by this script (a participant gaming the rules) instead of the simulated participant."""
+    sleep: Callable[[float], Awaitable[None]] = asyncio.sleep
+    """How its wall-clock waits pass (think time, key taps, a script's pace): tests pass one that moves the server's
+    injected clock."""
 
 
 class SimulatedParticipant:
@@ -234,7 +237,7 @@ class SimulatedParticipant:
             """The paper's clock, a task refused while its station works: press stay while the faced station is at
             work (at most ``wait_taps`` times), then think and choose again."""
             for _ in range(config.wait_taps):
-                await asyncio.sleep(config.wait_tap_seconds)
+                await self.seat.sleep(config.wait_tap_seconds)
                 if not latest or not faced_station_working(latest):
                     break
                 await send(ws, STAY.body())
@@ -243,7 +246,7 @@ class SimulatedParticipant:
         async def think_then_choose(ws: Any, seconds: float) -> None:
             """Wait ``seconds`` of wall-clock time, then choose from the latest frame and what it knows now."""
             nonlocal mind
-            await asyncio.sleep(seconds)
+            await self.seat.sleep(seconds)
             assert seen is not None
             reply, mind = decide(mind, seen, latest, needs, loaded.rules, config, rng)
             if reply.type != "heartbeat":
@@ -311,7 +314,7 @@ class SimulatedParticipant:
         async def pace(mode: str, rate: float) -> None:
             sent = 0
             while (delay := script.delay(mode, rate, sent)) is not None:
-                await asyncio.sleep(delay)
+                await self.seat.sleep(delay)
                 await send(ws, script.send(held, needs, rng))
                 sent += 1
 

@@ -88,14 +88,14 @@ def markdown(rows: Sequence[CellReport], screened_out: Mapping[str, int] | None 
              "| ticks with no executable action | think time / trial (/ choice) | excluded trials |",
              "|---|---|---|---|---|---|---|---|"]
     for r in [*rows, _total(rows)] if rows else []:
-        per_choice = r.think_seconds / r.selections if r.selections else 0.0
+        per_choice = f"{r.think_seconds / r.selections:.1f} s" if r.selections else "no choice"
         excluded = f"{r.low_engagement} low-engagement, {r.robot_invalid} robot-invalid"
         lines.append(
             f"| {r.robot} × {r.kitchen} | {r.trials} "
             f"| {r.dishes_participant} of {r.dishes_team} ({_pct(r.dish_share)}) "
             f"| {r.task_steps_participant} of {r.task_steps_team} ({_pct(r.task_step_share)}) "
             f"| {r.refused_steps / r.trials:.2f} | {r.stand_ticks} "
-            f"| {r.think_seconds / r.trials:.1f} s ({per_choice:.1f} s) | {excluded} |")
+            f"| {r.think_seconds / r.trials:.1f} s ({per_choice}) | {excluded} |")
     if screened_out is not None:
         reasons = ", ".join(f"{n} {reason.replace('_', ' ')}" for reason, n in sorted(screened_out.items()))
         lines.append("")

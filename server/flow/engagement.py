@@ -11,7 +11,13 @@ A round is low-engagement when, in order (the first that applies is its reason, 
   the waited time at the tick rate) is above ``validity.max_idle_pct``;
 - ``task_steps``: the participant's share of the team's task steps (interactions that changed the world: picking
   up, putting down, chopping, washing, plating, delivering) is below ``validity.min_task_step_pct``: keys that
-  change nothing (a held or tapped "stay") or tasks that never get anywhere left the work to the robot.
+  change nothing (a held or tapped "stay") or tasks that never get anywhere left the work to the robot (not
+  judged when neither cook made a task step: a round too short for anyone to);
+- ``refused_tasks``: more than ``validity.max_refused_task_pct`` of the participant's task choices in their main
+  rounds so far (this one and the earlier ones, pooled) were refused — they could not work: what they needed was not
+  there, or taken, or busy — once at least :data:`MIN_REFUSED` were: tasks chosen without looking at the kitchen.
+  Pooled because one round says too little: a human-like simulated participant's single round reached 39.2 %,
+  none of their pooled rounds more than 30.0 % (docs/protocol.md, "Taking part").
 
 Practice trials and abandoned trials are not judged (an abandoned round is its own outcome).
 """
@@ -25,7 +31,9 @@ from store.activity import Activity
 from study_config.study.validity import Validity
 
 LOW_ENGAGEMENT = "low_engagement"
-Rule = Literal["no_actions", "idle", "task_steps"]
+Rule = Literal["no_actions", "idle", "task_steps", "refused_tasks"]
+MIN_REFUSED = 5
+"""Refused task choices a round must have before their share is judged: a few refusals say nothing."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -43,8 +51,11 @@ class Problem:
             return f"{LOW_ENGAGEMENT}: {self.value:g} participant action(s), fewer than {self.limit:g}"
         if self.rule == "idle":
             return f"{LOW_ENGAGEMENT}: the cook was idle {self.value:.1f} % of the round, more than {self.limit:g} %"
-        return (f"{LOW_ENGAGEMENT}: the participant made {self.value:.1f} % of the team's task steps, fewer than "
-                f"{self.limit:g} %")
+        if self.rule == "task_steps":
+            return (f"{LOW_ENGAGEMENT}: the participant made {self.value:.1f} % of the team's task steps, fewer than "
+                    f"{self.limit:g} %")
+        return (f"{LOW_ENGAGEMENT}: {self.value:.1f} % of the participant's task choices so far were refused, more "
+                f"than {self.limit:g} %")
 
     def __str__(self) -> str:
         return self.text()
@@ -53,14 +64,19 @@ class Problem:
         return {"reason": self.text(), "rule": self.rule, "value": round(self.value, 2), "limit": self.limit}
 
 
-def engagement_problem(activity: Activity, validity: Validity) -> Problem | None:
-    """Why a finished main trial with ``activity`` is low-engagement, or ``None`` when the participant took part."""
+def engagement_problem(activity: Activity, validity: Validity, earlier: tuple[int, int] = (0, 0)) -> Problem | None:
+    """Why a finished main trial with ``activity`` is low-engagement, or ``None`` when the participant took part;
+    ``earlier``: the task choices and refused steps of the participant's earlier main rounds."""
     if activity.actions < validity.min_participant_actions:
         return Problem("no_actions", activity.actions, validity.min_participant_actions)
     idle = activity.idle_pct
     if idle is not None and idle > validity.max_idle_pct:
         return Problem("idle", idle, validity.max_idle_pct)
-    share = activity.task_step_share or 0.0
-    if share < validity.min_task_step_pct:
+    share = activity.task_step_share
+    if share is not None and share < validity.min_task_step_pct:
         return Problem("task_steps", share, validity.min_task_step_pct)
+    choices, refused = activity.selections + earlier[0], activity.refused_steps + earlier[1]
+    refused_pct = 100.0 * refused / max(choices, 1)
+    if refused >= MIN_REFUSED and refused_pct > validity.max_refused_task_pct:
+        return Problem("refused_tasks", refused_pct, validity.max_refused_task_pct)
     return None

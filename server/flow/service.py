@@ -285,7 +285,7 @@ def end_trial_in(session: Session, participant_id: int, trial_id: int, kind: str
     screen_out = None
     if study is not None:
         done = activity.measure(session, trial_id, study.timing.tick_rate_hz)
-        problem = (engagement_problem(done, study.validity)
+        problem = (engagement_problem(done, study.validity, standing.earlier_choices(session, participant_id, index))
                    if kind == "main" and status == trials.FINISHED else None)
         activity.record(session, trial_id, done, problem.text() if problem else None)
         if problem is not None:

@@ -231,7 +231,7 @@ class Countdown(ServerMessage):
     seconds_left: float
 
 
-WarningRule = Literal["no_actions", "idle", "task_steps"]
+WarningRule = Literal["no_actions", "idle", "task_steps", "refused_tasks"]
 """Which engagement rule the round so far fails (``server.flow.engagement``)."""
 
 

@@ -6,10 +6,13 @@ from __future__ import annotations
 
 import asyncio
 
+import pytest
 from steakhouse_test_robots import simulated_partner
 from steakhouse_testing import ManualClock, Player, eventually
 
 from store import trials
+
+pytestmark = pytest.mark.store_agnostic
 
 PAPER = {"mode": "wait_for_participant", "tick_rate_hz": 30, "idle_nudge_seconds": 5, "max_round_seconds": 600}
 

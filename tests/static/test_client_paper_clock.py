@@ -108,6 +108,7 @@ def test_the_end_page_states_each_rule_as_measured_and_nothing_untrue(module_pag
         none: screenedOutText(detail('no_actions', 0, 1)),
         idle: screenedOutText(detail('idle', 99.6, 95)),
         steps: screenedOutText(detail('task_steps', 3.2, 10)),
+        refused: screenedOutText(detail('refused_tasks', 46.7, 35)),
         legacy: screenedOutText({ reason: 'low_engagement' }),
         away: screenedOutText({ reason: 'abandoned_rounds' }),
       };
@@ -117,5 +118,22 @@ def test_the_end_page_states_each_rule_as_measured_and_nothing_untrue(module_pag
                                   "allows at most 95 %)")
     assert got["steps"].startswith("In round 2 the robot did almost all of the work: your cook did 3.2 % of the "
                                    "team's steps (this study asks for at least 10 %)")
+    assert got["refused"].startswith("By round 2, 46.7 % of the tasks you chose could not work (this study "
+                                     "allows at most 35 %)")
     assert all("completion code" in text for text in got.values())
     assert "no task chosen" not in got["legacy"] and "connection" in got["away"]
+
+
+def test_every_rule_the_server_can_warn_of_or_screen_out_for_has_words(module_page):
+    import typing
+
+    from server.flow.engagement import Rule
+    from server.protocol.server import WarningRule
+
+    got = module_page.evaluate("""async () => {
+      const { WARNINGS } = await import('/js/game/notes.js');
+      const { NOT_TAKING_PART } = await import('/js/pages/finish.js');
+      return { warnings: Object.keys(WARNINGS), ends: Object.keys(NOT_TAKING_PART) };
+    }""")
+    assert sorted(got["warnings"]) == sorted(typing.get_args(WarningRule)) == sorted(typing.get_args(Rule))
+    assert sorted(got["ends"]) == sorted(typing.get_args(Rule))

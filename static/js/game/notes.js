@@ -19,6 +19,7 @@ export const WARNINGS = {
   no_actions: "Take part, or this round will not count: choose a task.",
   idle: "Choose your next task, or this round will not count.",
   task_steps: "The robot is doing all the work: choose tasks, or this round will not count.",
+  refused_tasks: "Most of your tasks could not work: look at the kitchen before you choose, or this round will not count.",
 };
 
 export class TaskNote {

@@ -37,6 +37,9 @@ export const NOT_TAKING_PART = {
   task_steps: (d) => `In round ${d.round} the robot did almost all of the work: your cook did ` +
     `${Number(d.value).toFixed(1)} % of the team's steps (this study asks for at least ${d.limit} %), so that round ` +
     "cannot count.",
+  refused_tasks: (d) => `By round ${d.round}, ${Number(d.value).toFixed(1)} % of the tasks you chose could not ` +
+    `work (this study allows at most ${d.limit} %): they were chosen without looking at the kitchen, so that round ` +
+    "cannot count.",
 };
 
 /** The end page's sentence for a participant who was screened out. */
