@@ -8,10 +8,19 @@ PYTEST_WORKERS ?= $(shell echo $$((2 * $$(nproc))))
 PYTEST_DIST ?= worksteal
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed-$(shell cat pyproject.toml | cksum | cut -d' ' -f1)
+# The example plug-in package (docs/robots.md) is installed for the tests, never by `make run`.
+EXAMPLES_STAMP := $(VENV)/.examples-$(shell cat examples/mylab_robots/pyproject.toml | cksum | cut -d' ' -f1)
 
-.PHONY: setup run test lint browser postgres
+.PHONY: setup run test lint browser postgres examples
 
 setup: $(STAMP)
+
+examples: $(EXAMPLES_STAMP)
+
+$(EXAMPLES_STAMP): $(STAMP) examples/mylab_robots/pyproject.toml
+	$(PY) -m pip install -q --no-deps -e examples/mylab_robots
+	rm -f $(VENV)/.examples-*
+	touch $@
 
 $(STAMP): pyproject.toml
 	test -x $(PY) || python3 -m venv $(VENV)
@@ -34,6 +43,6 @@ lint: setup
 	$(VENV)/bin/ruff check .
 	$(VENV)/bin/mypy
 
-test: setup lint browser postgres
+test: setup examples lint browser postgres
 	@bash tests/tools/ensure_nginx.sh
 	$(PY) -m pytest -n $(PYTEST_WORKERS) --dist $(PYTEST_DIST) $(PYTEST_ARGS)

@@ -1,6 +1,7 @@
 """What a robot planner answers each tick (a :class:`Decision`: the action and a record of how it chose, for
 logs and the admin view), and the one interface every robot offers (:class:`Robot`), used alike by the
-server's robot pools, :mod:`planner.play` and the simulation.
+server's robot pools, :mod:`planner.play` and the simulation. Both are part of the plug-in contract
+(:mod:`planner.robot_api`, docs/robots.md); robots are built by :func:`planner.robot_catalog.build`.
 """
 
 from __future__ import annotations
@@ -14,9 +15,6 @@ import numpy as np
 from planner.events import Event
 from planner.geometry import Action
 from planner.kb import KnowledgeBase
-from planner.layout import Layout
-from planner.planner_config import PlannerConfig
-from planner.rules import Rules
 from planner.state import WorldState
 
 
@@ -59,10 +57,3 @@ class Robot(Protocol):
     def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,
                deadline: float | None = None) -> Decision: ...
 
-
-class RobotFactory(Protocol):
-    """``factory(name, layout, rules, config)`` → a fresh :class:`Robot` (``planner.robots.make_robot``).
-    ``config`` carries the study's model of the person (FOV angle, KB delay; docs/domain.md §5); ``rules``
-    the kitchen's numbers."""
-
-    def __call__(self, name: str, layout: Layout, rules: Rules, config: PlannerConfig) -> Robot: ...

@@ -5,37 +5,46 @@ are compared on paired trials. :func:`summarize_trials` gives the paper-style ta
 robot per kitchen and overall, and the paired difference of the FOV-aware robot against the baseline
 (mean % change of ticks, paired t-test p and Wilcoxon signed-rank p); then the paper's two robot behaviours per
 kitchen and robot (:mod:`planner.behaviours`): does the FOV-aware robot show itself in this kitchen?
+
+Any installed robot plays (:mod:`planner.robot_catalog`: the shipped planners and plug-ins), guarded
+(:class:`planner.robot_guard.GuardedRobot`): a decision that raised, was illegal or hung makes the robot stay
+that tick and flags the trial (``robot_faults``, ``robot_fault``; :func:`flagged_lines`).
 """
 
 from __future__ import annotations
 
 import statistics
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 from scipy import stats
 
+from planner import robot_catalog
+from planner.decision import Decision, Robot
 from planner.layout import Layout
 from planner.perception import FOV_ANGLE, KB_DELAY
-from planner.planner_config import PlannerConfig
 from planner.play import TrialResult, TrialSettings, run_trial
-from planner.robots import make_robot
+from planner.robot_api import Person
+from planner.robot_catalog import RobotSetup
+from planner.robot_guard import HANG_S, GuardedRobot
 from planner.rules import Rules
 
-COLUMNS = ("layout", "robot", "seed", "ticks", "finished", "reward", "kb_gap_mean", "kb_gap_ticks_pct",
+COLUMNS = ("layout", "robot", "seed", "ticks", "finished", "reward", "kb_diff_freq", "kb_diff_avg", "kb_diff_mean",
+           "kb_gap_mean", "kb_gap_ticks_pct",
            "robot_in_fov_pct", "decision_ms_p50", "decision_ms_p99", "holdings", "shown", "trips",
            "trip_share_sum", "robot_gap_pct", "gap_lag_pct", "gap_unseen_pct", "gap_stale_pct",
-           "robot_place_cells", "robot_place_wrong_pct")
+           "robot_place_cells", "robot_place_wrong_pct", "robot_faults", "robot_fault")
 GAP_PARTS = ("lag", "unseen", "stale")
 """The robot gap's parts (:func:`planner.behaviours.hands_gap`), % of ticks: they sum to ``robot_gap_pct``."""
 
 
 @dataclass(frozen=True, slots=True)
 class TrialSpec:
-    """One simulated trial. ``robot`` names the robot in the results; ``planner`` is the planner that plays it
-    (default: ``robot``) with ``settings`` (``PlannerConfig`` fields) changed: a study's own robot (its
-    ``robot_variants``). ``rules``: the kitchen's numbers (a study's ``world``)."""
+    """One simulated trial. ``robot`` names the robot in the results; ``planner`` is the installed robot that plays
+    it (default: ``robot``) with ``settings`` (fields of its declared settings, checked by the study) changed: a
+    study's own robot (its ``robot_variants``). ``rollout_samples`` and ``lookahead`` are the shipped planners'
+    (``simulate --lookahead``). ``rules``: the kitchen's numbers (a study's ``world``)."""
 
     layout: Layout
     robot: str
@@ -47,30 +56,59 @@ class TrialSpec:
     planner: str | None = None
     settings: tuple[tuple[str, Any], ...] = ()
     rules: Rules = field(default_factory=Rules)
+    hang_s: float = HANG_S
+    """A decision running this long is stopped and the trial flagged (:mod:`planner.robot_guard`)."""
 
-    def config(self) -> PlannerConfig:
-        """The robot's settings: the simulated person's view and KB delay, then ``settings``."""
-        return replace(PlannerConfig(human_angle=self.human_angle, human_delay=self.kb_delay,
-                                     rollout_samples=self.rollout_samples, lookahead=self.lookahead),
-                       **dict(self.settings))
+    @property
+    def installed(self) -> str:
+        """The installed robot that plays the trial."""
+        return self.planner or self.robot
+
+    def setup(self) -> RobotSetup:
+        """What the robot is built with: the simulated person's view and KB delay, and its settings (for a shipped
+        planner its rollout samples and lookahead first)."""
+        shipped = robot_catalog.entry(self.installed).shipped
+        base = {"rollout_samples": self.rollout_samples, "lookahead": self.lookahead} if shipped else {}
+        return RobotSetup(Person(self.human_angle, self.kb_delay), tuple({**base, **dict(self.settings)}.items()))
+
+
+class _Unbuilt:
+    """A robot whose factory raised: its ``reset`` raises that again, so the guard flags the trial."""
+
+    def __init__(self, exc: Exception) -> None:
+        self.exc = exc
+
+    def reset(self, *args: object) -> None:
+        raise self.exc
+
+    def decide(self, *args: object) -> Decision:
+        raise self.exc
 
 
 def run_spec(spec: TrialSpec) -> dict[str, object]:
     """One simulated trial as a row of ``trials.csv`` (importable by worker processes; the kitchen travels in
     the spec, so planner/ reads no files)."""
     layout, rules = spec.layout, spec.rules
-    robot = make_robot(spec.planner or spec.robot, layout, rules, spec.config())
+    try:
+        built: Robot = robot_catalog.build(spec.installed, layout, rules, spec.setup())
+    except Exception as exc:  # flagged below, like a robot that fails later
+        built = _Unbuilt(exc)
+    robot = GuardedRobot(built, spec.hang_s)
     result = run_trial(layout, spec.seed, TrialSettings(angle=spec.human_angle, kb_delay=spec.kb_delay,
                                                          rules=rules), robot=robot)
     times = np.array(result.decision_ms) if result.decision_ms else np.zeros(1)
     return {
         "layout": layout.name, "robot": spec.robot, "seed": spec.seed, "ticks": result.ticks,
         "finished": int(result.finished), "reward": result.score,
+        "kb_diff_freq": round(result.kb_diff_freq, 2),
+        "kb_diff_avg": "" if result.kb_diff_avg is None else round(result.kb_diff_avg, 4),
+        "kb_diff_mean": round(result.kb_diff_mean, 4),
         "kb_gap_mean": round(result.kb_gap_mean, 4), "kb_gap_ticks_pct": round(result.kb_gap_ticks_pct, 2),
         "robot_in_fov_pct": round(result.robot_in_fov_pct, 2),
         "decision_ms_p50": round(float(np.percentile(times, 50)), 3),
         "decision_ms_p99": round(float(np.percentile(times, 99)), 3),
         **behaviour_columns(result),
+        "robot_faults": robot.faults, "robot_fault": robot.first_fault or "",
     }
 
 
@@ -132,7 +170,18 @@ def summarize_trials(rows: list[dict[str, Any]]) -> str:
         lines.append(f"fov_aware vs baseline over {comparison.pairs} paired trials: "
                      f"{comparison.mean_change_pct:+.1f}% ticks, paired t-test p = {comparison.t_p:.4g}, "
                      f"Wilcoxon p = {comparison.wilcoxon_p:.4g}")
-    return "\n".join(lines + behaviour_lines(rows, robots, layouts))
+    return "\n".join(lines + behaviour_lines(rows, robots, layouts) + flagged_lines(rows))
+
+
+def flagged_lines(rows: list[dict[str, Any]]) -> list[str]:
+    """The trials whose robot failed (raised, answered an illegal decision or hung), one line each; none when no
+    robot failed (or for rows written before the columns existed)."""
+    flagged = [r for r in rows if int(r.get("robot_faults") or 0) > 0]
+    if not flagged:
+        return []
+    return ["", f"{len(flagged)} trial(s) flagged: the robot failed (it stood still at each failed decision):"] + [
+        f"  {r['robot']} on {r['layout']} seed {r['seed']}: {r['robot_faults']} failed decision(s); first at "
+        f"{r['robot_fault']}" for r in flagged]
 
 
 def behaviour_lines(rows: list[dict[str, Any]], robots: list[str], layouts: list[str]) -> list[str]:

@@ -17,7 +17,7 @@ from contextlib import asynccontextmanager
 
 from fastapi import FastAPI
 
-from planner.decision import RobotFactory
+from planner.robot_catalog import RobotFactory
 from server import errors, security
 from server.game.admission import Admission
 from server.game.clock import Clock, MonotonicClock

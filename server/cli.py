@@ -17,6 +17,7 @@ COMMAND_MODULES = (
     "server.commands.fov",
     "server.commands.play",
     "server.commands.simulate",
+    "server.commands.robots",
     "server.commands.study",
     "server.commands.serve",
     "server.commands.export",

@@ -54,8 +54,9 @@ class Settings(BaseSettings):
     robot_workers: int | None = Field(default=None, ge=0, le=256)
     """Robot planner worker processes (default: ``WORKERS_PER_CORE`` per CPU); 0 runs planners in the server
     process."""
-    robot_factory: str = "planner.robots:make_robot"
-    """``module:function`` building a robot policy from ``(name, layout, rules)`` (tests and benchmarks)."""
+    robot_factory: str = "planner.robot_catalog:build"
+    """``module:function`` building a robot policy from ``(name, layout, rules, setup)``: the catalogue of installed
+    robots, shipped and plug-ins (docs/robots.md); tests and benchmarks name their own."""
     decision_deadline_fraction: float = Field(default=0.8, gt=0.0, le=1.0)
     """A robot decision must arrive within this fraction of the tick period; later ones are discarded."""
     flush_interval_s: float = Field(default=0.5, gt=0.0, le=1.0)
@@ -104,7 +105,7 @@ class Settings(BaseSettings):
     def _factory_path(cls, value: str) -> str:
         module, _, attr = value.partition(":")
         if not module or not attr:
-            raise ValueError("use module:function, e.g. planner.robots:make_robot")
+            raise ValueError("use module:function, e.g. planner.robot_catalog:build")
         return value
 
     @property

@@ -4,10 +4,12 @@
 - ``participants``: recruiting ids, the hash of their token (never the token), their step plan and
   progress, test-run / exclusion flags with a reason.
 - ``assignments``: the condition order each participant got (index into the study's orders).
-- ``trials``: one row per attempt at a practice or main trial: condition, kitchen, robot, view, FOV angle, seed, config
-  hash, status (``running`` / ``finished`` / ``abandoned``) and outcome (ticks, delivered, score).
+- ``trials``: one row per attempt at a practice or main trial: condition, kitchen, robot (and the package and version
+  that provided it), view, FOV angle, seed, config hash, status (``running`` / ``finished`` / ``abandoned``) and
+  outcome (ticks, delivered, score).
 - ``ticks``: one row per world step (primary key ``(trial_id, tick)``, so a tick can never be stored
-  twice): joint action, the participant's subtask, modelled KB and world summaries, KB-gap components,
+  twice): joint action, the participant's subtask, modelled KB and world summaries (with the reference's state
+  info), KB-gap components (ours, and the reference's per-component gap ``kb_diff``),
   robot in the participant's FOV, tick lateness, robot decision time, and the full world and KB state
   (replay and resume read them).
 - ``events``: selections, interrupts, connection, focus and idle events, errors, missed deadlines.
@@ -150,6 +152,14 @@ class TrialRow(Base):
     """Robot decisions the loop asked for (one per world step); NULL for trials stored before revision 0005."""
     missed_decisions: Mapped[int | None] = mapped_column(Integer, nullable=True)
     """Of these, the ones that missed their deadline (the robot stood still)."""
+    failed_decisions: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """Of these, the ones the robot failed (it raised, answered an illegal decision or hung; its worker was lost:
+    ``planner.robot_guard``), so it stood still; NULL for trials stored before revision 0011."""
+    robot_package: Mapped[str | None] = mapped_column(String(100), nullable=True)
+    """The distribution that provided the robot (``steakhouse-study`` for the shipped ones, a plug-in's package:
+    ``planner.robot_catalog``); NULL for trials stored before revision 0011."""
+    robot_version: Mapped[str | None] = mapped_column(String(64), nullable=True)
+    """That distribution's version when the trial started."""
     invalid_reason: Mapped[str | None] = mapped_column(String(200), nullable=True)
     """Why the trial is not valid data (``server.game.health``); NULL when it is valid."""
     selections: Mapped[int | None] = mapped_column(Integer, nullable=True)
@@ -172,7 +182,7 @@ class TrialRow(Base):
     part."""
     task_steps: Mapped[int | None] = mapped_column(Integer, nullable=True)
     """The participant's task steps: their cook's interactions that changed the world (``store.activity``; NULL
-    until the trial ended, and for trials stored before revision 0010)."""
+    until the trial ended, and for trials stored before revision 0012)."""
     robot_task_steps: Mapped[int | None] = mapped_column(Integer, nullable=True)
     """The robot's task steps."""
     stand_ticks: Mapped[int | None] = mapped_column(Integer, nullable=True)
@@ -200,6 +210,9 @@ class TickRow(Base):
     decision_ms: Mapped[float | None] = mapped_column(Float)
     robot_missed: Mapped[bool] = mapped_column(Boolean, default=False)
     robot_info: Mapped[dict[str, Any] | None] = mapped_column(JsonType)
+    robot_error: Mapped[str | None] = mapped_column(String(300), nullable=True)
+    """Why the robot had no decision at this tick when it failed (``planner.robot_guard.describe``, or
+    ``worker_lost``); NULL when it decided or was merely late, and in ticks stored before revision 0011."""
     world_state: Mapped[dict[str, Any]] = mapped_column(JsonType)
     kb_state: Mapped[dict[str, Any]] = mapped_column(JsonType)
     controller: Mapped[dict[str, Any]] = mapped_column(JsonType)
@@ -210,6 +223,10 @@ class TickRow(Base):
     """Wall-clock seconds the round had run at this tick while the participant was connected (what
     ``timing.max_round_seconds`` limits; a round resumed from the store goes on from it); NULL in ticks stored
     before revision 0009."""
+    kb_diff: Mapped[dict[str, int] | None] = mapped_column(JsonType, nullable=True)
+    """The reference's KB gap at this tick, per component (grill, board, sink, robot_held;
+    ``planner.summary.info_diff``), from the ``reference`` state info of ``kb_summary`` and ``world_summary``
+    (the writer fills it when the row does not bring it); NULL in ticks stored before revision 0010."""
 
 
 class EventRow(Base):

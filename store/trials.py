@@ -24,14 +24,16 @@ from study_config.study.views import DEFAULT_VIEW
 
 def create(session: Session, *, study_id: str, participant_id: int, kind: str, index: int, condition_id: str,
            kitchen: str, robot: str, seed: int, config_hash: str, initial_state: dict[str, Any],
-           view: str = DEFAULT_VIEW, fov_angle: float | None = None) -> TrialRow:
-    """A new running attempt at trial ``(kind, index)`` (attempt = previous attempts + 1)."""
+           view: str = DEFAULT_VIEW, fov_angle: float | None = None, robot_package: str | None = None,
+           robot_version: str | None = None) -> TrialRow:
+    """A new running attempt at trial ``(kind, index)`` (attempt = previous attempts + 1); ``robot_package`` and
+    ``robot_version``: the distribution that provides its robot (``planner.robot_catalog``)."""
     previous = session.scalar(select(func.max(TrialRow.attempt)).where(
         TrialRow.participant_id == participant_id, TrialRow.kind == kind, TrialRow.index == index)) or 0
     now = utcnow()
     row = TrialRow(study_id=study_id, participant_id=participant_id, kind=kind, index=index,
                    attempt=previous + 1, condition_id=condition_id, kitchen=kitchen, robot=robot, view=view,
-                   fov_angle=fov_angle,
+                   fov_angle=fov_angle, robot_package=robot_package, robot_version=robot_version,
                    seed=seed,
                    config_hash=config_hash, status=RUNNING, started_at=now, last_active_at=now, ticks=0,
                    delivered=0, score=0, initial_state=initial_state)
@@ -62,9 +64,10 @@ def end(session: Session, trial_id: int, *, status: str, reason: str, ticks: int
 
 
 def record_health(session: Session, trial_id: int, *, decisions: int, missed: int,
-                  invalid_reason: str | None) -> None:
-    """Store the robot's decision counts and, once set, why the trial is invalid (it is never cleared)."""
-    values: dict[str, Any] = {"decisions": decisions, "missed_decisions": missed}
+                  invalid_reason: str | None, failed: int = 0) -> None:
+    """Store the robot's decision counts (late ones, failed ones) and, once set, why the trial is invalid (it is
+    never cleared)."""
+    values: dict[str, Any] = {"decisions": decisions, "missed_decisions": missed, "failed_decisions": failed}
     if invalid_reason is not None:
         values["invalid_reason"] = invalid_reason[:200]
     session.execute(update(TrialRow).where(TrialRow.id == trial_id).values(**values))
@@ -75,6 +78,12 @@ def decision_counts(session: Session, trial_id: int) -> tuple[int, int]:
     row = session.execute(select(func.count(), func.sum(case((TickRow.robot_missed, 1), else_=0)))
                           .where(TickRow.trial_id == trial_id)).one()
     return int(row[0] or 0), int(row[1] or 0)
+
+
+def failed_count(session: Session, trial_id: int) -> int:
+    """The stored ticks of a trial at which the robot failed (``TickRow.robot_error``)."""
+    return int(session.scalar(select(func.count()).where(TickRow.trial_id == trial_id,
+                                                          TickRow.robot_error.is_not(None))) or 0)
 
 
 def touch(session: Session, trial_id: int, when: datetime, ticks: int | None = None) -> None:

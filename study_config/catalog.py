@@ -12,7 +12,8 @@ from functools import cached_property
 from pathlib import Path
 
 from planner.layout import Layout
-from planner.planner_config import PlannerConfig
+from planner.robot_api import Person
+from planner.robot_catalog import RobotSetup
 from planner.rules import Rules
 from study_config import load_layout
 from study_config.study import Study, load_study
@@ -39,16 +40,15 @@ class LoadedStudy:
         like ``orders`` (read at every assignment; the study is immutable after start-up)."""
         return tuple(self.study.order_groups())
 
-    def planner_config(self, robot: str, angle: float) -> PlannerConfig:
-        """The settings of the robot called ``robot`` in a trial of this study: its variant's settings
-        (``study_config/study/robots.py``), and the robot's model of the person the trial shows, the trial's FOV
-        ``angle`` and the study's KB delay (docs/domain.md §5); the kitchen's numbers reach the robot as
-        :attr:`rules`."""
-        person = PlannerConfig(human_angle=angle, human_delay=self.study.world.kb_delay)
-        return self.study.planner_config(robot, person)
+    def robot_setup(self, robot: str, angle: float) -> RobotSetup:
+        """What the robot called ``robot`` is built with in a trial of this study: the person the trial shows, its
+        FOV ``angle`` and the study's KB delay (docs/domain.md §5), and its variant's settings
+        (``study_config/study/robots.py``); the kitchen's numbers reach the robot as :attr:`rules`."""
+        return RobotSetup(Person(fov_angle=angle, kb_delay=self.study.world.kb_delay),
+                          tuple(self.study.robot_settings(robot).items()))
 
     def planner(self, robot: str) -> str:
-        """The planner (``planner.registry``) of the robot called ``robot``."""
+        """The installed robot (``planner.robot_catalog``) that plays the robot called ``robot``."""
         return self.study.planner(robot)
 
 

@@ -32,6 +32,12 @@ sys.path.insert(0, str(Path(__file__).resolve().parent / "server"))
 
 from steakhouse_testing import write_study
 
+PLUGINS = Path(__file__).resolve().parent / "plugins"
+"""Robot plug-ins that fail in each way (``tests/plugins/steakhouse_broken_robots``), registered by a dist-info beside
+them: found on ``sys.path``, never installed."""
+EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "mylab_robots"
+"""The example plug-in package (docs/robots.md), installed into the test environment by ``make test``."""
+
 # Stations along the top wall (x = 1..7: onion, meat, plate, grill, board, sink, serve), a counter island
 # at (4, 3) reachable from both sides, the robot starting at (1, 3), the human at (7, 3).
 RULES_KITCHEN = """\
@@ -74,6 +80,43 @@ def _playwright_loop_set_aside(request: pytest.FixtureRequest) -> Iterator[None]
         yield
     finally:
         asyncio._set_running_loop(loop)
+
+
+@pytest.fixture
+def broken_robots(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
+    """The broken plug-ins (:data:`PLUGINS`) installed for one test: on ``sys.path`` (robot worker processes started
+    meanwhile inherit it) and discovered afresh."""
+    from planner import robot_catalog
+
+    monkeypatch.syspath_prepend(str(PLUGINS))
+    robot_catalog.forget()
+    yield
+    robot_catalog.forget()
+
+
+@pytest.fixture(scope="session")
+def example_robots() -> None:
+    """The example plug-in package (:data:`EXAMPLE`) installed in the test environment. ``make test`` installs it
+    (``make examples``); a test session started otherwise installs it here, once (pip, editable, without
+    dependencies), and makes it importable in this process too (its ``.pth`` is read only at interpreter start)."""
+    import fcntl
+    import importlib
+    import subprocess
+    from importlib import metadata
+
+    from planner import robot_catalog
+
+    with open(Path(sys.prefix) / ".steakhouse-examples.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            metadata.distribution("mylab-robots")
+        except metadata.PackageNotFoundError:
+            subprocess.run([sys.executable, "-m", "pip", "install", "-q", "--no-deps", "-e", str(EXAMPLE)],
+                           check=True)
+            importlib.invalidate_caches()
+    if str(EXAMPLE) not in sys.path:
+        sys.path.append(str(EXAMPLE))
+    robot_catalog.forget()
 
 
 @pytest.fixture(scope="session")

@@ -18,7 +18,9 @@ and the paired t-test p (ticks also Wilcoxon).
     .venv/bin/python benchmarks/planner/behaviours.py --shipped "" --generator-seeds 0-19 --seeds 3 --out DIR
     .venv/bin/python benchmarks/planner/behaviours.py --out DIR --table-only
 
-``--set name=value`` overrides a :class:`planner.planner_config.PlannerConfig` field for every robot (tuning).
+``--set name=value`` overrides a :class:`planner.planner_config.PlannerConfig` field for every shipped robot
+(tuning). ``--robots`` takes any installed robot, plug-ins too (``steakhouse robots``); each plays guarded
+(:class:`planner.robot_guard.GuardedRobot`): a trial whose robot failed is listed at the end and the run exits 1.
 """
 
 from __future__ import annotations
@@ -28,21 +30,24 @@ import csv
 import statistics
 import sys
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, fields
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from scipy import stats
 
+from planner import robot_catalog
 from planner.behaviours import Frame, frame_of
-from planner.experiment import GAP_PARTS, behaviour_columns
+from planner.experiment import GAP_PARTS, behaviour_columns, flagged_lines
 from planner.layout import Layout
 from planner.layout_gen import GenerationError, KitchenRequest, generate_named, parse_size
 from planner.perception import FOV_ANGLE, KB_DELAY
 from planner.planner_config import PlannerConfig
 from planner.play import TrialResult, TrialSettings, run_trial
-from planner.robots import make_robot
+from planner.robot_api import Person
+from planner.robot_catalog import RobotSetup
+from planner.robot_guard import GuardedRobot
 from planner.rules import Rules
 from planner.state import WorldState, initial_state
 from planner.step import step
@@ -50,7 +55,7 @@ from study_config import load_layout
 
 COLUMNS = ("kitchen", "robot", "seed", "ticks", "finished", "holdings", "shown", "trips", "trip_share_sum",
            "robot_gap_pct", "gap_lag_pct", "gap_unseen_pct", "gap_stale_pct", "robot_place_cells",
-           "robot_place_wrong_pct", "kb_gap_mean")
+           "robot_place_wrong_pct", "kb_gap_mean", "robot_faults", "robot_fault")
 
 
 @dataclass(frozen=True, slots=True)
@@ -70,24 +75,33 @@ def kitchen_layout(name: str) -> Layout:
     return load_layout(name)
 
 
-def config_of(overrides: tuple[tuple[str, str], ...]) -> PlannerConfig:
+def config_values(overrides: tuple[tuple[str, str], ...]) -> dict[str, Any]:
+    """``--set`` values as the :class:`PlannerConfig` fields take them."""
     types = {f.name: f.type for f in fields(PlannerConfig)}
     values: dict[str, Any] = {}
     for name, text in overrides:
         kind = types[name]
         values[name] = (text.lower() in ("1", "true", "yes")) if kind in (bool, "bool") else (
             int(text) if kind in (int, "int") else float(text) if kind in (float, "float") else text)
-    return replace(PlannerConfig(human_angle=FOV_ANGLE, human_delay=KB_DELAY), **values)
+    return values
+
+
+def robot_of(name: str, layout: Layout, rules: Rules, overrides: tuple[tuple[str, str], ...] = ()) -> GuardedRobot:
+    """The installed robot ``name`` for a trial with the paper's person (``--set`` changes a shipped one), guarded."""
+    values = config_values(overrides) if robot_catalog.entry(name).shipped else {}
+    setup = RobotSetup(Person(FOV_ANGLE, KB_DELAY), tuple(values.items()))
+    return GuardedRobot(robot_catalog.build(name, layout, rules, setup))
 
 
 def run_one(spec: Spec) -> dict[str, object]:
     layout = kitchen_layout(spec.kitchen)
     rules = Rules()
-    robot = make_robot(spec.robot, layout, rules, config_of(spec.overrides))
+    robot = robot_of(spec.robot, layout, rules, spec.overrides)
     result = run_trial(layout, spec.seed, TrialSettings(FOV_ANGLE, KB_DELAY, rules), robot=robot)
     return {"kitchen": spec.kitchen, "robot": spec.robot, "seed": spec.seed, "ticks": result.ticks,
             "finished": int(result.finished), **behaviour_columns(result),
-            "kb_gap_mean": round(result.kb_gap_mean, 4)}
+            "kb_gap_mean": round(result.kb_gap_mean, 4),
+            "robot_faults": robot.faults, "robot_fault": robot.first_fault or ""}
 
 
 def seed_range(text: str) -> range:
@@ -139,7 +153,7 @@ def replayed(kitchen: str, robot_name: str, seed: int) -> Replayed:
     layout = kitchen_layout(kitchen)
     rules = Rules()
     result = run_trial(layout, seed, TrialSettings(rules=rules),
-                       robot=make_robot(robot_name, layout, rules, config_of(())), record=True)
+                       robot=robot_of(robot_name, layout, rules), record=True)
     world = initial_state(layout, rules)
     worlds: list[WorldState] = []
     frames: list[Frame] = []
@@ -253,6 +267,11 @@ def main(argv: list[str] | None = None) -> int:
         if not sep or name not in names:
             parser.error(f"--set {item!r}: expected NAME=VALUE with NAME a PlannerConfig field")
         overrides.append((name, value))
+    for robot in args.robots.split(","):
+        try:
+            robot_catalog.entry(robot)
+        except robot_catalog.RobotUnavailable as exc:
+            parser.error(str(exc))
     csv_path = args.out / "trials.csv"
     if not args.table_only:
         kitchens = kitchens_of(args)
@@ -274,7 +293,9 @@ def main(argv: list[str] | None = None) -> int:
     rows = read_rows(csv_path)
     print(f"{len(rows)} trials in {csv_path}" + (f"; overrides {' '.join(args.set)}" if args.set else ""))
     print(table(rows))
-    return 0
+    flagged = flagged_lines([{**r, "layout": r["kitchen"]} for r in rows])
+    print("\n".join(flagged))
+    return 1 if flagged else 0
 
 
 if __name__ == "__main__":

@@ -22,6 +22,9 @@ stall with its kitchen, seed, robot, partner
 and the last tick at which the kitchen changed (:func:`planner.adversary.last_progress_tick`), and the two
 agents' final poses and held objects, so it can be replayed with ``run_trial``.
 
+``--robots`` takes any installed robot, plug-ins too (``steakhouse robots``); each plays guarded
+(:class:`planner.robot_guard.GuardedRobot`): a trial whose robot failed is listed and the run exits 1.
+
 Run (from the repository root)::
 
     .venv/bin/python benchmarks/planner/no_stall.py --seeds 3 --generator-seeds 1000-1019 --jobs 2
@@ -34,17 +37,18 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 
+from planner import robot_catalog
 from planner.adversary import AdversaryConfig, last_progress_tick
 from planner.alone import solo_possible
 from planner.events import EventKind
+from planner.experiment import flagged_lines
 from planner.geometry import Action
 from planner.layout import Layout
 from planner.layout_gen import generate_named
 from planner.objects import DISH, STEAK_PLATE
 from planner.partner import PARTNERS, partner_model
-from planner.planner_config import PlannerConfig
 from planner.play import run_trial
-from planner.robots import make_robot
+from planner.robot_guard import GuardedRobot
 from planner.rules import Rules
 from planner.state import WorldState, initial_state
 from planner.step import step
@@ -90,7 +94,7 @@ def extra_steaks(layout: Layout, rules: Rules, actions: tuple[tuple[Action, Acti
 def run_one(spec: StallSpec) -> dict[str, object]:
     layout = kitchen(spec.kitchen)
     rules = Rules()
-    robot = make_robot(spec.robot, layout, rules, PlannerConfig())
+    robot = GuardedRobot(robot_catalog.build(spec.robot, layout, rules))
     human = partner_model(spec.partner, layout, rules, AdversaryConfig(budget=spec.budget))
     result = run_trial(layout, spec.seed, robot=robot, human=human, record=True)
     final = result.final
@@ -100,6 +104,7 @@ def run_one(spec: StallSpec) -> dict[str, object]:
             "possible": possible, "finished": result.finished, "ticks": result.ticks, "cycles": result.cycles_broken,
             "extra_steaks": by_robot, "excess": excess,
             "last_progress": last_progress_tick(layout, rules, result.actions),
+            "robot_faults": robot.faults, "robot_fault": robot.first_fault or "",
             "human": (final.human.pos, final.human.facing.value, final.human.held),
             "robot_state": (final.robot.pos, final.robot.facing.value, final.robot.held)}
 
@@ -122,6 +127,11 @@ def main(argv: list[str] | None = None) -> int:
         low, _, high = args.generator_seeds.partition("-")
         generated = [f"gen:{s}" for s in range(int(low), int(high or low) + 1)]
     robots, partners = args.robots.split(","), args.partners.split(",")
+    for robot in robots:
+        try:
+            robot_catalog.entry(robot)
+        except robot_catalog.RobotUnavailable as exc:
+            parser.error(str(exc))
     seeds = range(args.first_seed, args.first_seed + args.seeds)
     specs = [StallSpec(k, r, p, s, args.budget) for s in seeds for p in partners
              for k in shipped + generated for r in robots]
@@ -154,7 +164,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  kitchen {r['kitchen']} seed {r['seed']} robot {r['robot']} partner {r['partner']}: "
               f"no change in the kitchen after tick {r['last_progress']}; human {r['human']}, "
               f"robot {r['robot_state']}")
-    return 1 if stalls else 0
+    flagged = flagged_lines([{**r, "layout": r["kitchen"]} for r in rows])
+    print("\n".join(flagged))
+    return 1 if stalls or flagged else 0
 
 
 if __name__ == "__main__":

@@ -22,7 +22,8 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
                         help="a study file: its kitchens, robots (its own robot_variants too), field of view, KB "
                              "delay and world numbers (then leave out --layouts, --robots and --kb-delay)")
     parser.add_argument("--layouts", help="all (default), or comma-separated names/files")
-    parser.add_argument("--robots", help="comma-separated planner names (default fov_aware,baseline)")
+    parser.add_argument("--robots", help="comma-separated installed robots, shipped or plug-ins (`steakhouse robots`; "
+                                         "default fov_aware,baseline)")
     parser.add_argument("--seeds", type=int, default=10, help="seeds 0..N-1 per kitchen and robot")
     parser.add_argument("--human-angle", type=float, metavar="DEG",
                         help=f"the simulated person's field of view (default {FOV_ANGLE:g}, or the study's)")
@@ -41,7 +42,7 @@ def _simulate(args: argparse.Namespace) -> int:
     from concurrent.futures import ProcessPoolExecutor
 
     from analysis.simulation import robot_effects
-    from planner.experiment import COLUMNS, run_spec, summarize_trials
+    from planner.experiment import COLUMNS, flagged_lines, run_spec, summarize_trials
 
     if args.seeds < 1:
         raise UsageError("--seeds must be at least 1")
@@ -63,10 +64,11 @@ def _simulate(args: argparse.Namespace) -> int:
         writer.writerows(rows)
     print(f"lookahead: {args.lookahead}")
     print(summarize_trials(rows))
-    for line in robot_effects(rows, "kb_gap_mean", robots):
-        print(line)
+    for measure in ("kb_diff_freq", "kb_diff_mean", "kb_gap_mean"):  # the paper's KB gap first, ours last
+        for line in robot_effects(rows, measure, robots):
+            print(line)
     print(f"wrote {out / 'trials.csv'} ({len(rows)} trials)")
-    return 0
+    return 1 if flagged_lines(rows) else 0
 
 
 def _check_person(angle: float, delay: int) -> None:
@@ -76,15 +78,19 @@ def _check_person(angle: float, delay: int) -> None:
 
 def _named_specs(args: argparse.Namespace) -> tuple[list[str], list[TrialSpec]]:
     """The robots and trials named on the command line: planners, kitchens, the person's view and KB delay."""
+    from planner import robot_catalog
     from planner.experiment import TrialSpec
     from planner.layout import LayoutError
-    from planner.registry import PLANNER_NAMES
     from study_config import layout_names, load_layout
 
     robots = [r.strip() for r in (args.robots or "fov_aware,baseline").split(",") if r.strip()]
-    unknown = [r for r in robots if r not in PLANNER_NAMES]
-    if unknown or not robots:
-        raise UsageError(f"unknown robot(s) {', '.join(unknown) or '(none)'}; known: {', '.join(PLANNER_NAMES)}")
+    if not robots:
+        raise UsageError(f"no robot named; choose from: {', '.join(robot_catalog.usable_names())}")
+    for robot in robots:
+        try:
+            robot_catalog.entry(robot)
+        except robot_catalog.RobotUnavailable as exc:
+            raise UsageError(str(exc)) from exc
     layouts_arg = args.layouts or "all"
     names = list(layout_names()) if layouts_arg == "all" else [n.strip() for n in layouts_arg.split(",")]
     layouts = []

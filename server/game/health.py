@@ -1,13 +1,14 @@
-"""Robot health of one trial: the share of robot decisions that missed their deadline, and when that makes
-the trial invalid (docs/operations.md, "Robot health").
+"""Robot health of one trial: the share of robot decisions that missed their deadline or failed, and when that
+makes the trial invalid (docs/operations.md, "Robot health").
 
-A missed decision makes the robot stand still for that tick (``server.robots.choice``), so a trial with many
-of them did not test the robot its condition names. The study's ``validity.max_missed_decisions_pct`` (P)
-judges it:
+A missed decision (late) or a failed one (the robot raised, answered an illegal decision or hung, or its worker
+was lost: ``planner.robot_guard``) makes the robot stand still for that tick (``server.robots.choice``), so a
+trial with many of them did not test the robot its condition names. The study's
+``validity.max_missed_decisions_pct`` (P) judges both together (``lost`` = missed + failed):
 
-- **as it happens**: the trial is invalid as soon as ``missed > P % × horizon``. A trial makes at most
+- **as it happens**: the trial is invalid as soon as ``lost > P % × horizon``. A trial makes at most
   ``horizon`` decisions, so its final share is then certain to exceed P whatever happens next;
-- **at the end**: the trial is invalid when ``missed > P % × decisions`` (a trial that ended early, all orders
+- **at the end**: the trial is invalid when ``lost > P % × decisions`` (a trial that ended early, all orders
   delivered, is judged on the decisions it made).
 
 Once invalid, a trial stays invalid. The state is an immutable value; :meth:`RobotHealth.record` returns the
@@ -29,32 +30,45 @@ class RobotHealth:
     decisions: int = 0
     missed: int = 0
     invalid_reason: str | None = None
+    failed: int = 0
+    """Decisions the robot failed (counted apart from the late ones: ``missed``)."""
+
+    @property
+    def lost(self) -> int:
+        """Decisions the robot did not make in time: late or failed."""
+        return self.missed + self.failed
 
     @property
     def missed_pct(self) -> float:
-        return 100.0 * self.missed / self.decisions if self.decisions else 0.0
+        return 100.0 * self.lost / self.decisions if self.decisions else 0.0
 
     @property
     def invalid(self) -> bool:
         return self.invalid_reason is not None
 
-    def record(self, missed: bool) -> RobotHealth:
-        """The health after one more decision (``missed``: it came after its deadline)."""
-        after = replace(self, decisions=self.decisions + 1, missed=self.missed + int(missed))
-        if not after.invalid and 100.0 * after.missed > after.threshold_pct * after.horizon:
+    def record(self, missed: bool, failed: bool = False) -> RobotHealth:
+        """The health after one more decision (``missed``: it came after its deadline; ``failed``: the robot
+        failed it)."""
+        after = replace(self, decisions=self.decisions + 1, missed=self.missed + int(missed),
+                        failed=self.failed + int(failed and not missed))
+        if not after.invalid and 100.0 * after.lost > after.threshold_pct * after.horizon:
             return replace(after, invalid_reason=after.reason())
         return after
 
     def final(self) -> RobotHealth:
         """The health judged over the decisions the trial made (at its end)."""
-        if self.invalid or 100.0 * self.missed > self.threshold_pct * self.decisions:
+        if self.invalid or 100.0 * self.lost > self.threshold_pct * self.decisions:
             return replace(self, invalid_reason=self.reason())
         return self
 
     def reason(self) -> str:
-        return (f"robot decisions missed their deadline: {self.missed} of {self.decisions} "
-                f"({self.missed_pct:.1f} % > {self.threshold_pct:g} %)")
+        if not self.failed:
+            return (f"robot decisions missed their deadline: {self.missed} of {self.decisions} "
+                    f"({self.missed_pct:.1f} % > {self.threshold_pct:g} %)")
+        return (f"robot decisions missed their deadline or failed: {self.missed} missed and {self.failed} failed "
+                f"of {self.decisions} ({self.missed_pct:.1f} % > {self.threshold_pct:g} %)")
 
     def to_dict(self) -> dict[str, Any]:
-        return {"decisions": self.decisions, "missed": self.missed, "missed_pct": round(self.missed_pct, 2),
+        return {"decisions": self.decisions, "missed": self.missed, "failed": self.failed,
+                "missed_pct": round(self.missed_pct, 2),
                 "threshold_pct": self.threshold_pct, "invalid": self.invalid, "invalid_reason": self.invalid_reason}

@@ -28,9 +28,10 @@ class HealthKeeper:
         self.health, self.store, self.meta, self.event = health, store, meta, event
         self._writes: set[asyncio.Task[None]] = set()
 
-    def record(self, missed: bool) -> None:
-        """Count one decision; the moment the trial becomes invalid, say so and store it."""
-        if self.update(self.health.record(missed), "is invalid"):
+    def record(self, missed: bool, failed: bool = False) -> None:
+        """Count one decision (late: ``missed``; the robot's fault: ``failed``); the moment the trial becomes
+        invalid, say so and store it."""
+        if self.update(self.health.record(missed, failed), "is invalid"):
             task = asyncio.create_task(asyncio.to_thread(self.store_now, self.health))
             self._writes.add(task)
             task.add_done_callback(self._writes.discard)
@@ -50,7 +51,7 @@ class HealthKeeper:
         """Write ``health``'s counts and reason on the trial row (blocking: call it in a thread)."""
         with self.store.transaction() as session:
             trials.record_health(session, self.meta.trial_id, decisions=health.decisions, missed=health.missed,
-                                 invalid_reason=health.invalid_reason)
+                                 invalid_reason=health.invalid_reason, failed=health.failed)
 
     async def settle(self) -> None:
         """Wait for the writes under way, then store the health as it is now."""

@@ -356,7 +356,7 @@ class LiveGame:
 
     async def _take_decision(self) -> RobotChoice:
         choice = await self.robot.take(self.engine)
-        self.keeper.record(choice.missed)
+        self.keeper.record(choice.missed, choice.failed)
         if choice.missed:
             self.event("deadline_miss", {"budget_ms": round(self.robot.budget_s * 1000, 1),
                                          "waited_ms": round(choice.decision_ms or 0.0, 1)})
@@ -367,7 +367,7 @@ class LiveGame:
     async def _reopen_planner(self) -> None:
         try:
             await self.deps.pool.open(self.meta.trial_id, self.loaded.planner(self.meta.robot), self.engine.layout,
-                                      self.engine.rules, self.loaded.planner_config(self.meta.robot, self.engine.angle),
+                                      self.engine.rules, self.loaded.robot_setup(self.meta.robot, self.engine.angle),
                                       self.engine.world, self.engine.kb)
         except Exception as exc:  # the robot stays until a worker is back
             log.error("cannot re-open the planner of trial %d: %s", self.meta.trial_id, exc)

@@ -13,8 +13,8 @@ def tick_row(trial_id: int, outcome: TickOutcome, choice: RobotChoice, lateness_
              controller: dict[str, Any], round_seconds: float) -> dict[str, Any]:
     """Joint action, the subtask the participant's action came from, modelled KB and world summaries, the
     KB-gap components and their sum, robot in the participant's FOV, lateness and decision time, the robot's
-    decision record, the full world, KB and controller state (replay and resume read them), and the step's
-    world events (who loaded, chopped, washed, plated, delivered, or bumped into the other), what the
+    decision record (or why it failed), the full world, KB and controller state (replay and resume read them), the
+    step's world events (who loaded, chopped, washed, plated, delivered, or bumped into the other), what the
     participant's cook did in the step (``controller.step``: ``server.game.steps``), and the seconds the round has
     run while the participant was connected (its limit's clock)."""
     return {
@@ -25,7 +25,9 @@ def tick_row(trial_id: int, outcome: TickOutcome, choice: RobotChoice, lateness_
         "kb_gap_total": sum(outcome.gap.values()), "robot_in_fov": outcome.robot_in_fov,
         "lateness_ms": round(lateness_ms, 3),
         "decision_ms": None if choice.decision_ms is None else round(choice.decision_ms, 3),
-        "robot_missed": choice.missed, "robot_info": choice.info, "world_state": outcome.world.to_dict(),
+        "robot_missed": choice.missed, "robot_info": choice.info,
+        "robot_error": choice.error[:300] if choice.failed and choice.error is not None else None,
+        "world_state": outcome.world.to_dict(),
         "kb_state": outcome.kb.to_dict(), "controller": {**controller, "step": outcome.step},
         "world_events": [event.to_dict() for event in outcome.events], "round_seconds": round(round_seconds, 3),
     }

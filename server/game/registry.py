@@ -158,7 +158,7 @@ class GameRegistry:
                 raise TrialAbandoned(prepared)
             game = self._build(loaded, participant, prepared)
             await self.deps.pool.open(game.meta.trial_id, loaded.planner(game.meta.robot), game.engine.layout,
-                                      game.engine.rules, loaded.planner_config(game.meta.robot, game.engine.angle),
+                                      game.engine.rules, loaded.robot_setup(game.meta.robot, game.engine.angle),
                                       game.engine.world, game.engine.kb)
             self.games[game.meta.trial_id] = game
             self._by_participant[participant.id] = game
@@ -184,7 +184,7 @@ class GameRegistry:
     def _build(self, loaded: LoadedStudy, participant: ParticipantRow, prepared: Prepared) -> LiveGame:
         row, study = prepared.trial, loaded.study
         health = RobotHealth(study.validity.max_missed_decisions_pct, loaded.rules.horizon, prepared.decisions,
-                             prepared.missed, row.invalid_reason)
+                             prepared.missed, row.invalid_reason, failed=prepared.failed)
         last = prepared.last_tick
         return LiveGame(trial_meta(loaded, participant, row), loaded, trial_engine(loaded, row, last),
                         self.deps, resumed=prepared.outcome == "resume", health=health,

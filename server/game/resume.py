@@ -23,6 +23,7 @@ from typing import Literal
 
 from sqlalchemy.orm import Session
 
+from planner import robot_catalog
 from planner.state import WorldState, initial_state
 from server.flow import service
 from server.flow.plan import Step
@@ -48,6 +49,8 @@ class Prepared:
     decisions: int = 0
     missed: int = 0
     """Robot decisions made and missed so far (from the stored ticks of a resumed trial)."""
+    failed: int = 0
+    """Of these, the ones the robot failed."""
 
 
 class StepPassed(Exception):
@@ -75,7 +78,8 @@ def prepare_trial(store: Store, loaded: LoadedStudy, participant_id: int, step: 
         outcome = on_return(row.last_active_at, utcnow(), study.reconnect)
         if outcome == "resume":
             decisions, missed = trials.decision_counts(session, row.id)
-            return Prepared("resume", row, trials.last_tick(session, row.id), decisions=decisions, missed=missed)
+            return Prepared("resume", row, trials.last_tick(session, row.id), decisions=decisions, missed=missed,
+                            failed=trials.failed_count(session, row.id))
         if outcome == "restart":
             trials.end(session, row.id, status=trials.ABANDONED, reason="restarted")
             return Prepared("new", _create(session, loaded, participant_id, step))
@@ -88,12 +92,13 @@ def _create(session: Session, loaded: LoadedStudy, participant_id: int, step: St
     if step.kitchen is None or step.robot is None or step.condition is None:
         raise ValueError(f"trial step without kitchen, robot or condition: {step}")
     world: WorldState = initial_state(loaded.layout(step.kitchen), loaded.rules)
+    robot = robot_catalog.entry(loaded.planner(step.robot))
     return trials.create(session, study_id=loaded.id, participant_id=participant_id, kind=str(step.trial_kind),
                          index=int(step.index or 0), condition_id=step.condition, kitchen=step.kitchen,
                          robot=step.robot, view=step.view or DEFAULT_VIEW,
                          fov_angle=loaded.study.trial_angle(step.fov_angle), seed=secrets.randbits(62),
-                         config_hash=loaded.study.config_hash(),
-                         initial_state=world.to_dict())
+                         config_hash=loaded.study.config_hash(), robot_package=robot.package,
+                         robot_version=robot.version, initial_state=world.to_dict())
 
 
 def abandon_stale(store: Store, loaded: LoadedStudy, idle_seconds: float, live: set[int]) -> int:

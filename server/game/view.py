@@ -1,20 +1,21 @@
 """Server-side FOV masking: what the participant's browser may receive at a tick (docs/domain.md §2).
 
-Only cells in the participant's view (``planner.fov.view`` from the avatar's pose, with the study's angle)
-are sent, each with its terrain, the object on it (counters) and its status (grills, boards, sinks); the
-robot is sent only if its cell is in view. Everything else about the world never leaves the server.
+Only cells in the participant's view (``planner.masking.masked``: the one masking function, from the avatar's pose
+with the study's angle; the kitchen environment's person sees through it too) are sent, each with its terrain, the
+object on it (counters) and its status (grills, boards, sinks); the robot is sent only if its cell is in view.
+Everything else about the world never leaves the server.
 """
 
 from __future__ import annotations
 
 from functools import lru_cache
 
-from planner.fov import view
-from planner.geometry import Direction, Pos
+from planner.geometry import Pos
 from planner.layout import Layout, Terrain
+from planner.masking import masked, station_status
 from planner.rules import Rules
 from planner.state import AgentState, WorldState
-from planner.vocabulary import STATION_STATES, TERRAIN_NAMES, StationState, station_state
+from planner.vocabulary import STATION_STATES, TERRAIN_NAMES, StationState
 from server.protocol.server import AgentView, CellView, StationView
 
 _STATUS_KINDS = frozenset(STATION_STATES)
@@ -26,15 +27,10 @@ def agent_view(agent: AgentState) -> AgentView:
 
 def station_view(layout: Layout, world: WorldState, rules: Rules, kind: Terrain, index: int) -> StationView | None:
     """The status of grill / board / sink ``index`` as the participant sees it when it is in view."""
-    if kind is Terrain.GRILL:
-        value, total = world.grills[index], rules.cook_time
-    elif kind is Terrain.BOARD:
-        value, total = world.boards[index], rules.chop_time
-    elif kind is Terrain.SINK:
-        value, total = world.sinks[index], rules.wash_time
-    else:
+    if kind not in _STATUS_KINDS:
         return None
-    return _station(station_state(kind, value, total), 0 if value is None else min(value, total), total)
+    counts = world.grills if kind is Terrain.GRILL else world.boards if kind is Terrain.BOARD else world.sinks
+    return _station(*station_status(kind, counts[index], rules))
 
 
 @lru_cache(maxsize=1024)
@@ -56,45 +52,31 @@ def drawn_bounds(layout: Layout) -> tuple[int, int, int, int]:
 
 def visible_world(layout: Layout, world: WorldState, rules: Rules,
                   angle: float) -> tuple[list[CellView], AgentView | None]:
-    """The visible cells (reading order) and the robot if it is in view.
+    """The visible cells (reading order) and the robot if it is in view: the participant's masked world
+    (:func:`planner.masking.masked`, the one masking function) as message parts.
 
-    Runs for every tick of every trial, so the fixed part is cached: the cells in view of a pose in reading
-    order with their terrain (per layout and angle, like ``planner.fov.view``), and the message part of a
-    cell showing only its terrain (shared between messages; they are serialised, never changed). Only
-    objects on counters and station statuses are built per tick."""
-    human = world.human
-    seen = view(layout, human.pos, human.facing, angle).cells
-    table = _ordered_table(layout, float(angle))
-    key = (human.pos, human.facing)
-    ordered = table.get(key)
-    if ordered is None:
-        ordered = table[key] = tuple((pos, _station_entry(layout, pos), _bare_cell(layout, pos))
-                                     for pos in sorted(seen, key=lambda p: (p[1], p[0])))
-    objects = dict(world.objects) if world.objects else {}
+    Runs for every tick of every trial, so the message part of a cell showing only its terrain is cached and shared
+    between messages (they are serialised, never changed). Only objects on counters and station statuses are
+    built per tick."""
+    seen = masked(layout, world, rules, angle)
+    objects = dict(seen.objects) if seen.objects else {}
+    stations = {s.pos: s for s in seen.stations}
+    bare = _bare_cells(layout, seen.cells)
     cells = []
-    for pos, entry, bare in ordered:
+    for (pos, _), plain in zip(seen.cells, bare, strict=True):
         thing = objects.get(pos)
-        station = station_view(layout, world, rules, entry[0], entry[1]) if entry is not None else None
+        station = stations.get(pos)
         if thing is None and station is None:
-            cells.append(bare)
+            cells.append(plain)
         else:
-            cells.append(CellView.model_construct(x=pos[0], y=pos[1], terrain=bare.terrain, object=thing,
-                                                  station=station))
-    robot = agent_view(world.robot) if world.robot.pos in seen else None
-    return cells, robot
+            cells.append(CellView.model_construct(
+                x=pos[0], y=pos[1], terrain=plain.terrain, object=thing,
+                station=_station(station.state, station.progress, station.total) if station is not None else None))
+    return cells, agent_view(seen.other) if seen.other is not None else None
 
 
-@lru_cache(maxsize=256)
-def _ordered_table(layout: Layout, angle: float) -> dict[tuple[Pos, Direction],
-                                                        tuple[tuple[Pos, tuple[Terrain, int] | None, CellView], ...]]:
-    return {}
-
-
-def _station_entry(layout: Layout, pos: Pos) -> tuple[Terrain, int] | None:
-    entry = layout.stations.get(pos)
-    return entry if entry is not None and entry[0] in _STATUS_KINDS else None
-
-
-def _bare_cell(layout: Layout, pos: Pos) -> CellView:
-    return CellView.model_construct(x=pos[0], y=pos[1], terrain=TERRAIN_NAMES[layout.terrain(pos)], object=None,
-                                    station=None)
+@lru_cache(maxsize=4096)
+def _bare_cells(layout: Layout, cells: tuple[tuple[Pos, Terrain], ...]) -> tuple[CellView, ...]:
+    """The message parts of ``cells`` showing only their terrain (one tuple per pose's view, cached)."""
+    return tuple(CellView.model_construct(x=pos[0], y=pos[1], terrain=TERRAIN_NAMES[terrain], object=None,
+                                          station=None) for pos, terrain in cells)

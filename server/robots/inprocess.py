@@ -2,6 +2,8 @@
 
 Same semantics as the worker processes: requests are served one at a time in order, a decision finished
 after its deadline is discarded (the thread finishes it in the background, so the next request waits for it).
+One exception: a thread cannot be stopped, so a robot that hangs holds this pool up for good (the worker
+processes stop it, ``server.robots.worker``).
 """
 
 from __future__ import annotations
@@ -12,11 +14,12 @@ from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
-from planner.decision import Robot, RobotFactory
+from planner.decision import Robot
 from planner.events import Event
 from planner.kb import KnowledgeBase
 from planner.layout import Layout
-from planner.planner_config import PlannerConfig
+from planner.robot_catalog import RobotFactory, RobotSetup
+from planner.robot_guard import describe
 from planner.rules import Rules
 from planner.state import WorldState
 from server.robots import deadline as clock
@@ -44,10 +47,10 @@ class InProcessRobots:
             raise RuntimeError("the robot pool is not started")
         return asyncio.get_running_loop().run_in_executor(self._executor, fn, *args)
 
-    async def open(self, trial_id: int, robot: str, layout: Layout, rules: Rules, config: PlannerConfig,
+    async def open(self, trial_id: int, robot: str, layout: Layout, rules: Rules, setup: RobotSetup,
                    world: WorldState, kb: KnowledgeBase) -> None:
         def build() -> None:
-            policy = self.factory(robot, layout, rules, config)
+            policy = self.factory(robot, layout, rules, setup)
             policy.reset(world, kb)
             self._policies[trial_id] = policy
 
@@ -62,7 +65,7 @@ class InProcessRobots:
             try:
                 return ("ok", run_decision(policy, world, tuple(events), seed, tick, deadline), clock.now())
             except Exception as exc:  # a planner failure makes the robot stay
-                return ("error", f"{type(exc).__name__}: {exc}", clock.now())
+                return ("error", describe(exc), clock.now())
 
         start = time.perf_counter()
         return await await_reply(self._run(call), deadline, start)

@@ -24,12 +24,11 @@ import time
 from collections.abc import Sequence
 from typing import Any, Protocol
 
-from planner.decision import RobotFactory
 from planner.events import Event
 from planner.geometry import Action
 from planner.kb import KnowledgeBase
 from planner.layout import Layout
-from planner.planner_config import PlannerConfig
+from planner.robot_catalog import RobotFactory, RobotSetup
 from planner.rules import Rules
 from planner.state import WorldState
 from server.robots.choice import RobotChoice
@@ -43,12 +42,13 @@ OPEN_TIMEOUT_S = 60.0
 class RobotPool(Protocol):
     async def start(self) -> None: ...
     async def shutdown(self) -> None: ...
-    async def open(self, trial_id: int, robot: str, layout: Layout, rules: Rules, config: PlannerConfig,
+    async def open(self, trial_id: int, robot: str, layout: Layout, rules: Rules, setup: RobotSetup,
                    world: WorldState, kb: KnowledgeBase) -> None:
-        """Build trial ``trial_id``'s planner with the factory, ``factory(robot, layout, rules, config)``, and
+        """Build trial ``trial_id``'s planner with the factory, ``factory(robot, layout, rules, setup)``, and
         reset it on ``world`` and ``kb``, the participant's modelled KB there (the engine's: the initial KB at
         tick 0, the restored one when the trial resumes), so the robot's model of the person goes on from
-        the one the server logs. ``config`` is the study's model of the person (its FOV angle and KB delay)."""
+        the one the server logs. ``setup`` is the person the study shows (its FOV angle and KB delay) and the robot's
+        settings (``study_config.catalog.LoadedStudy.robot_setup``)."""
     async def decide(self, trial_id: int, world: WorldState, events: Sequence[Event], seed: int, tick: int,
                      deadline: float) -> RobotChoice: ...
     async def close_trial(self, trial_id: int) -> None: ...
@@ -163,7 +163,7 @@ class ProcessRobots:
             await asyncio.to_thread(worker.stop)
         self._pins.clear()
 
-    async def open(self, trial_id: int, robot: str, layout: Layout, rules: Rules, config: PlannerConfig,
+    async def open(self, trial_id: int, robot: str, layout: Layout, rules: Rules, setup: RobotSetup,
                    world: WorldState, kb: KnowledgeBase) -> None:
         """Pin ``trial_id`` to the least-loaded worker and build its planner there (restarting a dead one)."""
         await self.close_trial(trial_id)
@@ -174,7 +174,7 @@ class ProcessRobots:
         worker.trials.add(trial_id)
         self._pins[trial_id] = worker
         status, payload, _ = await asyncio.wait_for(
-            worker.request("open", trial_id, robot, layout, rules, config, world, kb), OPEN_TIMEOUT_S)
+            worker.request("open", trial_id, robot, layout, rules, setup, world, kb), OPEN_TIMEOUT_S)
         if status != "ok":
             worker.trials.discard(trial_id)
             self._pins.pop(trial_id, None)

@@ -9,7 +9,7 @@ from typing import Annotated, Any
 from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, ValidationError
 from pydantic_core import InitErrorDetails, PydanticCustomError
 
-from planner.registry import PLANNER_NAMES
+from planner import robot_catalog
 
 STUDY_ERROR = "study"
 """Error type of every problem raised by the study's own checks (as opposed to pydantic's type checks)."""
@@ -78,13 +78,20 @@ def _check_slug(value: str) -> str:
     return value
 
 
-def robot_problem(value: str, known: Sequence[str] = PLANNER_NAMES) -> str:
-    """Why ``value`` is not the name of a robot: a planner's, or one of ``known`` (a study's own variants)."""
-    return f"unknown robot {value!r}; choose one of: {', '.join(known)}"
+def robot_problem(value: str, known: Sequence[str] | None = None) -> str:
+    """Why ``value`` is not the name of a robot: an installed robot's (``planner.robot_catalog``), or one of
+    ``known`` (those and a study's own variants). An installed robot that cannot be used says why (a plug-in that
+    cannot be imported, written for another contract version …)."""
+    found = robot_catalog.find(value)
+    if found is not None and found.problem is not None:
+        return f"robot {value!r} ({found.package} {found.version}, {found.source}) cannot be used: {found.problem}"
+    names = known if known is not None else robot_catalog.usable_names()
+    return f"unknown robot {value!r}; choose one of: {', '.join(names)}"
 
 
 def _check_robot(value: str) -> str:
-    if value not in PLANNER_NAMES:
+    found = robot_catalog.find(value)
+    if found is None or found.problem is not None:
         raise ValueError(robot_problem(value))
     return value
 
@@ -93,7 +100,7 @@ Slug = Annotated[str, AfterValidator(_check_slug)]
 """An identifier used in URLs, CSV columns and the store: lowercase letters, digits, ``-`` and ``_``."""
 
 RobotName = Annotated[str, AfterValidator(_check_robot)]
-"""The name of a robot planner, one of ``planner.registry.PLANNER_NAMES`` (docs/domain.md §5)."""
+"""The name of a usable installed robot: a shipped planner (docs/domain.md §5) or a plug-in (docs/robots.md)."""
 
 
 def _check_not_empty(value: Any) -> Any:

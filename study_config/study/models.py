@@ -16,8 +16,7 @@ from typing import Annotated, Any
 from pydantic import Field, ValidationInfo, field_validator
 
 from planner.perception import FOV_ANGLE
-from planner.planner_config import PlannerConfig
-from planner.registry import PLANNER_NAMES
+from planner.robot_catalog import usable_names
 from study_config.study.base import (
     Loc,
     NotEmpty,
@@ -60,8 +59,8 @@ class Study(StudyModel):
     """The study's own robots, by name: a planner with some of its settings changed, e.g. ``fov_aware_no_walk:
     {planner: fov_aware, settings: {hands_walk: false}}`` (``study_config/study/robots.py``)."""
     robots: Annotated[tuple[Slug, ...], NotEmpty]
-    """Levels of the robot factor: planner names (``fov_aware``, ``baseline``, ``no_rollout``, ``stay``) or the
-    names of ``robot_variants``."""
+    """Levels of the robot factor: installed robots (the shipped ``fov_aware``, ``baseline``, ``no_rollout``,
+    ``stay``, and plug-ins: ``steakhouse robots`` lists them, docs/robots.md) or the names of ``robot_variants``."""
     view: ViewName | None = None
     """How participants see the kitchen in every trial: ``top_down`` (the default) or ``first_person``
     (``study_config.study.views``). Shorthand for ``views`` with one entry; write one of the two."""
@@ -137,7 +136,7 @@ class Study(StudyModel):
         if not isinstance(robots, (list, tuple)) or not all(isinstance(r, str) for r in robots):
             return robots
         _remember_levels(info, "robots", list(robots))
-        known = tuple(dict.fromkeys((*PLANNER_NAMES, *(_levels(info, "robot_variants") or ()))))
+        known = tuple(dict.fromkeys((*usable_names(), *(_levels(info, "robot_variants") or ()))))
         problems = [((i,), robot_problem(r, known)) for i, r in enumerate(robots) if r not in known]
         raise_problems(sorted(problems + duplicate_problems(robots, "robot")), robots)
         return robots
@@ -300,15 +299,15 @@ class Study(StudyModel):
         return stored if stored is not None else self.world.fov_angle
 
     def planner(self, robot: str) -> str:
-        """The planner of the robot called ``robot`` (a level of the robot factor or a practice robot)."""
+        """The installed robot that plays the robot called ``robot`` (a level of the robot factor or a practice
+        robot): a variant's ``planner``, else the robot itself."""
         variant = self.robot_variants.get(robot)
         return variant.planner if variant is not None else robot
 
-    def planner_config(self, robot: str, base: PlannerConfig) -> PlannerConfig:
-        """The settings of the robot called ``robot``: ``base`` (the trial's model of the person), changed by its
-        variant's settings."""
+    def robot_settings(self, robot: str) -> dict[str, Any]:
+        """The settings the robot called ``robot`` changes from its planner's defaults (its variant's, checked)."""
         variant = self.robot_variants.get(robot)
-        return variant.config(base) if variant is not None else base
+        return dict(variant.settings) if variant is not None else {}
 
     def kitchen(self, name: str) -> Kitchen:
         """The kitchen called ``name`` among the study's and the practice kitchens."""

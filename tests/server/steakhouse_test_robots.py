@@ -1,6 +1,6 @@
 """Robot factories for the server tests, importable by spawned worker processes (same ``sys.path``).
 
-Each is ``factory(name, layout, rules, config) -> policy`` like ``planner.robots.make_robot``.
+Each is ``factory(name, layout, rules, setup) -> policy`` like ``planner.robot_catalog.build``.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from planner.events import Event
 from planner.geometry import Action
 from planner.kb import KnowledgeBase
 from planner.partner import SimulatedPartner
-from planner.planner_config import PlannerConfig
+from planner.robot_catalog import RobotSetup
 from planner.state import WorldState
 
 
@@ -93,9 +93,9 @@ class ConfigEcho(Counting):
     """Answers with the model of the person it was built with and whether the KB it was reset with knows
     where the robot is (in ``q_values``), so a test sees what reached a worker process."""
 
-    def __init__(self, config: PlannerConfig) -> None:
+    def __init__(self, setup: RobotSetup) -> None:
         super().__init__()
-        self.config = config
+        self.setup = setup
         self.kb: KnowledgeBase | None = None
 
     def reset(self, world: WorldState, kb: KnowledgeBase | None = None) -> None:
@@ -105,12 +105,13 @@ class ConfigEcho(Counting):
     def decide(self, world: WorldState, events: Sequence[Event], rng: np.random.Generator,
                deadline: float | None = None) -> Decision:
         knows_robot = -1.0 if self.kb is None else float(self.kb.robot is not None)
-        return Decision(Action.STAY, q_values={"angle": self.config.human_angle,
-                                               "delay": float(self.config.human_delay), "kb_robot": knows_robot})
+        person = self.setup.person
+        return Decision(Action.STAY, q_values={"angle": person.fov_angle, "delay": float(person.kb_delay),
+                                               "kb_robot": knows_robot})
 
 
-def config_echo(name: str, layout: Any, rules: Any, config: PlannerConfig) -> ConfigEcho:
-    return ConfigEcho(config)
+def config_echo(name: str, layout: Any, rules: Any, setup: RobotSetup) -> ConfigEcho:
+    return ConfigEcho(setup)
 
 
 class GcProbe(Counting):

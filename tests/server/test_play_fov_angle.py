@@ -12,10 +12,10 @@ import httpx
 from steakhouse_testing import Player, condition_order, play_every_trial
 
 from analysis.export import read_dataset
+from planner import robot_catalog
 from planner.decision import Robot
 from planner.layout import Layout
-from planner.planner_config import PlannerConfig
-from planner.robots import make_robot
+from planner.robot_catalog import RobotSetup
 from planner.rules import Rules
 from store.tables import TrialRow
 
@@ -27,9 +27,9 @@ STUDY = {"robots": ["stay"], "kitchens": ["practice"], "fov_angles": [90, 150], 
 def test_each_group_plays_practises_and_is_modelled_at_its_own_angle(live_server, study_file):
     modelled: list[float] = []
 
-    def factory(name: str, layout: Layout, rules: Rules, config: PlannerConfig) -> Robot:
-        modelled.append(config.human_angle)
-        return make_robot(name, layout, rules, config)
+    def factory(name: str, layout: Layout, rules: Rules, setup: RobotSetup) -> Robot:
+        modelled.append(setup.person.fov_angle)
+        return robot_catalog.build(name, layout, rules, setup)
 
     server = live_server([study_file(**STUDY)], robot_factory=factory)
 

@@ -13,6 +13,7 @@ from analysis.export import read_dataset
 from planner.decision import Robot
 from planner.layout import Layout
 from planner.planner_config import PlannerConfig
+from planner.robot_catalog import RobotSetup
 from planner.robots import make_robot
 from planner.rules import Rules
 from store.tables import TrialRow
@@ -26,9 +27,9 @@ def test_a_variant_s_trials_are_played_by_its_planner_with_its_settings_and_it_s
                                                                                           study_file):
     opened: list[tuple[str, int]] = []
 
-    def factory(name: str, layout: Layout, rules: Rules, config: PlannerConfig) -> Robot:
-        opened.append((name, config.standoff_ticks))
-        return make_robot("stay", layout, rules, config)  # what was asked for is recorded; a still robot is fast
+    def factory(name: str, layout: Layout, rules: Rules, setup: RobotSetup) -> Robot:
+        opened.append((name, dict(setup.settings).get("standoff_ticks", PlannerConfig().standoff_ticks)))
+        return make_robot("stay", layout, rules)  # what was asked for is recorded; a still robot is fast
 
     server = live_server([study_file(**STUDY)], robot_factory=factory)
 

@@ -91,12 +91,13 @@ def test_simulate_a_study_plays_its_kitchens_robots_and_world(tmp_path, capsys):
     assert "kb_gap_mean, 3 seeds as participants" in out and "practice  patient" in out
 
 
-def test_a_variant_s_settings_change_only_that_robot_s_config():
+def test_a_variant_s_settings_change_only_that_robot_s_setup():
     spec = TrialSpec(load_layout("practice"), "patient", 0, 90.0, 2, planner="baseline",
                      settings=(("standoff_ticks", 40),))
-    config = spec.config()
-    assert (config.standoff_ticks, config.human_angle, config.human_delay) == (40, 90.0, 2)
-    assert TrialSpec(load_layout("practice"), "baseline", 0).config().standoff_ticks == 5
+    setup = spec.setup()
+    assert dict(setup.settings)["standoff_ticks"] == 40
+    assert (setup.person.fov_angle, setup.person.kb_delay) == (90.0, 2)
+    assert "standoff_ticks" not in dict(TrialSpec(load_layout("practice"), "baseline", 0).setup().settings)
 
 
 def test_simulate_a_study_says_what_it_cannot_take(tmp_path, capsys):

@@ -46,5 +46,15 @@ def test_an_invalid_trial_stays_invalid_and_its_reason_carries_the_final_counts(
 
 def test_a_healthy_trial_reports_its_share():
     final = run(RobotHealth(5.0, 50), [False] * 50)[-1].final()
-    assert final.to_dict() == {"decisions": 50, "missed": 0, "missed_pct": 0.0, "threshold_pct": 5.0,
+    assert final.to_dict() == {"decisions": 50, "missed": 0, "failed": 0, "missed_pct": 0.0, "threshold_pct": 5.0,
                                "invalid": False, "invalid_reason": None}
+
+
+def test_failed_decisions_count_with_the_late_ones_and_are_named():
+    health = RobotHealth(threshold_pct=5.0, horizon=40)
+    for failed in (True, True):
+        health = health.record(False, failed)
+    health = health.record(True)
+    assert (health.missed, health.failed, health.lost) == (1, 2, 3)
+    assert health.invalid and health.invalid_reason == (
+        "robot decisions missed their deadline or failed: 1 missed and 2 failed of 3 (100.0 % > 5 %)")

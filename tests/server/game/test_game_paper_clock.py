@@ -181,7 +181,7 @@ def test_the_robot_taking_a_steak_is_remembered_from_the_world_steps_themselves(
 def test_a_free_grill_the_participant_sees_but_does_not_know_yet_is_looked_at_not_refused():
     # Their knowledge still has the grill busy; they stand facing it, free. "The grill is busy" would be false.
     engine = engine_at(world_with(pos=GRILL_SPOT, facing=Direction.EAST, held=MEAT, grill=None))
-    engine.kb = replace(engine.kb, grills=(4,), streaks=())
+    engine.kb = replace(engine.kb, grills=(4,), tracking=None)
     engine.kb_delay = 3
     engine.controller.select(Subtask.DROP_MEAT, MEAT)
     outcomes, refused = paper_steps(engine, 10)

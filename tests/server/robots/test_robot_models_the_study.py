@@ -12,12 +12,15 @@ from dataclasses import replace
 import numpy as np
 from steakhouse_testing import Player, play_to_end, play_until, until_unloaded
 
-from planner.decision import Decision, Robot, RobotFactory
+from planner import robot_catalog
+from planner.decision import Decision, Robot
 from planner.events import Event
 from planner.kb import KnowledgeBase, initial_kb
 from planner.layout import Layout
 from planner.planner_config import PlannerConfig
 from planner.qmdp import QmdpRobot
+from planner.robot_api import Person
+from planner.robot_catalog import RobotFactory, RobotSetup
 from planner.robots import make_robot
 from planner.rules import Rules
 from planner.state import WorldState, initial_state
@@ -45,13 +48,14 @@ class Recording:
 
 
 def recording_factory(built: list[Recording]) -> RobotFactory:
-    """``make_robot``, each robot built appended to ``built`` as a :class:`Recording`."""
+    """The catalogue's robot, each robot built appended to ``built`` as a :class:`Recording`."""
 
-    def factory(name: str, layout: Layout, rules: Rules, config: PlannerConfig) -> Robot:
+    def factory(name: str, layout: Layout, rules: Rules, setup: RobotSetup) -> Robot:
         # A short lookahead keeps every decision inside its tick on a busy machine (a late one is dropped
         # and the requests queued behind it are cancelled at the trial's end); the model of the person
         # does not depend on it.
-        robot = make_robot(name, layout, rules, replace(config, search_depth=1))
+        robot = robot_catalog.build(name, layout, rules,
+                                    replace(setup, settings=(*setup.settings, ("search_depth", 1))))
         assert isinstance(robot, QmdpRobot)
         built.append(Recording(robot))
         return built[-1]
@@ -151,7 +155,7 @@ def test_the_study_config_and_the_restored_kb_reach_a_worker_process():
         pool = ProcessRobots(1, "steakhouse_test_robots:config_echo")
         await pool.start()
         try:
-            await pool.open(1, "fov_aware", layout, rules, PlannerConfig(human_angle=90.0, human_delay=5), world,
+            await pool.open(1, "fov_aware", layout, rules, RobotSetup(Person(fov_angle=90.0, kb_delay=5)), world,
                             replace(initial_kb(world), robot=None))
             return await pool.decide(1, world, (), 1, 0, time.monotonic() + 5.0)
         finally:

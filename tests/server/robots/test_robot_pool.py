@@ -11,7 +11,7 @@ from steakhouse_test_robots import counting, failing, slow
 
 from planner.geometry import Action
 from planner.kb import initial_kb
-from planner.planner_config import PlannerConfig
+from planner.robot_catalog import RobotSetup
 from planner.rules import Rules
 from planner.state import initial_state
 from server.robots import InProcessRobots, ProcessRobots
@@ -19,7 +19,7 @@ from study_config import load_layout
 
 LAYOUT = load_layout("practice")
 RULES = Rules()
-CONFIG = PlannerConfig()
+CONFIG = RobotSetup()
 WORLD = initial_state(LAYOUT, RULES)
 KB = initial_kb(WORLD)
 
@@ -90,7 +90,7 @@ def test_a_failing_planner_and_a_dead_worker_make_the_robot_stay_until_reopened(
         return failed, before, crashed, after_crash, reopened
 
     failed, before, crashed, after_crash, reopened = asyncio.run(run())
-    assert failed.action is Action.STAY and failed.error == "ValueError: planner bug"
+    assert failed.action is Action.STAY and failed.error == "raised ValueError: planner bug"
     assert [c.action for c in before] == [Action.NORTH, Action.SOUTH]
     assert crashed.error == "worker_lost" and crashed.action is Action.STAY
     assert after_crash.error == "worker_lost"
@@ -116,7 +116,7 @@ def test_the_in_process_pool_has_the_same_rules(factory, expect):
     elif expect == "missed":
         assert choice.missed and choice.action is Action.STAY
     else:
-        assert choice.error == "ValueError: planner bug"
+        assert choice.error == "raised ValueError: planner bug"
 
 
 def test_a_worker_keeps_what_its_planners_built_out_of_full_collections():

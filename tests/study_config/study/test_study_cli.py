@@ -6,6 +6,7 @@ from pathlib import Path
 
 import pytest
 
+from planner.robot_catalog import usable_names
 from server.cli import main
 
 STUDY_CONFIG = Path(__file__).resolve().parents[3] / "study_config"
@@ -98,7 +99,7 @@ def test_kitchen_files_are_checked_as_serve_would_and_every_problem_is_listed(
         f"{study}: kitchens[2]: no kitchen file at {(tmp_path / 'my' / 'missing.layout').resolve()}",
         f"{study}: kitchens[3]: duplicate kitchen 'none_3' (already at [0])",
         f"{study}: kitchens[4] (my/open.layout:1:8): the kitchen is not closed: floor on the border",
-        f"{study}: robots[1]: unknown robot 'terminator'; choose one of: fov_aware, baseline, no_rollout, stay",
+        f"{study}: robots[1]: unknown robot 'terminator'; choose one of: {', '.join(usable_names())}",
         f"{study}: robots[2]: duplicate robot 'fov_aware' (already at [0])",
         *(f"{study}: practice[0].kitchen {problem}" for problem in kitchen_problems),
     ], "\n".join(lines)
@@ -118,7 +119,7 @@ def test_a_bad_kitchen_or_robot_does_not_hide_the_checks_of_factors_and_counterb
     problems = [line.split(" (line ")[0].split(": ", 1)[1] for line in capsys.readouterr()[1].splitlines()[:-1]]
     assert problems == [
         f"kitchens[1]: no kitchen file at {(tmp_path / 'missing.layout').resolve()}",
-        "robots[1]: unknown robot 'terminator'; choose one of: fov_aware, baseline, no_rollout, stay",
+        f"robots[1]: unknown robot 'terminator'; choose one of: {', '.join(usable_names())}",
         "counterbalancing.order[0]: unknown condition 'nope@none_3'; conditions are: fov_aware@none_3, "
         "fov_aware@missing, terminator@none_3, terminator@missing",
         "counterbalancing.order: missing conditions: fov_aware@none_3, fov_aware@missing, terminator@none_3, "

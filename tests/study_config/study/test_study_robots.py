@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from planner.robot_api import Person
+from planner.robot_catalog import usable_names
 from study_config.catalog import load_one
 from study_config.study import load_study, validate_study_file
 from study_config.study.warnings import study_warnings
@@ -31,12 +33,12 @@ def test_a_variant_is_a_robot_level_played_by_its_planner_with_its_settings(tmp_
     study = loaded.study
     assert [c.id for c in study.conditions] == ["fov_aware@none_3", "fov_aware_no_walk@none_3", "baseline@none_3"]
     assert [loaded.planner(r) for r in study.robots] == ["fov_aware", "fov_aware", "baseline"]
-    variant = loaded.planner_config("fov_aware_no_walk", 90.0)
-    plain = loaded.planner_config("fov_aware", 90.0)
-    assert (variant.hands_walk, variant.walk_price, variant.view_detour) == (False, 0.0, 2)
-    assert (plain.hands_walk, plain.walk_price, plain.view_detour) == (True, 0.05, 4), "other robots keep defaults"
+    variant = loaded.robot_setup("fov_aware_no_walk", 90.0)
+    plain = loaded.robot_setup("fov_aware", 90.0)
+    assert dict(variant.settings) == {"hands_walk": False, "walk_price": 0.0, "view_detour": 2}
+    assert plain.settings == (), "other robots keep their defaults"
     # The robot's model of the person is the trial's, for a variant too.
-    assert (variant.human_angle, variant.human_delay) == (plain.human_angle, plain.human_delay) == (90.0, 2)
+    assert variant.person == plain.person == Person(fov_angle=90.0, kb_delay=2)
     assert "unused_variant" not in {w.code for w in study_warnings(study)}
 
 
@@ -52,20 +54,23 @@ robot_variants:
   a_variant_with_a_name_too_long_to_store: {planner: baseline}
 """
     found = {p.path: p.reason for p in validate_study_file(write(tmp_path, text))}
+    installed = ", ".join(usable_names())
     assert found == {
         "robot_variants.careful.settings.hands_walk": "must be true or false, not 1",
         "robot_variants.careful.settings.view_detour": "must be 0 or more",
         "robot_variants.careful.settings.human_angle":
             "set by the study for every robot (world.fov_angle or fov_angles), not by a robot variant",
         "robot_variants.careful.settings.walk_pric": found["robot_variants.careful.settings.walk_pric"],
-        "robot_variants.baseline": "key: 'baseline' is a planner's name; give the variant its own name",
+        "robot_variants.baseline": "key: 'baseline' is an installed robot's name; give the variant its own name",
         "robot_variants.a_variant_with_a_name_too_long_to_store":
             "key: at most 32 characters (the name is stored with every trial)",
-        "robot_variants.other.planner": "unknown robot 'nobody'; choose one of: fov_aware, baseline, no_rollout, stay",
-        "robots[2]": "unknown robot 'careles'; choose one of: fov_aware, baseline, no_rollout, stay, careful, other, "
+        "robot_variants.other.planner": f"unknown robot 'nobody'; choose one of: {installed}",
+        "robots[2]": f"unknown robot 'careles'; choose one of: {installed}, careful, other, "
                      "a_variant_with_a_name_too_long_to_store",
     }
-    assert found["robot_variants.careful.settings.walk_pric"].startswith("unknown planner setting 'walk_pric'; known: ")
+    assert installed.startswith("fov_aware, baseline, no_rollout, stay"), "the shipped robots, then any plug-ins"
+    assert found["robot_variants.careful.settings.walk_pric"].startswith(
+        "unknown setting 'walk_pric' of robot 'fov_aware'; its settings: ")
     assert "walk_price" in found["robot_variants.careful.settings.walk_pric"]
     only_lookahead = ("robots: [fov_aware, careful]\n"
                       "robot_variants: {careful: {planner: fov_aware, settings: {lookahead: guess}}}\n")
