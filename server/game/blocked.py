@@ -182,6 +182,23 @@ def explained(reason: Reason, changes: Changes, cells: Iterable[Pos]) -> Reason:
     return reason if change is None else Reason(ROBOT_DID[change.category], change.item, change.place)
 
 
+def knows_wrongly(layout: Layout, rules: Rules, kb: KnowledgeBase, world: WorldState, cell: Pos) -> bool:
+    """Whether the participant's knowledge of ``cell`` (a counter, grill, board or sink) differs from the world:
+    another object on a counter, a station empty, working or done in one and not the other."""
+    if cell not in layout.stations:
+        return False
+    return _known_state(layout, rules, kb, cell) != _known_state(layout, rules, world, cell)
+
+
+def _known_state(layout: Layout, rules: Rules, kitchen: KnowledgeBase | WorldState, cell: Pos) -> object:
+    kind, index = layout.stations[cell]
+    done_at = {Terrain.GRILL: rules.cook_time, Terrain.BOARD: rules.chop_time, Terrain.SINK: rules.wash_time}.get(kind)
+    if done_at is None:
+        return kitchen.object_at(cell) if kind is Terrain.COUNTER else None
+    value = {Terrain.GRILL: kitchen.grills, Terrain.BOARD: kitchen.boards, Terrain.SINK: kitchen.sinks}[kind][index]
+    return "empty" if value is None else "done" if value >= done_at else "working"
+
+
 def progressed(layout: Layout, before: WorldState, after: WorldState, events: tuple[Event, ...]) -> bool:
     """Whether the step from ``before`` to ``after`` moved the participant's subtask on."""
     h0, h1 = before.human, after.human

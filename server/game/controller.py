@@ -48,6 +48,7 @@ from server.game.blocked import (
     explained,
     hands_reason,
     interaction_reason,
+    knows_wrongly,
     no_target_reason,
     nothing_left,
     progressed,
@@ -141,12 +142,15 @@ class ParticipantController:
             return Action.STAY, "idle"
         action, wants_move = avatar_move(self.model, self.angle, world, kb, self.subtask, self.robot_watch, rng)
         self.aims = targets(self.layout, self.subtask, kb, self.rules) or self.aims
+        if self.looking:
+            self.intent = "look"
+            return Action.STAY, "subtask"
         if action is Action.INTERACT:
             self.intent = "interact"
         elif action is not Action.STAY:
             self.intent = "move"
         else:
-            self.intent = "wait" if wants_move else "look" if self.looking else "no_target"
+            self.intent = "wait" if wants_move else "no_target"
         return action, "subtask"
 
     def refuse_step(self, world: WorldState, kb: KnowledgeBase, rng: np.random.Generator,
@@ -157,10 +161,12 @@ class ParticipantController:
         subtask ends here with its reason (``ended``) and the world must not step for it. ``None``: the step
         goes ahead (a key waiting, no subtask, or a step that moves, turns or works).
 
-        One exception keeps reasons true: a target the participant sees in their view now but does not know yet
-        (their modelled KB takes a change in after ``kb_delay`` steps in view, docs/domain.md §3) is looked at for
-        up to ``look_steps`` steps (the study's ``kb_delay``) rather than refused with "The grill is busy" while
-        they watch it stand free; those steps are ``look`` in the record."""
+        One exception keeps the participant's modelled knowledge in step with what they see (it takes a change in
+        after ``kb_delay`` steps in view, docs/domain.md §3, and a refusal moves no step): a target they see in view
+        but do not know yet, or the cell they face when their knowledge of it is wrong (the onion they went for is
+        gone), is looked at for up to ``look_steps`` steps (the study's ``kb_delay``) rather than refused at once —
+        else "The grill is busy" while they watch it stand free, or the same walk to the same empty counter again;
+        those steps are ``look`` in the record, and the refusal, if still due, follows with its true reason."""
         subtask = self.subtask
         if self.queue or subtask is None:
             return None
@@ -170,8 +176,10 @@ class ParticipantController:
         self.looking = False
         if action is Action.INTERACT:
             if not would_act(self.layout, world, self.rules):
+                self.looking = self.stall.ticks < look_steps and knows_wrongly(self.layout, self.rules, kb, world,
+                                                                               self._faced(world))
                 reason = interaction_reason(self.layout, world, self.rules) or Reason("stuck")
-                reason = explained(reason, self.changes, (self._faced(world),))
+                reason = None if self.looking else explained(reason, self.changes, (self._faced(world),))
         elif action is Action.STAY and not wants_move:
             self.looking = self.stall.ticks < look_steps and self._sees_target(world, subtask)
             reason = None if self.looking else explained(no_target_reason(subtask), self.changes, self.aims)

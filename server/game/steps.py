@@ -7,8 +7,9 @@ Every stored tick says what the participant's cook did in it (``ticks.controller
 - ``walk``: a step along the chosen task's path (a move or a turn);
 - ``work``: an interaction of the task that changed the world (picked up, put down, chopped, …);
 - ``wait``: the task's path waited for the robot to clear the way (or bumped into it);
-- ``look``: the paper's clock: the task looked at a target the participant sees but does not know yet (their
-  modelled KB takes a change in after the study's ``kb_delay`` steps in view), at most ``kb_delay`` steps;
+- ``look``: the paper's clock: the task looked at a target the participant sees but does not know yet, or at the
+  cell they face when their knowledge of it is wrong (their modelled KB takes a change in after the study's
+  ``kb_delay`` steps in view), at most ``kb_delay`` steps;
 - ``stand``: the task did nothing the participant chose: no target known, or an interaction that did nothing;
 - ``idle``: no task and no key (only the fixed clock steps then).
 

@@ -52,6 +52,19 @@ def paper_steps(engine: TrialEngine, most: int) -> tuple[list[TickOutcome], list
     return outcomes, refused
 
 
+def refusal(engine: TrialEngine, most: int = 10) -> tuple[list[str], Reason | None]:
+    """Step as the paper's clock does until the task is refused or ends: the steps taken and the refusal's reason."""
+    steps: list[str] = []
+    for _ in range(most):
+        blocked = engine.refused_step()
+        if blocked is not None:
+            return steps, blocked.reason
+        if not engine.controller.has_action():
+            break
+        steps.append(engine.advance(Action.STAY).step)
+    return steps, None
+
+
 def test_an_interaction_that_would_do_nothing_is_refused_before_the_world_steps():
     engine = engine_at(world_with(pos=BOARD_SPOT, facing=Direction.NORTH, held=STEAK_PLATE, board=0))
     engine.controller.select(Subtask.PICKUP_GARNISH, STEAK_PLATE)
@@ -134,8 +147,8 @@ def test_a_steak_the_robot_took_is_named_as_taken_by_the_robot_not_as_meat_neede
         Event("human", EventKind.START_COOKING, GRILL, MEAT),
         Event("robot", EventKind.PLATE_STEAK, GRILL, CLEAN_PLATE)))
     engine.controller.select(Subtask.PICKUP_STEAK, CLEAN_PLATE)
-    refused = engine.refused_step()
-    assert refused is not None and refused.reason == Reason("taken_by_robot", "steak", "grill")
+    assert refusal(engine) == (["look"], Reason("taken_by_robot", "steak", "grill")), \
+        "a look at the grill (their knowledge of it is wrong), then the true reason"
 
 
 def test_a_steak_the_participant_took_themselves_is_simply_not_there():
@@ -144,8 +157,7 @@ def test_a_steak_the_participant_took_themselves_is_simply_not_there():
         Event("robot", EventKind.START_COOKING, GRILL, MEAT),
         Event("human", EventKind.PLATE_STEAK, GRILL, CLEAN_PLATE)))
     engine.controller.select(Subtask.PICKUP_STEAK, CLEAN_PLATE)
-    refused = engine.refused_step()
-    assert refused is not None and refused.reason == Reason("no_steak"), "never 'You need raw meat in your hands'"
+    assert refusal(engine) == (["look"], Reason("no_steak")), "never 'You need raw meat in your hands'"
 
 
 def test_a_grill_the_robot_filled_meanwhile_is_named_on_either_clock():
@@ -156,10 +168,10 @@ def test_a_grill_the_robot_filled_meanwhile_is_named_on_either_clock():
             PRACTICE, (Event("robot", EventKind.START_COOKING, GRILL, MEAT),))
         engine.controller.select(Subtask.DROP_MEAT, MEAT)
         if paper:
-            told = engine.refused_step()
+            told = refusal(engine)[1]
         else:  # the fixed clock steps and tells while the task goes on
-            told = next(o.blocked for o in (engine.advance(Action.STAY) for _ in range(3)) if o.blocked)
-        assert told is not None and told.reason == Reason("filled_by_robot", MEAT, "grill")
+            told = next(o.blocked for o in (engine.advance(Action.STAY) for _ in range(3)) if o.blocked).reason
+        assert told == Reason("filled_by_robot", MEAT, "grill")
 
 
 def test_the_robot_taking_a_steak_is_remembered_from_the_world_steps_themselves():
@@ -174,8 +186,7 @@ def test_the_robot_taking_a_steak_is_remembered_from_the_world_steps_themselves(
     engine.world = replace(engine.world, human=AgentState(GRILL_SPOT, Direction.EAST, CLEAN_PLATE),
                            robot=AgentState((6, 5), Direction.SOUTH, STEAK_PLATE))
     engine.controller.select(Subtask.PICKUP_STEAK, CLEAN_PLATE)
-    refused = engine.refused_step()
-    assert refused is not None and refused.reason == Reason("taken_by_robot", "steak", "grill")
+    assert refusal(engine)[1] == Reason("taken_by_robot", "steak", "grill")
 
 
 def test_a_free_grill_the_participant_sees_but_does_not_know_yet_is_looked_at_not_refused():
@@ -188,3 +199,18 @@ def test_a_free_grill_the_participant_sees_but_does_not_know_yet_is_looked_at_no
     assert refused == [] and engine.world.grills != (None,), "the meat went on once what they saw had registered"
     assert [o.step for o in outcomes] == ["look"] * 3 + ["work"]
     assert all(o.blocked is None for o in outcomes), "no false notice meanwhile"
+
+
+def test_an_onion_gone_from_the_counter_is_looked_at_then_fetched_from_the_crate_not_walked_to_again():
+    # Their knowledge still has an onion on the counter they face; the robot took it. One look (the study's KB
+    # delay), their knowledge catches up, and the task goes on to the onion crate instead of being refused and
+    # chosen again at the same empty counter.
+    counter = (4, 1)
+    engine = engine_at(replace(world_with(), human=AgentState((4, 2), Direction.NORTH, None)))
+    engine.kb = replace(engine.kb, objects=((counter, "onion"),), tracking=None)
+    engine.controller.changes = engine.controller.changes.after(PRACTICE, (
+        Event("robot", EventKind.PICK_UP, counter, "onion"),))
+    engine.controller.select(Subtask.PICKUP_ONION, None)
+    steps, reason = refusal(engine, 40)
+    assert reason is None and engine.world.human.held == "onion"
+    assert steps[0] == "look" and steps[-1] == "work" and "stand" not in steps
