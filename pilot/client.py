@@ -236,10 +236,14 @@ class SimulatedParticipant:
         async def wait_then_choose(ws: Any) -> None:
             """The paper's clock, a task refused while its station works: press stay while the faced station is at
             work (at most ``wait_taps`` times), then think and choose again."""
+            pressed_at: int | None = None
             for _ in range(config.wait_taps):
                 await self.seat.sleep(config.wait_tap_seconds)
                 if not latest or not faced_station_working(latest):
                     break
+                if latest["tick"] == pressed_at:
+                    continue  # the last press has not moved the kitchen yet: a person watches for it
+                pressed_at = int(latest["tick"])
                 await send(ws, STAY.body())
             await think_then_choose(ws, think_time())
 
@@ -292,7 +296,8 @@ class SimulatedParticipant:
                         thinking = asyncio.create_task(think_then_choose(ws, think_time()))
                     elif kind == "error" and message["code"] == "internal" and seen is None:
                         raise TrialNotStarted(message["message"])
-                    elif kind == "error" and message["code"] not in ("not_playing",):
+                    elif kind == "error" and message["code"] not in ("not_playing", "queue_full"):
+                        # queue_full: its "." presses outran a loaded server's steps; the page only notes it.
                         raise PilotFlowError(f"websocket error {message['code']}: {message['message']}")
                     elif kind == "trial_end":
                         self.outcome.trials += 1
