@@ -16,8 +16,8 @@ A round is low-engagement when, in order (the first that applies is its reason, 
 - ``refused_tasks``: more than ``validity.max_refused_task_pct`` of the participant's task choices in their main
   rounds so far (this one and the earlier ones, pooled) were refused — they could not work: what they needed was not
   there, or taken, or busy — once at least :data:`MIN_REFUSED` were: tasks chosen without looking at the kitchen.
-  Pooled because one round says too little: a human-like simulated participant's single round reached 39.2 %,
-  none of their pooled rounds more than 30.0 % (docs/protocol.md, "Taking part").
+  Pooled because one round says too little: a human-like simulated participant's single round reached 27.3 %,
+  none of their pooled rounds more than 13.2 % (docs/protocol.md, "Taking part").
 
 Practice trials and abandoned trials are not judged (an abandoned round is its own outcome).
 """

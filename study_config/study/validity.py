@@ -32,11 +32,11 @@ about 10 s, within reach of a slow but real player), while a participant who nev
 DEFAULT_MIN_TASK_STEP_PCT = 10.0
 """A main trial in which the participant made less than this share of the team's task steps is low-engagement.
 Chosen from the pilots of docs/protocol.md, "Taking part" (paper's clock, 2026-12-07): the 28 human-like simulated
-participants made 37.3 % to 81.4 % per round (112 rounds), the scripts that held, tapped or pressed one key 0 %."""
-DEFAULT_MAX_REFUSED_TASK_PCT = 33.0
+participants made 41.9 % to 86.2 % per round (112 rounds), the scripts that held, tapped or pressed one key 0 %."""
+DEFAULT_MAX_REFUSED_TASK_PCT = 25.0
 """Above this share of refused task choices over the main rounds so far (at least five refused) a main trial is
-low-engagement. From the same pilots: the human-like participants pooled at most 30.0 %, the scripts choosing a
-random enabled task every 8 s or 3 s at least 37.0 % (a single human-like round reached 39.2 %: hence pooled)."""
+low-engagement. From the same pilots: the human-like participants pooled at most 13.2 %, the scripts choosing a
+random enabled task every 8 s or 3 s at least 32.6 % (a single human-like round reached 27.3 %: hence pooled)."""
 
 
 RoundStatus = Literal["running", "abandoned", "low_engagement", "robot_invalid", "finished"]
