@@ -32,7 +32,7 @@ from websockets.exceptions import ConnectionClosed
 
 from pilot.answers import answer
 from pilot.config import ParticipantConfig
-from pilot.mind import STAY, WAIT_REASONS, Mind, decide, faced_station_working, told_refused
+from pilot.mind import STAY, WAIT_REASONS, Mind, belief_of, decide, faced_station_working, told_refused
 from pilot.perception import Perception
 from pilot.scripts import Script
 from planner.subtasks import Subtask
@@ -284,9 +284,11 @@ class SimulatedParticipant:
                             continue
                         seen, mind, body = respond(mind, seen, message, needs, loaded, config, rng, angle)
                         await send(ws, body)
-                    elif kind == "blocked" and message["ended"] and message["subtask"] and latest:
-                        mind = told_refused(mind, Subtask(message["subtask"]), int(latest["tick"]))
-                        if (realtime and paper_clock and message["reason"] in WAIT_REASONS
+                    elif kind == "blocked" and message["ended"] and message["subtask"] and seen is not None:
+                        if message["reason"] not in WAIT_REASONS and seen.kb is not None:
+                            refused = Subtask(message["subtask"])
+                            mind = told_refused(mind, refused, belief_of(seen.layout, loaded.rules, seen.kb, refused))
+                        elif (realtime and paper_clock and message["reason"] in WAIT_REASONS
                                 and (thinking is None or thinking.done())):
                             thinking = asyncio.create_task(wait_then_choose(ws))
                     elif (kind == "ack" and realtime and message["subtask"] is None and not message["queued"]

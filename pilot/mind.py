@@ -5,8 +5,9 @@ Each frame, with its KB (:mod:`pilot.perception`) and the subtask the server say
 1. **No subtask running**: after ``decision_latency_ticks`` frames it chooses, by the simulated human's rule
    (docs/domain.md §4, paper §IV-A: uniformly at random among the subtasks available in its KB), or, with
    probability ``error_rate``, at random among the subtasks that fit what the cook holds (``hello.needs``). It
-   reads the page: a task the page just said cannot work (a ``blocked`` that ended it) is not chosen again before
-   the world moves on; when its rule offers only that task, it chooses among the others that fit its hands.
+   reads the page: a task the page said cannot work (a ``blocked`` that ended it) is not chosen again while it
+   believes the same of the places that task needs (until it sees them again, or its knowledge of them changes);
+   when its rule offers only that task, it chooses among the others that fit its hands.
 2. **A subtask running that what it now sees makes pointless or impossible** (not available in its KB any
    more, or no believed target left): noticed with probability ``notice_probability`` per frame, then handled
    by a stop interrupt, a replacing choice, or a one-step correction (``interact`` to put what it holds on the
@@ -35,6 +36,7 @@ import numpy as np
 from pilot.config import ParticipantConfig
 from pilot.perception import Perception
 from planner.geometry import DIRECTIONS, Direction, Pos, manhattan
+from planner.kb import KnowledgeBase
 from planner.layout import Layout, Terrain
 from planner.rules import Rules
 from planner.subtasks import Believed, Subtask, available, targets
@@ -71,16 +73,28 @@ class Mind:
     pose: tuple[Pos, str] | None = None
     interrupts: int = 0
     kb_gap_sum: float = 0.0
-    refused: frozenset[Subtask] = frozenset()
-    """Tasks the page said cannot work (a ``blocked`` that ended them) at tick :attr:`refused_at`: not chosen again
-    before the world has moved on."""
-    refused_at: int | None = None
+    refused: tuple[tuple[Subtask, object], ...] = ()
+    """Tasks the page said cannot work (a ``blocked`` that ended them), each with what it believed then of the places
+    the task needs (:func:`belief_of`): not chosen again while it still believes the same (it has learnt nothing new
+    of those places)."""
 
 
-def told_refused(mind: Mind, subtask: Subtask, tick: int) -> Mind:
-    """The mind after the page said ``subtask`` cannot work (at ``tick``)."""
-    before = mind.refused if mind.refused_at == tick else frozenset()
-    return replace(mind, refused=before | {subtask}, refused_at=tick)
+def belief_of(layout: Layout, rules: Rules, kb: KnowledgeBase, subtask: Subtask) -> object:
+    """What the KB holds of the places ``subtask`` needs: the task's targets, and each station's and counter's
+    state there."""
+    cells = targets(layout, subtask, kb, rules)
+    stations = {Terrain.GRILL: kb.grills, Terrain.BOARD: kb.boards, Terrain.SINK: kb.sinks}
+    held = []
+    for cell in cells:
+        kind, index = layout.stations.get(cell, (None, 0))
+        held.append(stations[kind][index] if kind in stations else kb.object_at(cell))
+    return cells, tuple(held), kb.grills, kb.boards, kb.sinks
+
+
+def told_refused(mind: Mind, subtask: Subtask, belief: object) -> Mind:
+    """The mind after the page said ``subtask`` cannot work, when it believed ``belief`` (:func:`belief_of`)."""
+    kept = tuple(entry for entry in mind.refused if entry[0] is not subtask)
+    return replace(mind, refused=(*kept, (subtask, belief)))
 
 
 def fits(subtask: Subtask, held: str | None, needs: Mapping[str, str]) -> bool:
@@ -100,17 +114,18 @@ def decide(mind: Mind, seen: Perception, state: Mapping[str, Any], needs: Mappin
     running = Subtask(state["subtask"]) if state["subtask"] else None
     still = mind.still + 1 if running is not None and pose == mind.pose else 0
     mind = replace(mind, pose=pose, still=still)
-    if mind.refused and state.get("tick") != mind.refused_at:
-        mind = replace(mind, refused=frozenset(), refused_at=None)
     if hud["orders_left"] == 0 or hud["ticks_left"] == 0 or seen.kb is None:
         return HEARTBEAT, mind
     kb, layout, held = seen.kb, seen.layout, you["held"]
     believed = Believed(kb=kb, held=held, partner_held=kb.robot.held if kb.robot is not None else None,
                         orders_left=int(hud["orders_left"]))
+    if mind.refused:
+        believed_still = tuple((s, was) for s, was in mind.refused if belief_of(layout, rules, kb, s) == was)
+        mind = replace(mind, refused=believed_still) if believed_still != mind.refused else mind
     if running is None:
         if mind.idle + 1 < config.decision_latency_ticks:
             return HEARTBEAT, replace(mind, idle=mind.idle + 1)
-        choice = choose(believed, rules, mind.last, held, needs, config, rng, avoid=mind.refused)
+        choice = choose(believed, rules, mind.last, held, needs, config, rng, avoid={s for s, _ in mind.refused})
         return Message("select_subtask", (("subtask", choice.value),)), replace(mind, idle=0, last=choice)
     mind = replace(mind, last=running, idle=0)
     if pointless(running, believed, layout, rules) and rng.random() < config.notice_probability:

@@ -36,7 +36,7 @@ participants made 41.9 % to 86.2 % per round (112 rounds), the scripts that held
 DEFAULT_MAX_REFUSED_TASK_PCT = 25.0
 """Above this share of refused task choices over the main rounds so far (at least five refused) a main trial is
 low-engagement. From the same pilots: the human-like participants pooled at most 13.2 %, the scripts choosing a
-random enabled task every 8 s or 3 s at least 32.6 % (a single human-like round reached 27.3 %: hence pooled)."""
+random enabled task every 8 s or 3 s at least 35.6 % (a single human-like round reached 27.3 %: hence pooled)."""
 
 
 RoundStatus = Literal["running", "abandoned", "low_engagement", "robot_invalid", "finished"]

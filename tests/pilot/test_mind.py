@@ -12,7 +12,7 @@ from offline import play_offline
 
 from pilot.client import respond
 from pilot.config import ParticipantConfig
-from pilot.mind import Mind, decide, told_refused
+from pilot.mind import Mind, belief_of, decide, told_refused
 from pilot.perception import Perception
 from planner.geometry import DIRECTIONS, Direction, Pos
 from planner.layout import Layout
@@ -134,9 +134,10 @@ def test_a_frame_sent_again_at_the_same_tick_teaches_nothing(paper) -> None:
     assert once.observe(frame, 120.0, 3) is once
 
 
-def test_a_task_the_page_just_refused_is_not_chosen_again_before_the_world_moves_on(paper) -> None:
+def test_a_task_the_page_refused_is_not_chosen_again_while_it_believes_the_same_of_its_places(paper) -> None:
     """Holding a clean plate its rule offers only Pick up steak; told the robot took the steak, it does something
-    else that fits its hands, and once the world has stepped its own rule again."""
+    else that fits its hands for as long as it believes what it believed then of the grills, and chooses the task
+    again once it knows something new of them (it saw the grill)."""
     engine = carrying_meat_to_a_busy_grill(paper)
     engine.world = replace(engine.world, human=replace(engine.world.human, held="clean_plate"))
     engine.controller.subtask = None
@@ -148,12 +149,15 @@ def test_a_task_the_page_just_refused_is_not_chosen_again_before_the_world_moves
     seen = replace(seen, kb=replace(seen.kb, grills=(10,) * len(layout.grills)))  # it believes a steak is there
     config = ParticipantConfig(error_rate=0.0, decision_latency_ticks=0)
 
-    def chosen(mind: Mind, state: dict[str, Any], seed: int) -> tuple[str, Mind]:
-        reply, after = decide(mind, seen, state, NEEDS_BY_NAME, paper.rules, config, np.random.default_rng(seed))
+    def chosen(mind: Mind, state: dict[str, Any], seed: int, knows: Perception = seen) -> tuple[str, Mind]:
+        reply, after = decide(mind, knows, state, NEEDS_BY_NAME, paper.rules, config, np.random.default_rng(seed))
         return str(reply.body()["subtask"]), after
 
     assert chosen(Mind(), frame, 0)[0] == "pickup_steak", "its rule offers only this"
-    told = told_refused(Mind(), Subtask.PICKUP_STEAK, 7)
-    assert {chosen(told, frame, seed)[0] for seed in range(20)} == {"drop_on_counter"}
-    again, mind = chosen(told, {**frame, "tick": 8}, 0)
+    assert seen.kb is not None
+    told = told_refused(Mind(), Subtask.PICKUP_STEAK, belief_of(layout, paper.rules, seen.kb, Subtask.PICKUP_STEAK))
+    assert {chosen(told, {**frame, "tick": tick}, seed)[0] for tick in (7, 8, 30) for seed in range(10)} == {
+        "drop_on_counter"}, "the note holds while nothing new is known of the grills"
+    saw = replace(seen, kb=replace(seen.kb, grills=(3,) * len(layout.grills)))  # it saw a new steak cooking there
+    again, mind = chosen(told, {**frame, "tick": 31}, 0, saw)
     assert again == "pickup_steak" and not mind.refused
