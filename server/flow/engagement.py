@@ -11,8 +11,8 @@ A round is low-engagement when, in order (the first that applies is its reason, 
   the waited time at the tick rate) is above ``validity.max_idle_pct``;
 - ``task_steps``: the participant's share of the team's task steps (interactions that changed the world: picking
   up, putting down, chopping, washing, plating, delivering) is below ``validity.min_task_step_pct``: keys that
-  change nothing (a held or tapped "stay") or tasks that never get anywhere left the work to the robot (not
-  judged when neither cook made a task step: a round too short for anyone to);
+  change nothing (a held or tapped "stay") or tasks that never get anywhere left the work to the robot (judged once
+  the team made at least :data:`MIN_TEAM_STEPS`: a share of a round too short to work in says nothing);
 - ``refused_tasks``: more than ``validity.max_refused_task_pct`` of the participant's task choices in their main
   rounds so far (this one and the earlier ones, pooled) were refused — they could not work: what they needed was not
   there, or taken, or busy — once at least :data:`MIN_REFUSED` were: tasks chosen without looking at the kitchen.
@@ -34,6 +34,9 @@ LOW_ENGAGEMENT = "low_engagement"
 Rule = Literal["no_actions", "idle", "task_steps", "refused_tasks"]
 MIN_REFUSED = 5
 """Refused task choices a round must have before their share is judged: a few refusals say nothing."""
+MIN_TEAM_STEPS = 10
+"""Task steps the team must have made in a round before the participant's share of them is judged (the pilots'
+rounds of the paper study had 28 to 147, the tapped-key script's 28)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -73,7 +76,8 @@ def engagement_problem(activity: Activity, validity: Validity, earlier: tuple[in
     if idle is not None and idle > validity.max_idle_pct:
         return Problem("idle", idle, validity.max_idle_pct)
     share = activity.task_step_share
-    if share is not None and share < validity.min_task_step_pct:
+    team = activity.task_steps + activity.robot_task_steps
+    if share is not None and team >= MIN_TEAM_STEPS and share < validity.min_task_step_pct:
         return Problem("task_steps", share, validity.min_task_step_pct)
     choices, refused = activity.selections + earlier[0], activity.refused_steps + earlier[1]
     refused_pct = 100.0 * refused / max(choices, 1)

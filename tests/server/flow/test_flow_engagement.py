@@ -86,3 +86,5 @@ def test_a_round_left_to_the_robot_or_chosen_blindly_is_low_engagement_with_its_
     assert engagement_problem(tapped, Validity(min_task_step_pct=0)) is None, "0 turns the rule off"
     nobody = replace(PLAYED, task_steps=0, robot_task_steps=0)
     assert engagement_problem(nobody, rules) is None, "a round nobody could work in says nothing of the share"
+    short = replace(PLAYED, task_steps=0, robot_task_steps=9)
+    assert engagement_problem(short, rules) is None, "nor does one too short for the team to make ten steps"
