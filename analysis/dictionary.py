@@ -146,10 +146,18 @@ PARTICIPATION_COLUMNS: tuple[Column, ...] = (
                                  "they needed was gone, taken or busy, often because the robot had done it)"),
     Column("delivered_by_participant", INT, "dishes the participant's cook delivered"),
     Column("delivered_by_robot", INT, "dishes the robot delivered"),
-    Column("engagement_reason", TEXT, "why the server marked the main trial low_engagement (fewer participant "
-                                      "actions than validity.min_participant_actions, or idle_pct above "
-                                      "validity.max_idle_pct); such trials are not in cells.csv unless exported "
-                                      "with --include-invalid"),
+    Column("task_steps", INT, "the participant's task steps: their cook's interactions that changed the world "
+                              "(picked up, put down, chopped, washed, plated, delivered); empty: not recorded"),
+    Column("robot_task_steps", INT, "the robot's task steps (the team's other share)"),
+    Column("stand_ticks", INT, "world steps in which the participant had no executable action (a task standing "
+                               "with nothing it could do, or no task at all); the paper's clock steps none"),
+    Column("think_seconds", NUM, "wall-clock seconds the cook had nothing to do while the participant was "
+                                 "connected: the waited time (wait_for_participant) or the idle ticks at the "
+                                 "tick rate (fixed_rate)"),
+    Column("engagement_reason", TEXT, "why the server marked the main trial low_engagement (the rule and its "
+                                      "measured value: too few actions, too idle, too small a share of the team's "
+                                      "task steps, …: validity in docs/operations.md); such trials are not in "
+                                      "cells.csv unless exported with --include-invalid"),
 )
 """The participant's part in the trial (:mod:`analysis.participation`)."""
 

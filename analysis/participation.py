@@ -22,4 +22,6 @@ def participation_values(trial: StoredTrial) -> dict[str, Any]:
     """The trial's ``trials.csv`` columns of :data:`analysis.dictionary.PARTICIPATION_COLUMNS`."""
     return {"trial_status": trial_status(trial), "key_actions": trial.key_actions, "idle_pct": trial.idle_pct,
             "refused_steps": trial.refused_steps, "delivered_by_participant": trial.delivered_by_participant,
-            "delivered_by_robot": trial.delivered_by_robot, "engagement_reason": trial.engagement_reason}
+            "delivered_by_robot": trial.delivered_by_robot, "task_steps": trial.task_steps,
+            "robot_task_steps": trial.robot_task_steps, "stand_ticks": trial.stand_ticks,
+            "think_seconds": trial.think_seconds, "engagement_reason": trial.engagement_reason}

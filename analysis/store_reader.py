@@ -91,6 +91,10 @@ class StoredTrial:
     refused_steps: int | None = None
     delivered_by_participant: int | None = None
     delivered_by_robot: int | None = None
+    task_steps: int | None = None
+    robot_task_steps: int | None = None
+    stand_ticks: int | None = None
+    think_seconds: float | None = None
     """The participant's activity the server stored when the trial ended (``None``: not recorded)."""
     engagement_reason: str | None = None
     """Why the server marked the main trial ``low_engagement``; ``None`` when the participant took part."""
@@ -294,7 +298,7 @@ def _trials(conn: Connection, study_id: str, include_pilot: bool) -> tuple[Store
                t.ticks,
                t.delivered, t.score, t.initial_state, t.decisions, t.missed_decisions, t.invalid_reason,
                t.key_actions, t.idle_pct, t.refused_steps, t.delivered_by_participant, t.delivered_by_robot,
-               t.engagement_reason)
+               t.task_steps, t.robot_task_steps, t.stand_ticks, t.think_seconds, t.engagement_reason)
         .join(ParticipantRow, ParticipantRow.id == t.participant_id)
         .where(t.study_id == study_id), include_pilot)
         .order_by(t.id))

@@ -9,6 +9,9 @@ wall-clock time drawn uniformly from ``think_seconds_min``..``think_seconds_max`
 on perceiving the frames that arrive meanwhile (under ``fixed_rate`` the world goes on; under
 ``wait_for_participant`` none arrive) and then chooses from what it knows at that moment. It reads nothing but
 the frames (``hello``, ``state``, ``blocked``, ``nudge``, ``trial_end``).
+
+A seat with a :class:`~pilot.scripts.Script` plays every round by that script instead (a participant gaming the
+engagement rules: a held key, a tapped key, a random task every few seconds, one key per round), on the wall clock.
 """
 
 from __future__ import annotations
@@ -18,7 +21,7 @@ import contextlib
 import functools
 import json
 import ssl
-from collections.abc import Callable
+from collections.abc import Awaitable, Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -29,8 +32,10 @@ from websockets.exceptions import ConnectionClosed
 
 from pilot.answers import answer
 from pilot.config import ParticipantConfig
-from pilot.mind import Mind, decide
+from pilot.mind import STAY, WAIT_REASONS, Mind, belief_of, decide, faced_station_working, told_refused
 from pilot.perception import Perception
+from pilot.scripts import Script
+from planner.subtasks import Subtask
 from study_config.catalog import LoadedStudy
 
 
@@ -105,6 +110,11 @@ class Seat:
     config: ParticipantConfig
     pace: str = "fast"
     keep_frames: bool = False
+    script: Script | None = None
+    """Play every round by this script (a participant gaming the rules) instead of the simulated participant."""
+    sleep: Callable[[float], Awaitable[None]] = asyncio.sleep
+    """How its wall-clock waits pass (think time, key taps, a script's pace): tests pass one that moves the server's
+    injected clock."""
 
 
 class SimulatedParticipant:
@@ -207,6 +217,7 @@ class SimulatedParticipant:
         angle = loaded.study.world.fov_angle
         latest: dict[str, Any] = {}
         thinking: asyncio.Task[None] | None = None
+        paper_clock = False
         self.on_trial(1)
 
         async def send(ws: Any, body: dict[str, Any]) -> None:
@@ -222,10 +233,24 @@ class SimulatedParticipant:
         def think_time() -> float:
             return float(rng.uniform(config.think_seconds_min, config.think_seconds_max))
 
+        async def wait_then_choose(ws: Any) -> None:
+            """The paper's clock, a task refused while its station works: press stay while the faced station is at
+            work (at most ``wait_taps`` times), then think and choose again."""
+            pressed_at: int | None = None
+            for _ in range(config.wait_taps):
+                await self.seat.sleep(config.wait_tap_seconds)
+                if not latest or not faced_station_working(latest):
+                    break
+                if latest["tick"] == pressed_at:
+                    continue  # the last press has not moved the kitchen yet: a person watches for it
+                pressed_at = int(latest["tick"])
+                await send(ws, STAY.body())
+            await think_then_choose(ws, think_time())
+
         async def think_then_choose(ws: Any, seconds: float) -> None:
             """Wait ``seconds`` of wall-clock time, then choose from the latest frame and what it knows now."""
             nonlocal mind
-            await asyncio.sleep(seconds)
+            await self.seat.sleep(seconds)
             assert seen is not None
             reply, mind = decide(mind, seen, latest, needs, loaded.rules, config, rng)
             if reply.type != "heartbeat":
@@ -234,12 +259,16 @@ class SimulatedParticipant:
         try:
             async with connect(url, subprotocols=["steakhouse.v1", f"token.{self.token}"],  # type: ignore[list-item]
                                max_size=1 << 22) as ws:
+                if self.seat.script is not None:
+                    await self.play_script(ws, self.seat.script, rng, send, received)
+                    return
                 async for raw in ws:
                     message: dict[str, Any] = json.loads(raw)
                     if self.seat.keep_frames:
                         received.append(message)
                     kind = message["type"]
                     if kind == "hello":
+                        paper_clock = message["mode"] == "wait_for_participant"
                         needs = dict(message["needs"])
                         angle = float(message["fov_angle"])  # the trial's: a level when the angle is a factor
                         seen = Perception(message["width"], message["height"],
@@ -255,6 +284,13 @@ class SimulatedParticipant:
                             continue
                         seen, mind, body = respond(mind, seen, message, needs, loaded, config, rng, angle)
                         await send(ws, body)
+                    elif kind == "blocked" and message["ended"] and message["subtask"] and seen is not None:
+                        if message["reason"] not in WAIT_REASONS and seen.kb is not None:
+                            refused = Subtask(message["subtask"])
+                            mind = told_refused(mind, refused, belief_of(seen.layout, loaded.rules, seen.kb, refused))
+                        elif (realtime and paper_clock and message["reason"] in WAIT_REASONS
+                                and (thinking is None or thinking.done())):
+                            thinking = asyncio.create_task(wait_then_choose(ws))
                     elif (kind == "ack" and realtime and message["subtask"] is None and not message["queued"]
                           and latest and (thinking is None or thinking.done())):
                         # Stopped, or a choice refused: under wait_for_participant no frame comes until it acts.
@@ -262,7 +298,8 @@ class SimulatedParticipant:
                         thinking = asyncio.create_task(think_then_choose(ws, think_time()))
                     elif kind == "error" and message["code"] == "internal" and seen is None:
                         raise TrialNotStarted(message["message"])
-                    elif kind == "error" and message["code"] not in ("not_playing",):
+                    elif kind == "error" and message["code"] not in ("not_playing", "queue_full"):
+                        # queue_full: its "." presses outran a loaded server's steps; the page only notes it.
                         raise PilotFlowError(f"websocket error {message['code']}: {message['message']}")
                     elif kind == "trial_end":
                         self.outcome.trials += 1
@@ -272,3 +309,41 @@ class SimulatedParticipant:
                 thinking.cancel()
             self.on_trial(-1)
         self.gap_mean = seen.gap_mean if seen is not None else 0.0
+
+    async def play_script(self, ws: Any, script: Script, rng: np.random.Generator,
+                          send: Callable[[Any, dict[str, Any]], Any], received: list[dict[str, Any]]) -> None:
+        """One round by ``script``: its messages on the wall clock, as the browser would send them, until
+        ``trial_end``. Refusals the browser only shows (a full key queue, too many messages) are ignored."""
+        needs: dict[str, str] = {}
+        held: str | None = None
+        pacer: asyncio.Task[None] | None = None
+
+        async def pace(mode: str, rate: float) -> None:
+            sent = 0
+            while (delay := script.delay(mode, rate, sent)) is not None:
+                await self.seat.sleep(delay)
+                await send(ws, script.send(held, needs, rng))
+                sent += 1
+
+        try:
+            async for raw in ws:
+                message: dict[str, Any] = json.loads(raw)
+                if self.seat.keep_frames:
+                    received.append(message)
+                kind = message["type"]
+                if kind == "hello":
+                    needs = dict(message["needs"])
+                    if pacer is None:
+                        pacer = asyncio.create_task(pace(message["mode"], float(message["tick_rate_hz"])))
+                elif kind == "state":
+                    held = message["you"]["held"]
+                elif kind == "error" and message["code"] == "internal" and pacer is None:
+                    raise TrialNotStarted(message["message"])
+                elif kind == "error" and message["code"] not in ("not_playing", "queue_full", "rate_limited"):
+                    raise PilotFlowError(f"websocket error {message['code']}: {message['message']}")
+                elif kind == "trial_end":
+                    self.outcome.trials += 1
+                    break
+        finally:
+            if pacer is not None:
+                pacer.cancel()

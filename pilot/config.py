@@ -25,6 +25,12 @@ Defaults and where they come from (docs/pilot.md):
   recipe and the buttons, then a click; the range a person reading the screen needs). It replaces
   ``decision_latency_ticks`` there, so the pilot meets each clock as a person would: under ``fixed_rate`` the
   world goes on while it thinks, under ``wait_for_participant`` it waits.
+- ``wait_tap_seconds`` (0.3) and ``wait_taps`` (20): ``--realtime`` on the paper's clock only: a task refused
+  because its station is still at work (a steak cooking) is waited for with "." (stay) presses this far apart, while
+  the faced station works, at most this many (a person tapping the key the page names; 20 covers a steak's 10
+  cooking ticks twice), then it chooses again (``pilot.mind``).
+- ``script_every_seconds`` (8.0) and ``script_tap_seconds`` (0.2): the gaming scripts' pace (``steakhouse pilot
+  --script``; :mod:`pilot.scripts`): a random task every 8 s, a key tapped five times a second.
 """
 
 from __future__ import annotations
@@ -57,6 +63,10 @@ class ParticipantConfig(BaseModel):
     quiz_error_rate: float = Field(default=0.0, ge=0.0, le=1.0)
     think_seconds_min: float = Field(default=0.5, ge=0.0, le=60.0)
     think_seconds_max: float = Field(default=3.0, ge=0.0, le=60.0)
+    wait_tap_seconds: float = Field(default=0.3, gt=0.0, le=10.0)
+    wait_taps: int = Field(default=20, ge=0, le=1000)
+    script_every_seconds: float = Field(default=8.0, gt=0.0, le=600.0)
+    script_tap_seconds: float = Field(default=0.2, gt=0.0, le=60.0)
 
     @model_validator(mode="after")
     def _think_range(self) -> ParticipantConfig:

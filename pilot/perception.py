@@ -54,13 +54,18 @@ class Perception:
     surprises: int = 0
     """Frames seen, and the sum over frames of the stations and robot cargo in view that disagreed with the KB
     (the KB gap as the simulated participant can measure it: what it finds out it did not know)."""
+    tick: int | None = None
+    """The tick of the last frame taken in: the KB rule counts ticks in view, so a frame sent again at the same
+    tick (the paper's clock tells a refused step with the unchanged state) adds nothing."""
 
     @property
     def layout(self) -> Layout:
         return self.candidates[0]
 
     def observe(self, state: Mapping[str, Any], angle: float, kb_delay: int) -> Perception:
-        """The knowledge after one ``state`` frame."""
+        """The knowledge after one ``state`` frame (the same as before for a frame of the same tick again)."""
+        if self.kb is not None and state.get("tick") == self.tick:
+            return self
         seen = dict(self.terrain)
         seen.update({(c["x"], c["y"]): c["terrain"] for c in state["cells"]})
         candidates = tuple(k for k in self.candidates if consistent(k, self.width, self.height, seen))
@@ -79,7 +84,7 @@ class Perception:
         surprise = _disagreements(layout, state, kb)
         kb = update_kb(kb, layout, world, angle=angle, kb_delay=kb_delay, own_events=own)
         return replace(self, candidates=candidates, terrain=tuple(sorted(seen.items())), kb=kb, held=me.held,
-                       frames=self.frames + 1, surprises=self.surprises + surprise)
+                       frames=self.frames + 1, surprises=self.surprises + surprise, tick=state.get("tick"))
 
     @property
     def gap_mean(self) -> float:

@@ -80,6 +80,8 @@ def trial_activity(row: TrialRow) -> dict[str, Any]:
     return {"selections": row.selections, "interrupts": row.interrupts, "key_actions": row.key_actions,
             "idle_pct": row.idle_pct, "refused_steps": row.refused_steps,
             "delivered_by_participant": row.delivered_by_participant, "delivered_by_robot": row.delivered_by_robot,
+            "task_steps": row.task_steps, "robot_task_steps": row.robot_task_steps, "stand_ticks": row.stand_ticks,
+            "think_seconds": row.think_seconds,
             "low_engagement": row.engagement_reason is not None, "engagement_reason": row.engagement_reason}
 
 

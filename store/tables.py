@@ -202,6 +202,15 @@ class TrialRow(Base):
     open_wait_s: Mapped[float | None] = mapped_column(Float, nullable=True)
     """Seconds of the wait for the participant running at the lease's last renewal (NULL: none); a round taken
     over after a crash stores it as a ``wait`` event, so it enters the idle share."""
+    task_steps: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """The participant's task steps: their cook's interactions that changed the world (``store.activity``; NULL
+    until the trial ended, and for trials stored before revision 0014)."""
+    robot_task_steps: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """The robot's task steps."""
+    stand_ticks: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    """World steps in which the participant had no executable action (``server.game.steps``)."""
+    think_seconds: Mapped[float | None] = mapped_column(Float, nullable=True)
+    """Wall-clock seconds the cook had nothing to do while the participant was connected (deciding)."""
 
 
 class TickRow(Base):

@@ -2,6 +2,7 @@
 
     steakhouse pilot --study study_config/paper_study.yaml --participants 28 [--database-url URL] [--jobs J]
         [--realtime] [--seed S] [--url URL --admin-token TOKEN] [--config pilot.yaml] [--set name=value ...]
+        [--script hold_key|tap_key|random_task|one_key]
 
 Without ``--url`` the server is started on 127.0.0.1 (a free port) for the study file and the store, and
 stopped at the end. Pilot participants are joined with the admin token, so they are marked as pilots in the
@@ -9,7 +10,9 @@ store (balanced among themselves, never counted for real participants, left out 
 unless ``--include-pilot``). By default their trials step as soon as the robot decided and the simulated
 participant acted; ``--realtime`` keeps the study's tick rate. Running the same command again (same ``--seed``)
 rejoins the same simulated participants: unfinished ones go on where they stopped. The simulated participant: ``pilot``
-(docs/pilot.md); its parameters: ``pilot.config``.
+(docs/pilot.md); its parameters: ``pilot.config``. At the end it prints, per robot × kitchen, who did the work in the
+main rounds (``pilot.report``): the participant's share of dishes and task steps, refused steps, steps with no
+executable action, think time and exclusions.
 """
 
 from __future__ import annotations
@@ -50,6 +53,10 @@ def register(subparsers: Any) -> None:
     p.add_argument("--config", metavar="FILE", type=Path, help="YAML file of simulated-participant parameters")
     p.add_argument("--set", metavar="NAME=VALUE", action="append", default=[], dest="settings",
                    help="one simulated-participant parameter (repeatable; overrides --config)")
+    p.add_argument("--script", choices=["hold_key", "tap_key", "random_task", "one_key"],
+                   help="participants who game the engagement rules instead of the simulated participant, sending "
+                        "what the browser sends: hold '.', tap '.' (script_tap_seconds), a random enabled task "
+                        "every script_every_seconds, or one key per round (recruiting ids pilot-SCRIPT-S-i)")
     p.add_argument("--server-log", metavar="FILE", type=Path, help="the started server's log (default: none)")
     p.set_defaults(handler=handle, subparser=p)
 
@@ -97,15 +104,21 @@ def handle(args: argparse.Namespace) -> int:
 
 
 def _run(args: argparse.Namespace, loaded: Any, config: Any, base_url: str, token: str) -> int:
-    from pilot.client import Seat
+    from pilot import report
+    from pilot.client import Seat, tls_context
     from pilot.progress import Progress
     from pilot.run import run_pilot
+    from pilot.scripts import Script
 
-    seat = Seat(base_url, token, loaded, config, pace="realtime" if args.realtime else "fast")
+    script = (Script(args.script, every_seconds=config.script_every_seconds, tap_seconds=config.script_tap_seconds)
+              if args.script else None)
+    seat = Seat(base_url, token, loaded, config, pace="realtime" if args.realtime else "fast", script=script)
     progress = Progress(args.participants, "pilot")
     started = time.monotonic()
     load_before = os.getloadavg()[0]
-    result = asyncio.run(run_pilot(seat, args.participants, args.jobs, args.seed, progress))
+    prefix = f"pilot-{args.script}" if args.script else "pilot"
+    names = [f"{prefix}-{args.seed}-{i + 1}" for i in range(args.participants)]
+    result = asyncio.run(run_pilot(seat, args.participants, args.jobs, args.seed, progress, names))
     seconds = time.monotonic() - started
     trials = sum(o.trials for o in result.outcomes)
     interrupts = sum(o.interrupts for o in result.outcomes)
@@ -116,6 +129,10 @@ def _run(args: argparse.Namespace, loaded: Any, config: Any, base_url: str, toke
           f"{os.getloadavg()[0]:.2f} at end, {os.cpu_count()} CPUs)")
     for failure in result.failures:
         print(f"failed: {failure}", file=sys.stderr)
+    rows, screened = report.fetch(base_url, token, loaded.id, names, verify=tls_context())
+    print(f"\nmain rounds per robot × kitchen ({loaded.study.timing.mode}, "
+          f"{'realtime' if args.realtime else 'fast'} pace{', script ' + args.script if args.script else ''}):")
+    print(report.markdown(rows, screened))
     print(f"analyse with: steakhouse analyze --study {loaded.id} --include-pilot --out results/{loaded.id}-pilot")
     return 1 if result.failures else 0
 

@@ -335,13 +335,14 @@ def end_trial_in(session: Session, participant_id: int, trial_id: int, kind: str
     if study is not None:
         session.flush()
         done = activity.measure(session, trial_id, study.timing.tick_rate_hz)
-        problem = (engagement_problem(done, study.validity)
+        problem = (engagement_problem(done, study.validity, standing.earlier_choices(session, participant_id, index))
                    if kind == "main" and status == trials.FINISHED else None)
-        activity.record(session, trial_id, done, problem)
+        activity.record(session, trial_id, done, problem.text() if problem else None)
         if problem is not None:
-            log.warning("trial %d (participant %s) is low-engagement: %s", trial_id, row.public_id, problem)
+            log.warning("trial %d (participant %s) is low-engagement: %s", trial_id, row.public_id, problem.text())
             session.add(EventRow(participant_id=row.id, trial_id=trial_id, tick=ticks, kind="trial_low_engagement",
-                                 payload={"reason": problem}, created_at=utcnow(), epoch=epoch))
+                                 payload={**problem.to_dict(), "round": index + 1}, created_at=utcnow(),
+                                 epoch=epoch))
         if kind == "main":
             session.flush()
             screen_out = standing.review_rounds(session, row, study.validity)

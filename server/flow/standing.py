@@ -44,6 +44,13 @@ def latest_main_trials(session: Session, participant_id: int) -> list[TrialRow]:
     return [latest[i] for i in sorted(latest)]
 
 
+def earlier_choices(session: Session, participant_id: int, index: int) -> tuple[int, int]:
+    """The task choices and refused steps of the participant's main rounds before round ``index`` (their latest
+    attempts), for the engagement rule that pools them (``server.flow.engagement``)."""
+    rows = [r for r in latest_main_trials(session, participant_id) if r.index < index]
+    return sum(r.selections or 0 for r in rows), sum(r.refused_steps or 0 for r in rows)
+
+
 def _status(row: TrialRow) -> RoundStatus:
     return round_status(row.status, row.engagement_reason, row.invalid_reason)
 

@@ -5,13 +5,16 @@ Never a condition, robot, kitchen or the participant's condition order (nor its 
 participant's current, else first, trial: the study's one angle, or their group's with ``fov_angle`` a factor) lets
 the instructions draw the cone the participant will have; a trial's ``view`` (top-down
 or first-person) lets the round's intro card explain its controls (the participant sees the view anyway). Consent
-and instructions have their duration placeholders filled in from the study (:mod:`study_config.study.duration`).
+and instructions have their duration placeholders filled in from the study (:mod:`study_config.study.duration`),
+counting the participant's own rounds. A participant screened out for not taking part is told the rule, the
+measured value and the round (``completion.detail``), so the end page states their actual reason.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
+from sqlalchemy import select
 from sqlalchemy.orm import Session
 
 from server.flow import payment
@@ -19,7 +22,7 @@ from server.flow.plan import Step
 from server.flow.progress import Phase
 from server.flow.rounds import RoundFacts, round_facts
 from server.flow.service import completion, progress_of, quiz_attempts
-from store.tables import ParticipantRow
+from store.tables import EventRow, ParticipantRow
 from store.types import utcnow
 from study_config.catalog import LoadedStudy
 from study_config.study import Study
@@ -39,11 +42,24 @@ def load_session_view(session: Session, loaded: LoadedStudy, participant_id: int
     progress = progress_of(row)
     facts = round_facts(session, participant_id, progress, utcnow(), loaded.study.reconnect, connected)
     attempts = quiz_attempts(session, participant_id) if progress.phase is Phase.QUIZ else 0
-    return session_view(loaded, row, facts, attempts)
+    detail = screen_out_detail(session, participant_id) if progress.phase is Phase.SCREENED_OUT else None
+    return session_view(loaded, row, facts, attempts, detail)
 
 
-def session_view(loaded: LoadedStudy, row: ParticipantRow,
-                 facts: RoundFacts | None = None, quiz_attempts_used: int = 0) -> dict[str, Any]:
+def screen_out_detail(session: Session, participant_id: int) -> dict[str, Any] | None:
+    """What the end page says of a round the participant did not take part in: the last ``trial_low_engagement``
+    event's rule, measured value, limit and round (``None`` without one, e.g. a trial stored before they were)."""
+    found = session.scalars(select(EventRow).where(EventRow.participant_id == participant_id,
+                                                   EventRow.kind == "trial_low_engagement")
+                            .order_by(EventRow.id.desc()).limit(1)).first()
+    if found is None or "rule" not in (found.payload or {}):
+        return None
+    return {k: found.payload.get(k) for k in ("rule", "value", "limit", "round")}
+
+
+def session_view(loaded: LoadedStudy, row: ParticipantRow, facts: RoundFacts | None = None,
+                 quiz_attempts_used: int = 0, detail: dict[str, Any] | None = None) -> dict[str, Any]:
+    """``detail``: why a participant screened out for not taking part was (:func:`screen_out_detail`)."""
     progress = progress_of(row)
     phase = progress.phase
     step = progress.current
@@ -63,7 +79,8 @@ def session_view(loaded: LoadedStudy, row: ParticipantRow,
         "device": _device(row, study.device),
         "notice": "round_ended_away" if facts is not None and facts.previous_ended_away else None,
     }
-    texts = study_length(study).placeholders()
+    texts = study_length(study, (sum(s.trial_kind == "practice" for s in trial_steps),
+                                 sum(s.trial_kind == "main" for s in trial_steps))).placeholders()
     if phase is Phase.CONSENT:
         view["consent"] = fill_placeholders(study.consent, texts)
     elif phase is Phase.INSTRUCTIONS:
@@ -79,7 +96,8 @@ def session_view(loaded: LoadedStudy, row: ParticipantRow,
                          "kind_total": sum(1 for s in progress.plan if s.trial_kind == step.trial_kind),
                          "scored": step.trial_kind == "main",
                          "status": facts.current if facts is not None else None,
-                         "view": step.view or DEFAULT_VIEW, "websocket": "/ws/play"}
+                         "view": step.view or DEFAULT_VIEW, "websocket": "/ws/play",
+                         "kitchen_waits": study.timing.mode == "wait_for_participant"}
     elif phase is Phase.QUESTIONNAIRE:
         questionnaire = next(q for q in study.questionnaires if q.id == step.questionnaire)
         view["questionnaire"] = {
@@ -88,6 +106,8 @@ def session_view(loaded: LoadedStudy, row: ParticipantRow,
         }
     if phase in (Phase.DONE, Phase.SCREENED_OUT):
         view["completion"] = payment.shown_to(row, completion(loaded, row))
+        if detail is not None and view["completion"].get("reason") == "low_engagement":
+            view["completion"]["detail"] = detail
     return view
 
 

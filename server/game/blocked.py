@@ -8,10 +8,13 @@
   did something, or the faced cell changed (a steak cooking, the robot chopping).
 - :class:`Stall`: counts the subtask's steps without progress; after the study's ``blocked_subtask_seconds``
   the subtask ends itself with the last reason (:mod:`server.game.controller`).
+- :func:`explained`: a reason the world's events explain better — the robot took, filled or worked the cell
+  (``server.game.changes``).
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Literal
 
@@ -23,23 +26,30 @@ from planner.objects import CLEAN_PLATE, DIRTY_PLATE, DISH, MEAT, ONION, STEAK_P
 from planner.rules import Rules
 from planner.state import WorldState
 from planner.subtasks import Subtask
+from server.game.changes import Category, Changes
 from server.game.needs import NEEDS, NOTHING, SOMETHING, hands_fit
 from server.protocol.server import BlockedReason
 
-Intent = Literal["interact", "move", "wait", "no_target", "idle"]
+Intent = Literal["interact", "move", "wait", "no_target", "look", "idle"]
 """What the cook tried this step for its subtask: interact with the target it faces, move toward it, wait for
-the way to clear, or nothing because no target is known (``idle``: no subtask)."""
+the way to clear, nothing because no target is known, or (the paper's clock) look at a target the participant
+sees but does not know yet (``idle``: no subtask)."""
 
 NOTICE_AFTER_MOVES = 3
 """Steps a move must stay blocked before the participant is told (the robot often steps aside at once)."""
+PATIENCE_STEPS = NOTICE_AFTER_MOVES
+"""The paper's clock: steps a task's path may wait for the robot to clear the way (the world steps for them, the
+robot moving on) before the task ends with the reason (``ParticipantController.refuse_step``)."""
 
 
 @dataclass(frozen=True, slots=True)
 class Reason:
-    """Why nothing happened: a reason code and the object it names (needed or held), if any."""
+    """Why nothing happened: a reason code, the object it names (needed, held, or what the robot took, put or
+    worked on), if any, and for what the robot did the place (``grill``, ``board``, ``sink``, ``counter``)."""
 
     code: BlockedReason
     item: str | None = None
+    place: str | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -91,6 +101,8 @@ def interaction_reason(layout: Layout, world: WorldState, rules: Rules) -> Reaso
 
 def _grill(status: int | None, held: str | None, rules: Rules) -> Reason | None:
     if status is None:
+        if held == CLEAN_PLATE:
+            return Reason("no_steak")
         return None if held == MEAT else Reason("needs_item", MEAT)
     if held == MEAT:
         return Reason("grill_busy")
@@ -149,6 +161,44 @@ def nothing_left(subtask: Subtask, kb: KnowledgeBase, rules: Rules) -> Reason:
     return Reason("already_chopped") if chopped else Reason("nothing_to_chop")
 
 
+EXPLAINED_BY: dict[str, Category] = {
+    "no_steak": "taken", "no_garnish": "taken", "nothing_to_chop": "taken", "nothing_to_wash": "taken",
+    "counter_empty": "taken", "no_clean_plate": "taken", "unknown_place": "taken", "needs_item": "taken",
+    "grill_busy": "used", "board_busy": "used", "sink_busy": "used",
+    "already_chopped": "done", "already_washed": "done"}
+"""The reasons a change the robot made can explain, and the kind of change that explains each: something missing
+(taken), a station busy (used), work already done (done). Waits (a steak cooking, an onion not chopped yet) and
+the cook's own hands are their own reasons."""
+ROBOT_DID: dict[Category, BlockedReason] = {"taken": "taken_by_robot", "used": "filled_by_robot",
+                                            "done": "done_by_robot"}
+
+
+def explained(reason: Reason, changes: Changes, cells: Iterable[Pos]) -> Reason:
+    """``reason``, or what the robot changed at one of ``cells`` that is the truer reason: the steak the
+    participant went for is gone because the robot took it, the grill is busy because the robot put meat on it
+    (``server.game.changes``)."""
+    category = EXPLAINED_BY.get(reason.code)
+    change = changes.by_robot(cells, category) if category is not None else None
+    return reason if change is None else Reason(ROBOT_DID[change.category], change.item, change.place)
+
+
+def knows_wrongly(layout: Layout, rules: Rules, kb: KnowledgeBase, world: WorldState, cell: Pos) -> bool:
+    """Whether the participant's knowledge of ``cell`` (a counter, grill, board or sink) differs from the world:
+    another object on a counter, a station empty, working or done in one and not the other."""
+    if cell not in layout.stations:
+        return False
+    return _known_state(layout, rules, kb, cell) != _known_state(layout, rules, world, cell)
+
+
+def _known_state(layout: Layout, rules: Rules, kitchen: KnowledgeBase | WorldState, cell: Pos) -> object:
+    kind, index = layout.stations[cell]
+    done_at = {Terrain.GRILL: rules.cook_time, Terrain.BOARD: rules.chop_time, Terrain.SINK: rules.wash_time}.get(kind)
+    if done_at is None:
+        return kitchen.object_at(cell) if kind is Terrain.COUNTER else None
+    value = {Terrain.GRILL: kitchen.grills, Terrain.BOARD: kitchen.boards, Terrain.SINK: kitchen.sinks}[kind][index]
+    return "empty" if value is None else "done" if value >= done_at else "working"
+
+
 def progressed(layout: Layout, before: WorldState, after: WorldState, events: tuple[Event, ...]) -> bool:
     """Whether the step from ``before`` to ``after`` moved the participant's subtask on."""
     h0, h1 = before.human, after.human
@@ -182,6 +232,6 @@ class Stall:
         (a new reason; a blocked move only after :data:`NOTICE_AFTER_MOVES` steps)."""
         ticks = 0 if moved_on else self.ticks + 1
         latest = reason if reason is not None else (None if moved_on else self.reason)
-        due = intent not in ("move", "wait") or ticks >= NOTICE_AFTER_MOVES
+        due = intent not in ("move", "wait", "look") or ticks >= NOTICE_AFTER_MOVES
         tell = reason is not None and reason != self.told and due
         return Stall(ticks, latest, reason if tell else self.told), tell

@@ -29,6 +29,7 @@ from planner.subtasks import Subtask
 from planner.summary import gap_components, summarize
 from server.game.blocked import Blocked
 from server.game.controller import ParticipantController
+from server.game.steps import StepKind, step_kind
 
 
 @dataclass(frozen=True, slots=True)
@@ -50,6 +51,8 @@ class TickOutcome:
     subtask_finished: bool
     blocked: Blocked | None = None
     """A notice that the subtask did not get anywhere, or its end (``blocked.ended``)."""
+    step: StepKind = "idle"
+    """What the participant's cook did in this step (``server.game.steps``)."""
 
 
 class TrialEngine:
@@ -75,6 +78,14 @@ class TrialEngine:
         human = self.world.human
         return view(self.layout, human.pos, human.facing, self.angle)
 
+    def refused_step(self) -> Blocked | None:
+        """The paper's clock, before a step: the participant's subtask ended because its next step would do
+        nothing they chose (``ParticipantController.refuse_step``); the world must then not step."""
+        if self.done:
+            return None
+        return self.controller.refuse_step(self.world, self.kb, avatar_rng(self.seed, self.world.tick),
+                                           look_steps=self.kb_delay)
+
     def advance(self, robot_action: Action) -> TickOutcome:
         """Step the world once with the participant's action and ``robot_action``."""
         if self.done:
@@ -86,6 +97,7 @@ class TrialEngine:
         world, events = step(self.layout, before, {"human": human_action, "robot": robot_action}, self.rules)
         kb = update_kb(self.kb, self.layout, world, angle=self.angle, kb_delay=self.kb_delay,
                        own_events=[e for e in events if e.agent == "human"])
+        kind = step_kind(source, human_action, before, world, events, self.controller.intent)
         finished = self.controller.observe(before, world, kb)
         blocked = self.controller.review(before, world, events, kb)
         self.world, self.kb, self.last_events = world, kb, events
@@ -95,4 +107,5 @@ class TrialEngine:
             subtask=subtask, events=events, world=world, kb=kb, kb_summary=kb_sum.to_dict(),
             world_summary=world_sum.to_dict(), gap=gap_components(kb_sum, world_sum),
             robot_in_fov=world.robot.pos in self.fov().cells, subtask_finished=finished, blocked=blocked,
+            step=kind,
         )

@@ -6,8 +6,10 @@ kept in the store (``server.game.health_keeper``) and the stall hints (``server.
 
 The clock:
 
-- ``fixed_rate``: a step every ``1 / tick_rate_hz`` seconds; ``wait_for_participant``: a step only when
-  the avatar has something to do (a queued interrupt or a subtask), never faster than the tick rate.
+- ``fixed_rate``: a step every ``1 / tick_rate_hz`` seconds; ``wait_for_participant`` (the paper's clock): a
+  step only for an action of the participant's (a key's one action, or a step of their task that moves, turns
+  or works: a task whose next step would do nothing ends with its reason instead, ``server.game.steps``),
+  never faster than the tick rate.
 - **The world is paused while no participant is connected** (the researcher's choice: a dropped
   connection must not cost the participant ticks); the next step comes one period after they return.
 - Tick lateness = actual start of a step − its scheduled start (logged per tick). A late step does not
@@ -27,9 +29,11 @@ The clock:
 - ``wait_for_participant`` rounds have a wall-clock limit (``timing.max_round_seconds``, counted while the
   participant is connected, and stored with each tick so a round resumed from the store goes on counting):
   past it the round ends with reason ``time_limit``. Each stretch the world waits
-  for the participant is logged as a ``wait`` event (its seconds count toward the trial's ``idle_pct``).
-  In both clocks, a cook with nothing to do for ``timing.idle_nudge_seconds`` gets one ``nudge`` per stretch
-  (``server.game.round_time``; the wall clock is injected, ``server.game.clock``).
+  for the participant is logged as a ``wait`` event (its seconds count toward the trial's ``idle_pct``); the last
+  minute of the limit is counted down on the page (``countdown``).
+  In both clocks, a cook with nothing to do gets a ``nudge`` every ``timing.idle_nudge_seconds``, and from the
+  second on a ``warning`` when the round so far would not count (``server.game.round_time``,
+  ``server.game.taking_part``; the wall clock is injected, ``server.game.clock``).
 - Robot health (``server.game.health``): every decision counts toward the trial's share of missed
   deadlines; past the study's ``validity.max_missed_decisions_pct`` the trial is marked invalid as it
   happens (a warning in the server log, a ``trial_invalid`` event, the trial row's ``invalid_reason``).
@@ -63,9 +67,10 @@ from server.game.meta import TrialMeta
 from server.game.pacing import Pacing
 from server.game.records import tick_row
 from server.game.stall_hint import Hint, StallHints
+from server.game.taking_part import TakingPart
 from server.protocol.client import Blur, Focus, Heartbeat, Idle, InterruptMessage, SelectSubtask
 from server.protocol.inbound import ProtocolError
-from server.protocol.server import Ack, Error, Nudge, Pong, State, TrialEnd
+from server.protocol.server import Ack, Countdown, EngagementWarning, Error, Nudge, Pong, State, TrialEnd
 from server.protocol.server import StallHint as StallHintMessage
 from server.robots import RobotChoice, RobotPool
 from store.engine import Store
@@ -109,6 +114,8 @@ class LiveGame:
             health or RobotHealth(loaded.study.validity.max_missed_decisions_pct, engine.rules.horizon),
             deps.store, meta, self.event)
         self.stalls = StallHints(timing.stall_hint_ticks())
+        self.part = TakingPart(loaded.study.validity, timing.tick_rate_hz, judged=meta.kind == "main")
+        """The round's taking part so far: a warning while the participant can act (``server.game.taking_part``)."""
         self.finished = False
         self.stored = asyncio.Event()
         """Set once an ending trial's last ticks and its end are stored (:meth:`end`), so that a reconnection
@@ -177,7 +184,7 @@ class LiveGame:
 
     def state_message(self) -> State:
         return snapshot.state(self.engine, mode=self.pacing.mode, rate=self.pacing.rate,
-                              ack=self.link.inbound.last_seq)
+                              ack=self.link.inbound.last_seq, round_left=self.pacing.times.left())
 
     # -- client messages ------------------------------------------------------------------------------
 
@@ -271,7 +278,7 @@ class LiveGame:
                 scheduled = pacing.scheduled(now, last_start, next_at)
             if scheduled > now:
                 await asyncio.sleep(scheduled - now)
-            if not link.connected.is_set():
+            if not link.connected.is_set() or not self._may_step():
                 continue
             started = time.monotonic()
             choice = await self._take_decision()
@@ -288,7 +295,7 @@ class LiveGame:
                 link.connection.send(self.state_message())
             if not self.engine.controller.has_action():
                 pacing.times.idle()
-                self._nudge()
+            self._nudge()
             last_start = started
             next_at = max(scheduled + period, time.monotonic())
         world = self.engine.world
@@ -297,6 +304,20 @@ class LiveGame:
             log.info("trial %d (participant %s) reached its wall-clock limit of %.0f s", self.meta.trial_id,
                      self.meta.participant, pacing.times.limit_s or 0.0)
         await self.end("finished", reason)
+
+    def _may_step(self) -> bool:
+        """The paper's clock steps only for the participant's actions (``server.game.steps``): a subtask whose next
+        step would do nothing they chose ends, they are told why (and sent the unchanged state, their task gone),
+        and the world does not step; nor does it for a cook left with nothing to do meanwhile (a ``stop``). Asked
+        right before each step, after any message that came meanwhile."""
+        if self.pacing.mode != "wait_for_participant":
+            return True
+        refused = self.engine.refused_step()
+        if refused is not None:
+            self._blocked(refused)
+            self.link.send(self.state_message())
+            return False
+        return self.pacing.fast or self.engine.controller.has_action()
 
     async def _wait_for_participant(self) -> None:
         """``wait_for_participant``: the cook has nothing to do, so the world waits for the participant's next
@@ -314,10 +335,25 @@ class LiveGame:
         self._nudge()
 
     def _nudge(self) -> None:
-        """Send the idle stretch's nudge once it is due (it names nothing of the condition)."""
-        if self.pacing.times.take_nudge() and self.link.connection is not None:
-            self.link.connection.send(Nudge())
-            self.event("nudge", {})
+        """Send the idle stretch's nudges as they fall due (they name nothing of the condition) and the countdown
+        of the round's last minute; from the second nudge on, and with the countdown (once the round has run a nudge
+        interval), warn when the round so far would not count (``server.game.taking_part``)."""
+        times = self.pacing.times
+        if self.link.connection is None:
+            return
+        repeat = times.take_nudge()
+        if repeat:
+            self.link.send(Nudge(repeat=repeat))
+            self.event("nudge", {"repeat": repeat})
+        left = times.take_countdown()
+        if left is not None:
+            self.link.send(Countdown(seconds_left=round(left, 1)))
+            self.event("countdown", {"seconds_left": round(left, 1)})
+        due = (repeat >= 2 or left is not None) and times.elapsed() >= times.nudge_s  # never before they could act
+        problem = self.part.problem() if due else None
+        if problem is not None:
+            self.link.send(EngagementWarning(rule=problem.rule, seconds_left=times.left()))
+            self.event("engagement_warning", {"rule": problem.rule, "value": round(problem.value, 2)})
 
     async def _await_answer(self, period: float) -> None:
         """A ``fast`` pilot trial: wait (at most ``period``) for the participant's answer to the last state."""
@@ -347,6 +383,7 @@ class LiveGame:
 
     def _record(self, outcome: TickOutcome, choice: RobotChoice, lateness_ms: float) -> None:
         self.pacing.lateness.append(lateness_ms)
+        self.part.stepped(outcome)
         self.deps.writer.add_tick(tick_row(self.meta.trial_id, outcome, choice, lateness_ms,
                                            self.engine.controller.to_dict(), self.pacing.times.elapsed(),
                                            self.meta.epoch))
@@ -354,9 +391,9 @@ class LiveGame:
     def _blocked(self, blocked: Blocked) -> None:
         """Tell the participant why their subtask is not getting anywhere; log it when the subtask ended."""
         if blocked.ended:
+            place = {"place": blocked.reason.place} if blocked.reason.place else {}
             self.event("subtask_blocked", {"subtask": blocked.subtask.value if blocked.subtask else None,
-                                           "reason": blocked.reason.code,
-                                           "item": blocked.reason.item})
+                                           "reason": blocked.reason.code, "item": blocked.reason.item, **place})
         self.link.send(snapshot.blocked_message(blocked))
 
     def _watch_stall(self, outcome: TickOutcome) -> None:
@@ -371,6 +408,7 @@ class LiveGame:
         self.link.send(StallHintMessage(code=hint.code, text=hint.text))
 
     def event(self, kind: str, payload: dict[str, Any]) -> None:
+        self.part.note(kind, payload)
         self.deps.writer.add_event({"participant_id": self.meta.participant_id, "trial_id": self.meta.trial_id,
                                     "tick": self.engine.tick, "kind": kind, "payload": payload,
                                     "created_at": utcnow(), "epoch": self.meta.epoch})

@@ -7,13 +7,18 @@ to do (the nudge after ``timing.idle_nudge_seconds``). Time comes from an inject
   from the seconds stored with its last tick (``spent_s``; rounds stored before those were kept count from their
   resumption).
 - An idle stretch starts when the cook has nothing to do (no task, no key waiting) and ends with the
-  participant's next accepted choice or key; one nudge is due per stretch, ``idle_nudge_seconds`` into it
-  (counted again from a reconnection).
+  participant's next accepted choice or key; a nudge is due every ``idle_nudge_seconds`` of it (the first
+  ``idle_nudge_seconds`` into it, counted again from a reconnection), so a participant who waits is reminded again.
+- The countdown: when the last :data:`COUNTDOWN_SECONDS` of the wall-clock limit begin, once per connection (a
+  reconnected page is told again), the participant is shown the seconds left.
 """
 
 from __future__ import annotations
 
 from server.game.clock import Clock
+
+COUNTDOWN_SECONDS = 60.0
+"""The last seconds of a round's wall-clock limit in which the participant sees them counted down."""
 
 
 class RoundTime:
@@ -22,14 +27,17 @@ class RoundTime:
         self._spent = spent_s
         self._since: float | None = None
         self._idle_from: float | None = None
-        self._nudged = False
+        self._nudges = 0
+        """Nudges given in the current idle stretch."""
+        self._counted_down = False
 
     def connected(self) -> None:
         now = self.clock.now()
         if self._since is None:
             self._since = now
         if self._idle_from is not None:
-            self._idle_from, self._nudged = now, False
+            self._idle_from, self._nudges = now, 0
+        self._counted_down = False
 
     def disconnected(self) -> None:
         if self._since is not None:
@@ -43,30 +51,48 @@ class RoundTime:
     def over_limit(self) -> bool:
         return self.limit_s is not None and self.elapsed() >= self.limit_s
 
+    def left(self) -> float | None:
+        """Seconds left before the wall-clock limit (``None``: no limit, the fixed clock)."""
+        return None if self.limit_s is None else max(self.limit_s - self.elapsed(), 0.0)
+
     def acted(self) -> None:
         """The participant chose a task or pressed a key: the idle stretch ends."""
-        self._idle_from, self._nudged = None, False
+        self._idle_from, self._nudges = None, 0
 
     def idle(self) -> None:
         """The cook has nothing to do (the stretch starts now unless it already runs)."""
         if self._idle_from is None:
-            self._idle_from, self._nudged = self.clock.now(), False
+            self._idle_from, self._nudges = self.clock.now(), 0
 
-    def take_nudge(self) -> bool:
-        """Whether the nudge of the current idle stretch is due now (answered ``True`` once per stretch)."""
-        if self._idle_from is None or self._nudged or self._since is None:
-            return False
-        if self.clock.now() - self._idle_from < self.nudge_s:
-            return False
-        self._nudged = True
-        return True
+    def take_nudge(self) -> int:
+        """The number of the idle stretch's nudge due now (1, 2, …: the whole intervals the stretch has lasted;
+        each answered once, a late ask skips the missed ones), or 0."""
+        if self._idle_from is None or self._since is None:
+            return 0
+        due = int((self.clock.now() - self._idle_from) // self.nudge_s)
+        if due <= self._nudges:
+            return 0
+        self._nudges = due
+        return due
+
+    def take_countdown(self) -> float | None:
+        """The seconds left when the countdown is due now (the last :data:`COUNTDOWN_SECONDS` of the limit have
+        begun and this connection has not been told), else ``None``."""
+        left = self.left()
+        if left is None or self._counted_down or self._since is None or left > COUNTDOWN_SECONDS:
+            return None
+        self._counted_down = True
+        return left
 
     def until_next(self) -> float | None:
-        """Seconds until the nudge or the limit is due (``None``: neither)."""
+        """Seconds until the next nudge, the countdown or the limit is due (``None``: none)."""
         now = self.clock.now()
         waits = []
-        if self.limit_s is not None:
-            waits.append(self.limit_s - self.elapsed())
-        if self._idle_from is not None and not self._nudged:
-            waits.append(self._idle_from + self.nudge_s - now)
+        left = self.left()
+        if left is not None:
+            waits.append(left)
+            if not self._counted_down:
+                waits.append(left - COUNTDOWN_SECONDS)
+        if self._idle_from is not None:
+            waits.append(self._idle_from + self.nudge_s * (self._nudges + 1) - now)
         return max(min(waits), 0.0) if waits else None

@@ -39,10 +39,12 @@ def hello(meta: TrialMeta, engine: TrialEngine, *, mode: str, rate: float, resum
 
 def blocked_message(blocked: Blocked) -> BlockedMessage:
     return BlockedMessage(subtask=blocked.subtask.value if blocked.subtask else None, reason=blocked.reason.code,
-                          item=blocked.reason.item, ended=blocked.ended)
+                          item=blocked.reason.item, place=blocked.reason.place, ended=blocked.ended)
 
 
-def state(engine: TrialEngine, *, mode: str, rate: float, ack: int) -> State:
+def state(engine: TrialEngine, *, mode: str, rate: float, ack: int, round_left: float | None = None) -> State:
+    """What the participant sees now (``round_left``: the wall-clock seconds left of a wait-for-participant
+    round's limit)."""
     world, rules = engine.world, engine.rules
     cells, robot = visible_world(engine.layout, world, rules, engine.angle)
     ticks_left = max(rules.horizon - world.tick, 0)
@@ -51,7 +53,8 @@ def state(engine: TrialEngine, *, mode: str, rate: float, ack: int) -> State:
         tick=world.tick, you=agent_view(world.human), robot=robot, cells=cells,
         hud=Hud(tick=world.tick, horizon=rules.horizon, ticks_left=ticks_left,
                 seconds_left=round(ticks_left / rate, 2) if mode == "fixed_rate" else None,
-                orders_left=world.orders_left, score=world.score),
+                orders_left=world.orders_left, score=world.score,
+                round_seconds_left=None if round_left is None else round(round_left, 1)),
         subtask=controller.subtask.value if controller.subtask else None,
         available=[s.value for s in controller.available(world, engine.kb)],
         queued=len(controller.queue), ack=ack)

@@ -20,7 +20,8 @@ from study_config.study.views import ViewName
 BlockedReason = Literal[
     "hands_full", "hands_empty", "needs_item", "nothing_there", "counter_empty", "grill_busy", "steak_cooking",
     "board_busy", "nothing_to_chop", "no_garnish", "not_chopped", "already_chopped", "sink_busy", "nothing_to_wash",
-    "already_washed", "no_clean_plate", "robot_in_way", "no_way", "unknown_place", "stuck"]
+    "already_washed", "no_clean_plate", "robot_in_way", "no_way", "unknown_place", "stuck", "no_steak",
+    "taken_by_robot", "filled_by_robot", "done_by_robot"]
 """Why a subtask is not getting anywhere (``blocked`` messages; docs/protocol.md lists each with its words)."""
 
 
@@ -117,6 +118,9 @@ class Hud(BaseModel):
     """``ticks_left`` at the tick rate; ``None`` in wait-for-participant mode."""
     orders_left: int
     score: int
+    round_seconds_left: float | None = None
+    """Wait-for-participant mode: wall-clock seconds left before the round's ``timing.max_round_seconds`` (counted
+    while connected); ``None`` in ``fixed_rate``."""
 
 
 class State(ServerMessage):
@@ -152,7 +156,10 @@ class Blocked(ServerMessage):
     """``null``: an ``interact`` key (an interrupt) that did nothing, for the reason given."""
     reason: BlockedReason
     item: str | None = None
-    """The object the reason names: what is needed (``needs_item``) or what is in hand (``hands_full``)."""
+    """The object the reason names: what is needed (``needs_item``), what is in hand (``hands_full``), or what the
+    robot took, put or worked on (``taken_by_robot``, ``filled_by_robot``, ``done_by_robot``)."""
+    place: str | None = None
+    """Where the robot did it (``grill``, ``board``, ``sink``, ``counter``) for the ``…_by_robot`` reasons."""
     ended: bool
 
 
@@ -208,10 +215,35 @@ class Waiting(ServerMessage):
 
 class Nudge(ServerMessage):
     """The cook has had nothing to do for the study's ``timing.idle_nudge_seconds``: the page shows "Choose your
-    next task" until the participant acts. Sent once per idle stretch; it names nothing of the condition."""
+    next task" until the participant acts. Sent again every ``idle_nudge_seconds`` of the idle stretch (``repeat``
+    counts them); it names nothing of the condition."""
 
     type: Literal["nudge"] = "nudge"
     text: Literal["Choose your next task"] = "Choose your next task"
+    repeat: int = 1
+
+
+class Countdown(ServerMessage):
+    """Wait-for-participant mode: the last minute of the round's wall-clock limit has begun (or had, when the page
+    reconnects): the page counts ``seconds_left`` down where the participant sees it."""
+
+    type: Literal["countdown"] = "countdown"
+    seconds_left: float
+
+
+WarningRule = Literal["no_actions", "idle", "task_steps", "refused_tasks"]
+"""Which engagement rule the round so far fails (``server.flow.engagement``)."""
+
+
+class EngagementWarning(ServerMessage):
+    """If the round ended now it would not count (``low_engagement``): told while the participant can still act,
+    from the second nudge of an idle stretch on and when the countdown starts. ``rule`` names why (the page words
+    it); ``seconds_left``: before the wall-clock limit (``None`` in ``fixed_rate``)."""
+
+    type: Literal["warning"] = "warning"
+    code: Literal["would_not_count"] = "would_not_count"
+    rule: WarningRule
+    seconds_left: float | None = None
 
 
 class TrialEnd(ServerMessage):
@@ -228,6 +260,6 @@ class TrialEnd(ServerMessage):
     next: str
 
 
-AnyServerMessage = Annotated[Hello | State | Ack | Blocked | StallHint | Pong | Error | Waiting | Nudge | TrialEnd,
-                             Field(discriminator="type")]
+AnyServerMessage = Annotated[Hello | State | Ack | Blocked | StallHint | Pong | Error | Waiting | Nudge | Countdown
+                             | EngagementWarning | TrialEnd, Field(discriminator="type")]
 server_adapter: TypeAdapter[AnyServerMessage] = TypeAdapter(AnyServerMessage)

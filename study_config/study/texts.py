@@ -39,8 +39,7 @@ shows the order; during a round it stays in sight above the kitchen.
   with the reason.
 - **Interrupt** at any time with the keys shown under the kitchen: move one cell, stay, interact
   with what you face, or stop the current task. Choosing a new task replaces the current one.
-- The robot works on its own. Deliver all orders as quickly as you can: a round lasts at most
-  {round_time}.
+- {clock_note} Deliver all orders as quickly as you can: a round lasts at most {round_time}.
 
 {practice_note}
 """

@@ -29,6 +29,16 @@ think 0.5–3 s per choice): their highest per-trial idle share was 70.8 % (``fi
 about 10 s, within reach of a slow but real player), while a participant who never acts has 100 %."""
 
 
+DEFAULT_MIN_TASK_STEP_PCT = 10.0
+"""A main trial in which the participant made less than this share of the team's task steps is low-engagement.
+Chosen from the pilots of docs/protocol.md, "Taking part" (paper's clock, 2026-12-07): the 28 human-like simulated
+participants made 41.9 % to 86.2 % per round (112 rounds), the scripts that held, tapped or pressed one key 0 %."""
+DEFAULT_MAX_REFUSED_TASK_PCT = 25.0
+"""Above this share of refused task choices over the main rounds so far (at least five refused) a main trial is
+low-engagement. From the same pilots: the human-like participants pooled at most 13.2 %, the scripts choosing a
+random enabled task every 8 s or 3 s at least 35.6 % (a single human-like round reached 27.3 %: hence pooled)."""
+
+
 RoundStatus = Literal["running", "abandoned", "low_engagement", "robot_invalid", "finished"]
 RUNNING: RoundStatus = "running"
 ABANDONED: RoundStatus = "abandoned"
@@ -64,6 +74,13 @@ class Validity(StudyModel):
     min_participant_actions: int = Field(default=1, ge=0)
     """A main trial with fewer of the participant's actions (task choices plus interrupts) is
     ``low_engagement``: the robot played it alone."""
+    min_task_step_pct: float = Field(default=DEFAULT_MIN_TASK_STEP_PCT, ge=0, le=100)
+    """A main trial in which the participant made less than this share of the team's task steps (interactions
+    that changed the world), in %, is ``low_engagement``: the robot did the work while they held or tapped a key,
+    or chose tasks that got nowhere (0 turns the rule off)."""
+    max_refused_task_pct: float = Field(default=DEFAULT_MAX_REFUSED_TASK_PCT, ge=0, le=100)
+    """A main trial in which more than this share of the participant's task choices were refused (could not work),
+    once at least five were, is ``low_engagement``: tasks chosen without looking (100 turns the rule off)."""
     max_idle_pct: float = Field(default=DEFAULT_MAX_IDLE_PCT, ge=0, le=100)
     """A main trial whose cook had nothing to do (no task, no key waiting) for more than this share of its tick
     periods (``idle_pct``; in ``wait_for_participant`` the time the world waited counts at the tick rate) is

@@ -12,7 +12,7 @@ from offline import play_offline
 
 from pilot.client import respond
 from pilot.config import ParticipantConfig
-from pilot.mind import Mind
+from pilot.mind import Mind, belief_of, decide, told_refused
 from pilot.perception import Perception
 from planner.geometry import DIRECTIONS, Direction, Pos
 from planner.layout import Layout
@@ -38,14 +38,15 @@ def beside(layout: Layout, target: Pos) -> tuple[Pos, Direction]:
 
 def frames_until_reply(loaded: LoadedStudy, engine: TrialEngine, config: ParticipantConfig,
                        frames: int) -> list[dict[str, Any]]:
-    """The messages answering ``frames`` frames of a world that stands still (the participant watching)."""
+    """The messages answering ``frames`` frames, one a tick, of a world that stands still (the participant
+    watching)."""
     layout = engine.layout
     seen = Perception(layout.width, layout.height, tuple(loaded.layouts.values()))
     mind = Mind(last=engine.controller.subtask)
     rng = np.random.default_rng(3)
     out = []
-    for _ in range(frames):
-        frame = snapshot.state(engine, mode="fixed_rate", rate=5.0, ack=0).model_dump(mode="json")
+    for tick in range(frames):
+        frame = {**snapshot.state(engine, mode="fixed_rate", rate=5.0, ack=0).model_dump(mode="json"), "tick": tick}
         seen, mind, body = respond(mind, seen, frame, NEEDS_BY_NAME, loaded, config, rng)
         out.append(body)
     return out
@@ -85,13 +86,13 @@ def test_it_corrects_in_one_step_by_putting_the_meat_on_a_free_counter(paper) ->
     seen = Perception(layout.width, layout.height, tuple(paper.layouts.values()))
     mind, rng = Mind(last=Subtask.DROP_MEAT), np.random.default_rng(3)
     watching = ParticipantConfig(notice_probability=0.0)
-    for _ in range(3):
-        frame = snapshot.state(engine, mode="fixed_rate", rate=5.0, ack=0).model_dump(mode="json")
+    for tick in range(3):
+        frame = {**snapshot.state(engine, mode="fixed_rate", rate=5.0, ack=0).model_dump(mode="json"), "tick": tick}
         seen, mind, _ = respond(mind, seen, frame, NEEDS_BY_NAME, paper, watching, rng)
     counter = next(c for c in layout.counters if _reachable_side(layout, c))
     pos, facing = beside(layout, counter)
     engine.world = replace(engine.world, human=AgentState(pos, facing, MEAT))
-    frame = snapshot.state(engine, mode="fixed_rate", rate=5.0, ack=0).model_dump(mode="json")
+    frame = {**snapshot.state(engine, mode="fixed_rate", rate=5.0, ack=0).model_dump(mode="json"), "tick": 3}
     correcting = ParticipantConfig(notice_probability=1.0, stop_weight=0, replace_weight=0, correct_weight=1)
     _, _, body = respond(mind, seen, frame, NEEDS_BY_NAME, paper, correcting, rng)
     assert body == {"type": "interrupt", "action": "interact"}
@@ -121,3 +122,42 @@ def test_whole_trials_have_interrupts_and_get_the_dishes_out(paper) -> None:
             delivered += paper.rules.orders - trial.engine.world.orders_left
     assert interrupts > 0
     assert delivered >= 8
+
+
+def test_a_frame_sent_again_at_the_same_tick_teaches_nothing(paper) -> None:
+    """The paper's clock tells a refused step with the unchanged state: the KB rule counts ticks, not frames."""
+    engine = carrying_meat_to_a_busy_grill(paper)
+    layout = engine.layout
+    seen = Perception(layout.width, layout.height, tuple(paper.layouts.values()))
+    frame = snapshot.state(engine, mode="wait_for_participant", rate=5.0, ack=0).model_dump(mode="json")
+    once = seen.observe(frame, 120.0, 3)
+    assert once.observe(frame, 120.0, 3) is once
+
+
+def test_a_task_the_page_refused_is_not_chosen_again_while_it_believes_the_same_of_its_places(paper) -> None:
+    """Holding a clean plate its rule offers only Pick up steak; told the robot took the steak, it does something
+    else that fits its hands for as long as it believes what it believed then of the grills, and chooses the task
+    again once it knows something new of them (it saw the grill)."""
+    engine = carrying_meat_to_a_busy_grill(paper)
+    engine.world = replace(engine.world, human=replace(engine.world.human, held="clean_plate"))
+    engine.controller.subtask = None
+    layout = engine.layout
+    frame = {**snapshot.state(engine, mode="wait_for_participant", rate=5.0, ack=0).model_dump(mode="json"),
+             "tick": 7}
+    seen = Perception(layout.width, layout.height, tuple(paper.layouts.values())).observe(frame, 120.0, 3)
+    assert seen.kb is not None
+    seen = replace(seen, kb=replace(seen.kb, grills=(10,) * len(layout.grills)))  # it believes a steak is there
+    config = ParticipantConfig(error_rate=0.0, decision_latency_ticks=0)
+
+    def chosen(mind: Mind, state: dict[str, Any], seed: int, knows: Perception = seen) -> tuple[str, Mind]:
+        reply, after = decide(mind, knows, state, NEEDS_BY_NAME, paper.rules, config, np.random.default_rng(seed))
+        return str(reply.body()["subtask"]), after
+
+    assert chosen(Mind(), frame, 0)[0] == "pickup_steak", "its rule offers only this"
+    assert seen.kb is not None
+    told = told_refused(Mind(), Subtask.PICKUP_STEAK, belief_of(layout, paper.rules, seen.kb, Subtask.PICKUP_STEAK))
+    assert {chosen(told, {**frame, "tick": tick}, seed)[0] for tick in (7, 8, 30) for seed in range(10)} == {
+        "drop_on_counter"}, "the note holds while nothing new is known of the grills"
+    saw = replace(seen, kb=replace(seen.kb, grills=(3,) * len(layout.grills)))  # it saw a new steak cooking there
+    again, mind = chosen(told, {**frame, "tick": 31}, 0, saw)
+    assert again == "pickup_steak" and not mind.refused

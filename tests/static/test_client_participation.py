@@ -1,6 +1,6 @@
 """A participant who does not take part, in real Chromium: under the paper's clock an idle cook is
 nudged ("Choose your next task"), the round ends at its wall-clock limit and says so, and the end page shows the
-screen-out code with a plain reason, never the completion code. The round's wall clock is moved by hand."""
+screen-out code with the participant's true reason (the rule they did not meet), never the completion code. The round's wall clock is moved by hand."""
 
 from __future__ import annotations
 
@@ -53,7 +53,8 @@ def test_an_idle_participant_is_nudged_timed_out_and_screened_out(waiting_server
     page.click("#continue")
     page.wait_for_selector("#finish[data-kind='screen_out']")
     text: Any = page.inner_text("#finish-text")
-    assert "without taking part" in text and page.inner_text("#completion-code") == "NOT-PAID-2"
+    assert text.startswith("In round 1 you did not choose a task or press a key, so that round cannot count.")
+    assert page.inner_text("#completion-code") == "NOT-PAID-2"
     assert "PAID-1" not in page.inner_text("body").replace("NOT-PAID-2", "")
     [row] = [p for p in server.get("/api/admin/participants") if p["recruiting"].get("PROLIFIC_PID") == "pid-idle"]
     assert (row["status"], row["screen_out_reason"]) == ("screened_out", "low_engagement")

@@ -19,7 +19,7 @@ def test_migrations_match_the_models(empty_db_url):
     store = Store(empty_db_url)
     try:
         store.migrate()
-        assert current_revision(store.engine) == "0013"
+        assert current_revision(store.engine) == "0014"
         with store.engine.connect() as conn:
             context = MigrationContext.configure(conn, opts={"compare_type": True})
             diff = compare_metadata(context, Base.metadata)
@@ -49,7 +49,7 @@ def test_migrating_again_and_concurrently_is_harmless(empty_db_url):
             thread.join()
         stores[0].migrate()
         assert errors == []
-        assert current_revision(stores[0].engine) == "0013"
+        assert current_revision(stores[0].engine) == "0014"
     finally:
         for store in stores:
             store.dispose()

@@ -55,6 +55,8 @@ export class FirstPersonView {
   configure(hello) {
     this.fov = hello.fov_angle;
     this.tickMs = 1000 / hello.tick_rate_hz;
+    /** Whether a held control walks on: not on the paper's clock, where a held control is one press. */
+    this.repeats = hello.mode !== "wait_for_participant";
     this.canvas.dataset.trial = String(hello.trial.id);
     this.size = "";
     this.setGrid(hello.width, hello.height);

@@ -108,15 +108,17 @@ export class XrButton {
     this.view.canvas.dataset.frames = String(this.view.frames);
   }
 
-  /** Send `action` when a control is first pushed; held forward, it walks on (again every tick), while a
-   * turn is one snap turn per push, as headset users expect. */
+  /** Send `action` when a control is first pushed; held forward, it walks on (again every tick; not on the
+   * paper's clock, where a held control is one push), while a turn is one snap turn per push, as headset users
+   * expect. */
   repeat(control, action, now) {
     const last = this.held.get(control);
     if (!action) {
       this.held.delete(control);
       return;
     }
-    if (last && last.action === action && (action !== "up" || now - last.at < this.view.tickMs)) return;
+    const walksOn = action === "up" && this.view.repeats !== false;
+    if (last && last.action === action && (!walksOn || now - last.at < this.view.tickMs)) return;
     this.held.set(control, { action, at: now });
     this.send(action);
   }

@@ -133,6 +133,12 @@ export class GameConnection {
       case "nudge":
         if (on.onNudge) on.onNudge(message);
         break;
+      case "countdown":
+        if (on.onCountdown) on.onCountdown(message);
+        break;
+      case "warning":
+        if (on.onWarning) on.onWarning(message);
+        break;
       case "stall_hint":
         if (on.onStallHint) on.onStallHint(message);
         break;

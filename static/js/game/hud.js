@@ -1,6 +1,7 @@
 /**
  * The heads-up display above the kitchen: round, orders left, time left, score, the current task and
- * what the cook holds; and the connection pill (connected, reconnecting, …; "Slow connection" beside it when
+ * what the cook holds; on the paper's clock, in the round's last minute, "Round ends in 0:42"; and the
+ * connection pill (connected, reconnecting, …; "Slow connection" beside it when
  * the round trip to the server is slow).
  * Text nodes are only touched when their value changes, so 30 updates a second cost nothing.
  */
@@ -26,6 +27,9 @@ export function formatTime(seconds) {
   return `${Math.floor(s / 60)}:${String(s % 60).padStart(2, "0")}`;
 }
 
+/** The last seconds of a wait-for-participant round's wall-clock limit that the HUD counts down. */
+export const COUNTDOWN_SECONDS = 60;
+
 /** Time left in wait-for-participant mode, where the game moves only when the cook does: moves, not seconds. */
 export function movesLeft(count) {
   return `${count} move${count === 1 ? "" : "s"}`;
@@ -43,8 +47,11 @@ export class Hud {
     };
     this.pill = h("span", { class: "link-pill", id: "link-status", role: "status", "aria-live": "polite" });
     this.latency = h("span", { class: "latency", id: "latency", title: "Round trip to the server" });
+    this.countdown = h("span", { class: "hud-countdown", id: "hud-countdown", role: "timer", hidden: true });
+    this.countdownEnd = null;
+    this.countdownTimer = 0;
     this.note = h("span", { class: "hud-note", id: "hud-note", "aria-live": "polite" });
-    this.link = h("div", { class: "hud-link" }, this.note, this.pill, this.latency);
+    this.link = h("div", { class: "hud-link" }, this.countdown, this.note, this.pill, this.latency);
     this.node = h("div", { class: "hud", role: "group", "aria-label": "Game status" },
       this.round, Object.values(this.items).map((i) => i.node), this.link);
   }
@@ -73,6 +80,30 @@ export class Hud {
     this.setTask(state.subtask);
     this.setText(this.items.held.value, heldLabel(state.you.held));
     this.items.time.node.classList.toggle("hud-urgent", hud.seconds_left !== null && hud.seconds_left <= 10);
+    const left = hud.round_seconds_left;
+    if (left !== null && left !== undefined && left <= COUNTDOWN_SECONDS) this.countDown(left);
+  }
+
+  /** The paper's clock: the round's wall-clock limit is `seconds` away (its last minute): show it, counting down
+   * each second on this page until the limit, a newer count, or a lost connection (the server's limit then
+   * pauses too). */
+  countDown(seconds) {
+    this.countdownEnd = performance.now() + seconds * 1000;
+    this.countdown.hidden = false;
+    const tick = () => {
+      const left = Math.max(0, (this.countdownEnd - performance.now()) / 1000);
+      this.setText(this.countdown, `Round ends in ${formatTime(left)}`);
+      this.countdown.classList.toggle("hud-urgent", left <= 10);
+    };
+    tick();
+    window.clearInterval(this.countdownTimer);
+    this.countdownTimer = window.setInterval(tick, 250);
+  }
+
+  /** Stop counting down (the connection is lost, or the page leaves): the shown time stays. */
+  pauseCountdown() {
+    window.clearInterval(this.countdownTimer);
+    this.countdownTimer = 0;
   }
 
   setTask(subtask) {
@@ -96,7 +127,10 @@ export class Hud {
     }[link] || link;
     this.setText(this.pill, text);
     this.pill.dataset.link = link;
-    if (link !== "open") this.setText(this.latency, "");
+    if (link !== "open") {
+      this.setText(this.latency, "");
+      this.pauseCountdown();
+    }
   }
 
   /** A short message next to the connection pill that fades after a few seconds. */

@@ -54,10 +54,13 @@ function typing(target) {
 
 /**
  * Listen for game keys on `target` (the document) and call `onInterrupt(action, event)`, or `onTask(index)`
- * for a task key (not repeated while held). A held key repeats at most once per `repeatMs` (one world tick),
- * so the server's queue of three interrupts is not flooded. Returns a function that removes the listeners.
+ * for a task key (not repeated while held). With `repeat` (the fixed clock) a held key repeats at most once per
+ * `repeatMs` (one world tick), so the server's queue of three interrupts is not flooded; without it (the paper's
+ * clock, where each action steps the world once) a held key is one press. Returns a function that removes the
+ * listeners.
  */
-export function listenKeys(target, onInterrupt, { repeatMs = 200, onTask = null, onOtherKey = null } = {}) {
+export function listenKeys(target, onInterrupt,
+                           { repeat = true, repeatMs = 200, onTask = null, onOtherKey = null } = {}) {
   let lastSent = -Infinity;
   let swallowSpaceUp = false;
   const down = (event) => {
@@ -76,7 +79,7 @@ export function listenKeys(target, onInterrupt, { repeatMs = 200, onTask = null,
     event.preventDefault();
     if (action === "interact") swallowSpaceUp = true;
     const now = performance.now();
-    if (event.repeat && now - lastSent < repeatMs) return;
+    if (event.repeat && (!repeat || now - lastSent < repeatMs)) return;
     lastSent = now;
     onInterrupt(action, event);
   };

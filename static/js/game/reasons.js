@@ -23,6 +23,16 @@ export function handsReason(need, held) {
   return `You need ${OBJECTS[need] || heldLabel(need)} in your hands`;
 }
 
+/** "the steak", "the chopped onion": what the robot took or worked on, named as a thing the participant knows. */
+const THE = {
+  steak: "the steak", garnish: "the chopped onion", onion: "the onion", meat: "the raw meat",
+  dirty_plate: "the dirty plate", clean_plate: "the clean plate", steak_plate: "the plated steak",
+  dish: "the finished dish",
+};
+const the = (item) => THE[item] || `the ${String(item || "food").replaceAll("_", " ")}`;
+const PUT_ON = { grill: "on the grill", board: "on the board", sink: "in the sink", counter: "on the counter" };
+const DONE = { onion: "The robot already chopped the onion", dirty_plate: "The robot already washed the plate" };
+
 const REASONS = {
   hands_full: (item) => (item ? `Your hands are full (${heldLabel(item)})` : "Your hands are full"),
   hands_empty: () => "Your hands are empty",
@@ -44,12 +54,16 @@ const REASONS = {
   no_way: () => "The way there is blocked",
   unknown_place: () => "You have not seen where to do this yet: look around",
   stuck: () => "This task is not getting anywhere",
+  no_steak: () => "There is no steak on the grill",
+  taken_by_robot: (item, place) => `The robot took ${the(item)} from the ${place || "counter"}`,
+  filled_by_robot: (item, place) => `The robot put ${OBJECTS[item] || the(item)} ${PUT_ON[place] || "there"}`,
+  done_by_robot: (item) => DONE[item] || "The robot already did that",
 };
 
 /** The sentence for a `blocked` message (`reason`, `item`); a reason this page does not know still reads well. */
 export function blockedText(message) {
   const words = REASONS[message.reason];
-  return words ? words(message.item) : "That did not work";
+  return words ? words(message.item, message.place) : "That did not work";
 }
 
 export const BLOCKED_REASONS = Object.keys(REASONS);

@@ -54,6 +54,10 @@ export function introCard(root, trial, onStart) {
           "outside your view is dark. ↑ or W steps forward, ← → or A D turn left and right (stepping that way " +
           "when the floor is free), ↓ or S turns around, Space interacts with what you face.")
       : null,
+    status === "new" && trial.kitchen_waits
+      ? h("p", { id: "clock-note" }, "The kitchen waits for you: the robot and the steaks move only while your " +
+          "cook moves or works. To let time pass while a steak cooks, press . (stay).")
+      : null,
     text.slice(1).map((t) => h("p", { class: "muted" }, t)),
     h("div", { class: "actions" }, button)), button);
 }

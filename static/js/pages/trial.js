@@ -136,6 +136,7 @@ function playRound(root, ctx, onFinished) {
       if (!view) view = kitchenViewFor(message.view, stage, canvas, { xr: true, onInterrupt: (a) => sendInterrupt(a) });
       view.configure(message);
       hud.setRound(message.trial);
+      note.waits = message.mode === "wait_for_participant";
       canvas.dataset.trial = String(message.trial.id);
       if (!controls) {
         controls = new Controls({ subtasks: message.subtasks, interrupts: message.interrupts, needs: message.needs,
@@ -144,6 +145,7 @@ function playRound(root, ctx, onFinished) {
         main.querySelector(".interrupts-slot").replaceWith(controls.interrupts);
         side.append(controls.tasks);
         removeKeys = listenKeys(document, sendInterrupt, {
+          repeat: message.mode !== "wait_for_participant",
           repeatMs: 1000 / message.tick_rate_hz,
           onTask: (index) => {
             if (!conn.isOpen) note.say(NOT_RUNNING, "blocked");
@@ -177,6 +179,12 @@ function playRound(root, ctx, onFinished) {
     },
     onNudge(message) {
       note.say(message.text, "nudge", 8000);
+    },
+    onCountdown(message) {
+      hud.countDown(message.seconds_left);
+    },
+    onWarning(message) {
+      note.warning(message);
     },
     onStallHint(message) {
       note.hint(message);
@@ -218,6 +226,7 @@ function playRound(root, ctx, onFinished) {
   const activity = new Activity((type, fields) => conn.send(type, fields), { idleMs: IDLE_MS });
 
   function cleanup() {
+    hud.pauseCountdown();
     window.removeEventListener("beforeunload", confirmLeaving);
     conn.stop();
     if (view) view.destroy();

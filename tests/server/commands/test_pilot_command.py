@@ -13,11 +13,12 @@ from steakhouse_test_robots import simulated_partner
 from analysis.export import read_dataset
 from pilot.client import Seat, respond, trial_rng
 from pilot.config import ParticipantConfig
-from pilot.mind import Mind
+from pilot.mind import WAIT_REASONS, Mind, belief_of, told_refused
 from pilot.perception import Perception
 from pilot.run import run_pilot
 from planner.fov import view
 from planner.geometry import Direction
+from planner.subtasks import Subtask
 from server.cli import main
 from store.tables import AnswerRow, ParticipantRow, TrialRow
 from study_config.catalog import load_one
@@ -56,7 +57,7 @@ def test_a_pilot_goes_through_the_flow_is_marked_and_is_exported_only_when_asked
 
 def test_what_it_sent_follows_from_the_masked_frames_alone(piloted) -> None:
     """Each frame it got shows only the cells in its view; replaying those frames offline (no server) with
-    the trial's generator gives back every message it sent."""
+    the trial's generator — the states, and the refusals it reads — gives back every message it sent."""
     _, loaded, result, _ = piloted
     world = loaded.study.world
     replayed = 0
@@ -65,8 +66,17 @@ def test_what_it_sent_follows_from_the_masked_frames_alone(piloted) -> None:
             hello = frames[0]
             seen = Perception(hello["width"], hello["height"], tuple(loaded.layouts.values()))
             mind, rng = Mind(), trial_rng((5, int(outcome.name.rsplit("-", 1)[1]) - 1), trial)
-            states = [m for m in frames if m["type"] == "state"]
-            for frame, body in zip(states, sent, strict=False):
+            bodies = iter(sent)
+            for frame in frames:
+                if frame["type"] == "blocked" and frame["ended"] and frame["subtask"] and seen.kb is not None \
+                        and frame["reason"] not in WAIT_REASONS:
+                    refused = Subtask(frame["subtask"])
+                    mind = told_refused(mind, refused, belief_of(seen.layout, loaded.rules, seen.kb, refused))
+                if frame["type"] != "state":
+                    continue
+                body = next(bodies, None)
+                if body is None:
+                    break
                 you = frame["you"]
                 shown = {(c["x"], c["y"]) for c in frame["cells"]}
                 layout = seen.observe(frame, world.fov_angle, world.kb_delay).layout

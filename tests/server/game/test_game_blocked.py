@@ -70,7 +70,7 @@ def test_the_hands_table_is_the_forced_continuation_of_each_object():
     (BOARD_SPOT, Direction.NORTH, None, {"board": 1}, None),
     (BOARD_SPOT, Direction.NORTH, MEAT, {"board": None}, Reason("needs_item", ONION)),
     (GRILL_SPOT, Direction.EAST, CLEAN_PLATE, {"grill": 4}, Reason("steak_cooking")),
-    (GRILL_SPOT, Direction.EAST, CLEAN_PLATE, {"grill": None}, Reason("needs_item", MEAT)),
+    (GRILL_SPOT, Direction.EAST, CLEAN_PLATE, {"grill": None}, Reason("no_steak")),
     (GRILL_SPOT, Direction.EAST, CLEAN_PLATE, {"grill": 10}, None),
     (GRILL_SPOT, Direction.EAST, MEAT, {"grill": 3}, Reason("grill_busy")),
     (GRILL_SPOT, Direction.EAST, None, {"grill": 10}, Reason("needs_item", CLEAN_PLATE)),

@@ -93,7 +93,7 @@ def test_the_whole_flow_with_illegal_moves_refused(client, server):
     session = client.post("/api/session/instructions_done", headers=headers).json()
     assert session["state"] == "trial" and session["trial"] == {
         "kind": "main", "index": 0, "number": 1, "total": 1, "kind_number": 1, "kind_total": 1,
-        "scored": True, "status": "new", "view": "top_down", "websocket": "/ws/play"}
+        "scored": True, "status": "new", "view": "top_down", "websocket": "/ws/play", "kitchen_waits": False}
     refused = client.post("/api/session/questionnaire", json={"questionnaire_id": "q", "answers": {"a": 1}},
                           headers=headers)
     assert refused.status_code == 409 and refused.json()["detail"]["state"] == "trial"

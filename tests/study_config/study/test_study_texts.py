@@ -155,3 +155,50 @@ def test_texts_shown_to_participants_that_name_a_condition_are_warned_about(tmp_
         "questionnaires[0].items[0].scale.labels[1]": "shown to participants but names 'baseline': participants "
                                                       "must not learn their conditions",
     }
+
+
+def plan_rounds(study, order) -> tuple[int, int]:
+    from server.flow.plan import build_plan
+
+    trials = [s for s in build_plan(study, order) if s.kind == "trial"]
+    return sum(s.trial_kind == "practice" for s in trials), sum(s.trial_kind == "main" for s in trials)
+
+
+def test_every_shipped_study_promises_the_rounds_each_of_its_participants_plays():
+    for path in sorted(STUDY_CONFIG.glob("*.yaml")):
+        study = load_study(path)
+        length = study_length(study)
+        for order in study.condition_orders():
+            assert plan_rounds(study, order) == (length.practice_rounds, length.main_rounds), path.name
+
+
+def test_a_between_participants_design_counts_one_groups_rounds_not_every_groups(tmp_path):
+    # The study: a field of view between participants; each group plays its own three conditions.
+    study = load_study(_between(tmp_path))
+    assert len(study.conditions) == 6
+    length = study_length(study)
+    assert (length.practice_rounds, length.main_rounds) == (1, 3)
+    assert {plan_rounds(study, order) for order in study.condition_orders()} == {(1, 3)}
+    consent = fill_placeholders(study.consent, length.placeholders())
+    assert "You will play 4 short rounds" in consent and "each of the 3 rounds that count" in consent
+    round_pages = 4 * (length.round_seconds + ROUND_PAGES_SECONDS)
+    assert length.total_seconds == (CONSENT_SECONDS + INSTRUCTIONS_SECONDS + round_pages + END_SECONDS)
+
+
+def _between(tmp_path: Path) -> Path:
+    path = tmp_path / "between.yaml"
+    path.write_text("id: b\ntitle: Between\nkitchens: [none_3]\nrobots: [fov_aware, baseline, stay]\n"
+                    "factors: [robot]\nfov_angles: [90, 150]\nbetween: [fov_angle]\n"
+                    "practice: [{kitchen: practice, robot: stay}]\n"
+                    "timing: {mode: wait_for_participant}\n", encoding="utf-8")
+    return path
+
+
+def test_the_texts_say_what_the_clock_does_for_the_participant(tmp_path):
+    waiting = study_length(load_study(write(tmp_path, "timing: {mode: wait_for_participant}\n")))
+    fixed = study_length(load_study(write(tmp_path, "timing: {mode: fixed_rate}\n")))
+    study = load_study(write(tmp_path, "timing: {mode: wait_for_participant}\n"))
+    shown = fill_placeholders(study.instructions, waiting.placeholders())
+    assert "The kitchen waits for you" in shown and "press **.** (stay)" in shown
+    assert "The robot works on its own" not in shown
+    assert "goes on while you think" in fill_placeholders(study.instructions, fixed.placeholders())
