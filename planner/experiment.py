@@ -17,6 +17,7 @@ import numpy as np
 from scipy import stats
 
 from planner.layout import Layout
+from planner.partner import Person
 from planner.perception import FOV_ANGLE, KB_DELAY
 from planner.planner_config import PlannerConfig
 from planner.play import TrialResult, TrialSettings, run_trial
@@ -26,7 +27,8 @@ from planner.rules import Rules
 COLUMNS = ("layout", "robot", "seed", "ticks", "finished", "reward", "kb_gap_mean", "kb_gap_ticks_pct",
            "robot_in_fov_pct", "decision_ms_p50", "decision_ms_p99", "holdings", "shown", "trips",
            "trip_share_sum", "robot_gap_pct", "gap_lag_pct", "gap_unseen_pct", "gap_stale_pct",
-           "robot_place_cells", "robot_place_wrong_pct")
+           "robot_place_cells", "robot_place_wrong_pct", "person_deliveries", "robot_deliveries", "person_steps",
+           "robot_steps", "first_delivery", "robot_flickers")
 GAP_PARTS = ("lag", "unseen", "stale")
 """The robot gap's parts (:func:`planner.behaviours.hands_gap`), % of ticks: they sum to ``robot_gap_pct``."""
 
@@ -35,33 +37,36 @@ GAP_PARTS = ("lag", "unseen", "stale")
 class TrialSpec:
     """One simulated trial. ``robot`` names the robot in the results; ``planner`` is the planner that plays it
     (default: ``robot``) with ``settings`` (``PlannerConfig`` fields) changed: a study's own robot (its
-    ``robot_variants``). ``rules``: the kitchen's numbers (a study's ``world``)."""
+    ``robot_variants``). ``human_angle`` and ``kb_delay`` are the study's person: the robot's model of them and, unless
+    ``person`` says otherwise, the simulated person (:class:`planner.partner.Person`: a person who differs from the
+    robot's model). ``rules``: the kitchen's numbers (a study's ``world``)."""
 
     layout: Layout
     robot: str
     seed: int
     human_angle: float = FOV_ANGLE
     kb_delay: int = KB_DELAY
-    rollout_samples: int = 1
-    lookahead: str = "rollout"
     planner: str | None = None
     settings: tuple[tuple[str, Any], ...] = ()
     rules: Rules = field(default_factory=Rules)
+    person: Person | None = None
 
     def config(self) -> PlannerConfig:
-        """The robot's settings: the simulated person's view and KB delay, then ``settings``."""
-        return replace(PlannerConfig(human_angle=self.human_angle, human_delay=self.kb_delay,
-                                     rollout_samples=self.rollout_samples, lookahead=self.lookahead),
-                       **dict(self.settings))
+        """The robot's settings: the study's person's view and KB delay, then ``settings``."""
+        return replace(PlannerConfig(human_angle=self.human_angle, human_delay=self.kb_delay), **dict(self.settings))
+
+    def simulated(self) -> Person:
+        """The simulated person: ``person``, or the study's."""
+        return self.person if self.person is not None else Person(self.human_angle, self.kb_delay)
 
 
 def run_spec(spec: TrialSpec) -> dict[str, object]:
     """One simulated trial as a row of ``trials.csv`` (importable by worker processes; the kitchen travels in
     the spec, so planner/ reads no files)."""
-    layout, rules = spec.layout, spec.rules
+    layout, rules, person = spec.layout, spec.rules, spec.simulated()
     robot = make_robot(spec.planner or spec.robot, layout, rules, spec.config())
-    result = run_trial(layout, spec.seed, TrialSettings(angle=spec.human_angle, kb_delay=spec.kb_delay,
-                                                         rules=rules), robot=robot)
+    result = run_trial(layout, spec.seed, TrialSettings(angle=person.angle, kb_delay=person.delay, rules=rules),
+                       robot=robot, human=person.model(layout, rules))
     times = np.array(result.decision_ms) if result.decision_ms else np.zeros(1)
     return {
         "layout": layout.name, "robot": spec.robot, "seed": spec.seed, "ticks": result.ticks,
@@ -70,8 +75,17 @@ def run_spec(spec: TrialSpec) -> dict[str, object]:
         "robot_in_fov_pct": round(result.robot_in_fov_pct, 2),
         "decision_ms_p50": round(float(np.percentile(times, 50)), 3),
         "decision_ms_p99": round(float(np.percentile(times, 99)), 3),
-        **behaviour_columns(result),
+        **behaviour_columns(result), **work_columns(result),
     }
+
+
+def work_columns(result: TrialResult) -> dict[str, object]:
+    """Who delivered and who did the task steps (:mod:`planner.work_share`), and the robot's flickers."""
+    work = result.work
+    first = "human" if work.first.person else "robot" if work.first.robot else ""
+    return {"person_deliveries": work.deliveries.person, "robot_deliveries": work.deliveries.robot,
+            "person_steps": work.steps.person, "robot_steps": work.steps.robot, "first_delivery": first,
+            "robot_flickers": result.flickers}
 
 
 def behaviour_columns(result: TrialResult) -> dict[str, object]:

@@ -2,4 +2,4 @@
 
 from __future__ import annotations
 
-PLANNER_NAMES: tuple[str, ...] = ("fov_aware", "baseline", "no_rollout", "stay")
+PLANNER_NAMES: tuple[str, ...] = ("fov_aware", "fov_aware_showing", "baseline", "no_rollout", "stay")

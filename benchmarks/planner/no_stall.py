@@ -50,7 +50,7 @@ from planner.state import WorldState, initial_state
 from planner.step import step
 from study_config import layout_names, load_layout
 
-ROBOTS = ("fov_aware", "baseline", "no_rollout")
+ROBOTS = ("fov_aware", "fov_aware_showing", "baseline", "no_rollout")
 
 
 @dataclass(frozen=True, slots=True)

@@ -5,12 +5,9 @@ The FOV-aware robot steps into the human's view and stays there until the human 
 it holds (``kb_delay`` ticks), then goes on to the board; the baseline, and the no-rollout robot, which
 shares the FOV-aware belief but does not explore, walk straight to the board out of view.
 
-The person here stands still while the robot's model of them expects them to carry their plate west to the
-sink, ahead of the robot. Valuing the person's knowing (the default, docs/domain.md §5) the FOV-aware robot
-expects to be seen on that way anyway and walks straight on; so these scenes run the exploration on the
-shaping potential alone (``shown_value`` and ``wrong_hands`` 0) and with the show plan (``hands_walk`` off),
-where the show plan wins on what the person's knowing does for the team. The default robot's hands walk:
-``test_planner_behaviour_pickup.py``.
+The default FOV-aware robot values nothing but the team's progress (docs/domain.md §5): the show plan wins here
+on what the person's knowing does for the team in its rollouts (a person who knows the steak is plated does not go
+for a clean plate of their own). The showing robot's hands walk: ``test_planner_behaviour_pickup.py``.
 """
 
 from __future__ import annotations
@@ -33,7 +30,7 @@ from study_config import load_layout
 RULES = Rules()
 LAYOUT = load_layout("none_3")
 HUMAN = AgentState((9, 2), Direction.NORTH, DIRTY_PLATE)
-POTENTIAL_ONLY = PlannerConfig(shown_value=0.0, wrong_hands=0.0, hands_walk=False)
+DEFAULT = PlannerConfig()
 
 
 def situation():
@@ -45,7 +42,7 @@ def situation():
 
 def first_decision(name: str):
     before, now = situation()
-    robot = make_robot(name, LAYOUT, RULES, POTENTIAL_ONLY)
+    robot = make_robot(name, LAYOUT, RULES, DEFAULT)
     robot.reset(before)
     return robot, now, robot.decide(now, (), np.random.default_rng(0))
 
@@ -66,7 +63,7 @@ def test_fov_aware_robot_steps_into_view_to_show_the_plated_steak():
     robot, now, decision = first_decision("fov_aware")
     assert lands_in_view(now, decision.action)
     assert decision.explored_kbs >= 2
-    assert robot.pending == (Action.STAY,) * (3 - 1)
+    assert robot.show.pending == (Action.STAY,) * (3 - 1)
 
 
 def test_baseline_and_no_rollout_robots_go_straight_to_the_board_out_of_view():

@@ -11,11 +11,11 @@ from study_config.study.warnings import study_warnings
 
 BASE = "id: t\ntitle: Variants\nkitchens: [none_3]\nfactors: [robot]\n"
 VARIANTS = """\
-robots: [fov_aware, fov_aware_no_walk, baseline]
+robots: [fov_aware, showing_no_walk, baseline]
 robot_variants:
-  fov_aware_no_walk:
-    planner: fov_aware
-    settings: {hands_walk: false, walk_price: 0, view_detour: 2}
+  showing_no_walk:
+    planner: fov_aware_showing
+    settings: {shown_value: 0, walk_price: 0, view_detour: 2}
 world: {kb_delay: 2, fov_angle: 90}
 """
 
@@ -29,12 +29,12 @@ def write(tmp_path: Path, text: str) -> Path:
 def test_a_variant_is_a_robot_level_played_by_its_planner_with_its_settings(tmp_path):
     loaded = load_one(write(tmp_path, VARIANTS))
     study = loaded.study
-    assert [c.id for c in study.conditions] == ["fov_aware@none_3", "fov_aware_no_walk@none_3", "baseline@none_3"]
-    assert [loaded.planner(r) for r in study.robots] == ["fov_aware", "fov_aware", "baseline"]
-    variant = loaded.planner_config("fov_aware_no_walk", 90.0)
+    assert [c.id for c in study.conditions] == ["fov_aware@none_3", "showing_no_walk@none_3", "baseline@none_3"]
+    assert [loaded.planner(r) for r in study.robots] == ["fov_aware", "fov_aware_showing", "baseline"]
+    variant = loaded.planner_config("showing_no_walk", 90.0)
     plain = loaded.planner_config("fov_aware", 90.0)
-    assert (variant.hands_walk, variant.walk_price, variant.view_detour) == (False, 0.0, 2)
-    assert (plain.hands_walk, plain.walk_price, plain.view_detour) == (True, 0.05, 4), "other robots keep defaults"
+    assert (variant.shown_value, variant.walk_price, variant.view_detour) == (0.0, 0.0, 2)
+    assert (plain.shown_value, plain.walk_price, plain.view_detour) == (10.0, 0.05, 4), "other robots keep defaults"
     # The robot's model of the person is the trial's, for a variant too.
     assert (variant.human_angle, variant.human_delay) == (plain.human_angle, plain.human_delay) == (90.0, 2)
     assert "unused_variant" not in {w.code for w in study_warnings(study)}
@@ -46,14 +46,14 @@ robots: [fov_aware, careful, careles]
 robot_variants:
   careful:
     planner: fov_aware
-    settings: {hands_walk: 1, view_detour: -2, human_angle: 90, walk_pric: 0.1, lookahead: guess}
+    settings: {shown_value: true, view_detour: -2, human_angle: 90, walk_pric: 0.1}
   baseline: {planner: baseline}
   other: {planner: nobody}
   a_variant_with_a_name_too_long_to_store: {planner: baseline}
 """
     found = {p.path: p.reason for p in validate_study_file(write(tmp_path, text))}
     assert found == {
-        "robot_variants.careful.settings.hands_walk": "must be true or false, not 1",
+        "robot_variants.careful.settings.shown_value": "must be a number, not True",
         "robot_variants.careful.settings.view_detour": "must be 0 or more",
         "robot_variants.careful.settings.human_angle":
             "set by the study for every robot (world.fov_angle or fov_angles), not by a robot variant",
@@ -61,17 +61,13 @@ robot_variants:
         "robot_variants.baseline": "key: 'baseline' is a planner's name; give the variant its own name",
         "robot_variants.a_variant_with_a_name_too_long_to_store":
             "key: at most 32 characters (the name is stored with every trial)",
-        "robot_variants.other.planner": "unknown robot 'nobody'; choose one of: fov_aware, baseline, no_rollout, stay",
-        "robots[2]": "unknown robot 'careles'; choose one of: fov_aware, baseline, no_rollout, stay, careful, other, "
-                     "a_variant_with_a_name_too_long_to_store",
+        "robot_variants.other.planner":
+            "unknown robot 'nobody'; choose one of: fov_aware, fov_aware_showing, baseline, no_rollout, stay",
+        "robots[2]": "unknown robot 'careles'; choose one of: fov_aware, fov_aware_showing, baseline, no_rollout, "
+                     "stay, careful, other, a_variant_with_a_name_too_long_to_store",
     }
     assert found["robot_variants.careful.settings.walk_pric"].startswith("unknown planner setting 'walk_pric'; known: ")
     assert "walk_price" in found["robot_variants.careful.settings.walk_pric"]
-    only_lookahead = ("robots: [fov_aware, careful]\n"
-                      "robot_variants: {careful: {planner: fov_aware, settings: {lookahead: guess}}}\n")
-    lookahead = {p.path: p.reason for p in validate_study_file(write(tmp_path, only_lookahead))}
-    assert lookahead == {"robot_variants.careful.settings": "lookahead must be one of rollout, abstract, got 'guess'"}
-
 
 def test_a_variant_no_robot_plays_is_warned_about_and_a_study_without_variants_keeps_its_hash(tmp_path):
     unused = load_study(write(tmp_path, "robots: [stay]\nrobot_variants: {spare: {planner: baseline}}\n"))
