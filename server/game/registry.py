@@ -184,7 +184,7 @@ class GameRegistry:
     def _build(self, loaded: LoadedStudy, participant: ParticipantRow, prepared: Prepared) -> LiveGame:
         row, study = prepared.trial, loaded.study
         health = RobotHealth(study.validity.max_missed_decisions_pct, loaded.rules.horizon, prepared.decisions,
-                             prepared.missed, row.invalid_reason)
+                             prepared.missed, row.invalid_reason, max_flickers=study.validity.max_robot_flickers)
         last = prepared.last_tick
         return LiveGame(trial_meta(loaded, participant, row), loaded, trial_engine(loaded, row, last),
                         self.deps, resumed=prepared.outcome == "resume", health=health,
