@@ -6,15 +6,17 @@ the robot stands in the person's view (:mod:`planner.fov`) and whether the robot
 * **Behaviour 1, showing a pickup:** every tick at which the robot comes to hold an object it did not hold the
   tick before (taken from a crate, a counter or the sink, or made by plating a steak or adding the garnish)
   starts a *holding*, which lasts until what it holds changes again (put down, used, or the trial ends). The
-  holding *is shown* when the robot stands in the person's view for at least ``kb_delay`` consecutive ticks
-  within it, so the person can acknowledge what it holds (docs/domain.md §3). Rate: shown / holdings.
+  holding *is shown* when, at some tick within it, the robot stands in the person's view and has stood there at
+  least ``kb_delay`` consecutive ticks (counted from before the holding began, whatever its hands did): the
+  tick the person acknowledges what it holds (docs/domain.md §3). Rate: shown / holdings.
 * **Behaviour 2, a delivery in view:** a *dish trip* runs from the tick the robot comes to hold a dish to the
   tick before it delivers it (a trip that ends otherwise is not counted). Its share is the fraction of the
   trip's ticks with the robot in the person's view. Rate: the mean share over trips.
 
 The robot component of the KB gap (ticks at which the person's KB is wrong about what the robot holds) is split
 by why (:func:`hands_gap`): *lag*, the ticks it would be wrong even if the person watched the robot every tick
-(each change of hands needs ``kb_delay`` consecutive ticks in view to be acknowledged); *unseen*, the robot holds
+(a person who watched it from the start knows every change of hands from the ``kb_delay``-th tick on); *unseen*,
+the robot holds
 something the person has not acknowledged; *stale*, the robot's hands are empty but the person still believes it
 holds what it last showed them.
 """
@@ -102,19 +104,20 @@ def holdings(frames: Sequence[Frame]) -> list[tuple[int, int]]:
     return spans
 
 
-def longest_seen(frames: Sequence[Frame]) -> int:
-    """The longest run of consecutive ticks in view."""
-    best = run = 0
+def in_view_runs(frames: Sequence[Frame]) -> list[int]:
+    """At each tick, the robot's consecutive ticks in view up to it (0 when out of view)."""
+    runs, run = [], 0
     for frame in frames:
         run = run + 1 if frame.seen else 0
-        best = max(best, run)
-    return best
+        runs.append(run)
+    return runs
 
 
 def measure(frames: Sequence[Frame], kb_delay: int) -> Behaviours:
     """Behaviours 1 and 2 of one trial (module docstring)."""
     spans = holdings(frames)
-    shown = sum(longest_seen(frames[a:b]) >= kb_delay for a, b in spans)
+    runs = in_view_runs(frames)
+    shown = sum(any(r >= max(kb_delay, 1) for r in runs[a:b]) for a, b in spans)
     trips, share = 0, 0.0
     for a, b in spans:
         if frames[a].held == DISH and b < len(frames) and frames[b].delivered:
@@ -125,18 +128,15 @@ def measure(frames: Sequence[Frame], kb_delay: int) -> Behaviours:
 
 def hands_gap(frames: Sequence[Frame], kb_delay: int) -> HandsGap:
     """The person's KB about what the robot holds, tick by tick, by the KB's rule (docs/domain.md §3: it takes what
-    the robot holds once the robot has stood ``kb_delay`` consecutive ticks in view holding it; at the start it
-    knows the robot's empty hands), and the ticks it is wrong, split into lag, unseen and stale."""
+    the robot holds at every tick the robot stands in view and has stood there ``kb_delay`` consecutive ticks,
+    whatever its hands did meanwhile; at the start it knows the robot's empty hands), and the ticks it is wrong,
+    split into lag, unseen and stale."""
     believed = watched = None  # the KB's belief, and a person's who watched the robot every tick
-    streak = run = 0
     lag = unseen = stale = 0
-    for t, frame in enumerate(frames):
-        same = t > 0 and frame.held == frames[t - 1].held
-        run = run + 1 if same else 1
-        streak = (streak + 1 if same and frames[t - 1].seen else 1) if frame.seen else 0
-        if frame.seen and streak >= kb_delay:
+    for t, (frame, run) in enumerate(zip(frames, in_view_runs(frames), strict=True)):
+        if frame.seen and run >= kb_delay:
             believed = frame.held
-        if run >= kb_delay:
+        if t + 1 >= kb_delay:
             watched = frame.held
         if believed == frame.held:
             continue

@@ -3,7 +3,10 @@
 It commits to a subtask until the subtask is done or becomes unavailable in its KB, then picks uniformly
 at random (from the generator passed in) among the available subtasks. It walks a shortest path over
 (cell, facing), re-planned every tick around its partner, and interacts when it faces its target. When it
-has wanted to move but not moved for two ticks, it takes a random free move.
+has been stuck for two ticks it takes a random free move: it wanted to move but did not, or, as the reference's
+human model has it (``auto_unstuck``), it interacted and nothing changed (the same pose, the same hands, the same
+content of the cell it faces), e.g. waiting at a station its KB believes busy while it is not; or it interacted
+twice and undid the first (it put down what it held and took it up again, where its KB offers it nothing else).
 
 The same model drives either agent: ``me`` names the avatar it controls. For the human the partner's held
 object comes from its KB (what it last acknowledged the robot holding); for a simulated partner in the
@@ -19,7 +22,7 @@ import numpy as np
 
 from planner.geometry import DIRECTIONS, MOVES, Action, Pos, manhattan, move_action
 from planner.kb import KnowledgeBase
-from planner.layout import Layout
+from planner.layout import Layout, Terrain
 from planner.paths import UNREACHABLE, Pose, best_moves, detour_moves, distances_to, next_pose
 from planner.rules import Rules
 from planner.state import WorldState
@@ -45,6 +48,11 @@ class HumanMemory:
     partner_pos: Pos | None = None
     partner_still: int = 0
     yielding: int = 0
+    interacted: bool = False
+    faced: object = None
+    """What the cell it faced held when it last acted (a counter's object or a station's count)."""
+    before: tuple[str | None, object] | None = None
+    """What it held and faced the tick before, when it interacted from the same pose then too."""
 
     def to_dict(self) -> dict[str, object]:
         return {"subtask": None if self.subtask is None else self.subtask.value, "held": self.held,
@@ -85,21 +93,26 @@ class HumanModel:
         agent = world.agent(self.me)
         pose: Pose = (agent.pos, agent.facing)
         partner_pos = world.agent(self.partner).pos
-        still = memory.still + 1 if memory.wants_move and memory.last_pose == pose else 0
+        faced = _content(self.layout, world, agent.facing.ahead(agent.pos))
+        here = memory.interacted and memory.last_pose == pose
+        now = (agent.held, faced)
+        fruitless = here and ((memory.held, memory.faced) == now or memory.before == now)
+        still = memory.still + 1 if (memory.wants_move or fruitless) and memory.last_pose == pose else 0
         partner_still = memory.partner_still + 1 if memory.partner_pos == partner_pos else 0
         action, wants_move = self.move_toward(pose, targets(self.layout, subtask, kb, self.rules), partner_pos,
                                               rng, partner_parked=partner_still >= STUCK_TICKS)
         yielding = max(memory.yielding - 1, 0)
         if yielding and action is not Action.INTERACT:
             action, wants_move = Action.STAY, False
-        elif wants_move and still >= STUCK_TICKS:
+        elif (wants_move or action is Action.INTERACT) and still >= STUCK_TICKS:
             action, still = self.random_free_move(pose, partner_pos, rng), 0
         elif (action is Action.INTERACT and self.waiting(subtask, kb) and partner_still >= STUCK_TICKS
               and manhattan(pose[0], partner_pos) == 1):
             action, yielding = self.random_free_move(pose, partner_pos, rng), YIELD_TICKS
         return action, HumanMemory(subtask=subtask, held=agent.held, last_pose=pose, wants_move=wants_move,
                                    still=still, partner_pos=partner_pos, partner_still=partner_still,
-                                   yielding=yielding)
+                                   yielding=yielding, interacted=action is Action.INTERACT, faced=faced,
+                                   before=(memory.held, memory.faced) if here else None)
 
     def waiting(self, subtask: Subtask, kb: KnowledgeBase) -> bool:
         """Whether interacting now only waits (steak not ready, garnish not chopped): then it yields the
@@ -183,3 +196,18 @@ def _route(layout: Layout, pose: Pose, cells: tuple[Pos, ...], blocked: Pos,
 def _free(layout: Layout, pose: Pose, move: Action, blocked: Pos) -> bool:
     target = next_pose(layout, pose, _DIRECTION_OF[move])[0]
     return target != pose[0] and target != blocked
+
+
+def _content(layout: Layout, world: WorldState, cell: Pos) -> object:
+    """What ``cell`` holds: a counter's object, or a grill's, board's or sink's count (``None`` for nothing)."""
+    entry = layout.stations.get(cell)
+    if entry is None:
+        return None
+    kind, i = entry
+    if kind is Terrain.GRILL:
+        return world.grills[i]
+    if kind is Terrain.BOARD:
+        return world.boards[i]
+    if kind is Terrain.SINK:
+        return world.sinks[i]
+    return world.object_at(cell)

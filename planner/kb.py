@@ -1,20 +1,19 @@
 """The human's knowledge base (KB): what the person believes about the world (docs/domain.md §3, paper §III-B).
 
-Contents: the status of each grill, board and sink, the objects on counters, and the robot's last
-acknowledged pose and held object. The rules, applied once per tick after the world has stepped:
+Contents: the status of each grill, board and sink, the objects on counters, and the robot's last acknowledged
+pose and held object. They are updated once per tick, after the world has stepped, by the acknowledgement rule
+the reference implementation ran (:mod:`planner.kb_rule`, on the object identities of :mod:`planner.kb_things`):
 
-* Every tracked cell (counter, grill, board, sink) and the robot carry a *streak*: the number of
-  consecutive ticks they have been in view with the same occupant (the object on a counter, whether a
-  station holds anything, what the robot holds). When the streak reaches ``kb_delay`` the KB takes the
-  world's value, and while it stays in view the KB stays current (cook, chop and wash counts included).
-* Out of view, the last acknowledged value persists. A changed occupant restarts the streak, so an object
-  seen missing is removed once its place has been in view ``kb_delay`` ticks without it.
-* What the human does itself (pick up, put down, chop, wash, …) enters the KB at once.
-* When the robot is acknowledged holding an object the KB places elsewhere, that object is removed from
-  its old place (the nearest such counter to the robot; for a clean plate the sink, a plated steak the
-  grill, a dish the board).
+* Everything in view counts its consecutive ticks in view, capped at ``kb_delay``; an object keeps its count while
+  it is carried or worked on in view, the robot keeps its count whatever its hands do. At ``kb_delay`` the KB
+  follows it every tick (where it is, its cook, chop or wash count; the robot's pose and hands), so a change of
+  hands of a robot watched long enough is acknowledged at once.
+* Out of view, the last acknowledged value persists. An object whose remembered place is in view without it is
+  forgotten once that place has been in view ``kb_delay`` ticks (not necessarily consecutive).
+* What the person holds, and what they make of it, enters the KB at once.
 
-``kb_delay = 0`` with a 360° FOV gives an omniscient human whose KB always equals the world.
+``kb_delay = 0`` with a 360° FOV gives a KB that follows the world (docs/domain.md §3 names the reference's
+quirks that can still set it apart for a tick).
 """
 
 from __future__ import annotations
@@ -25,30 +24,30 @@ from typing import Any
 
 from planner.events import Event
 from planner.fov import view
-from planner.geometry import Pos, manhattan
+from planner.geometry import Pos
+from planner.kb_json import tracking_from_dict, tracking_to_dict
+from planner.kb_rule import RobotSnap, Snap, Tracking, acknowledge
+from planner.kb_things import OBJECT_OF_KIND, advance, first_things, kind_at
 from planner.layout import Layout, Terrain
-from planner.objects import CLEAN_PLATE, DISH, OBJECTS, STEAK_PLATE
+from planner.objects import OBJECTS
 from planner.state import AgentState, WorldState
 
 ROBOT_KEY: Pos = (-1, -1)
-_TRACKED_KINDS = (Terrain.COUNTER, Terrain.GRILL, Terrain.BOARD, Terrain.SINK)
-_NO_OBJECTS: dict[Pos, str] = {}
+"""The key of the robot's entry in :attr:`KnowledgeBase.streaks`."""
 
 
 @dataclass(frozen=True, slots=True)
 class KnowledgeBase:
-    """Believed station statuses (same encoding as :class:`WorldState`), counter objects and robot.
-
-    ``streaks`` holds ``(key, occupant, count)`` for what was in view last tick and may still change the KB:
-    counters whose content disagrees with the KB, the stations, and the robot (``ROBOT_KEY``).
-    """
+    """Believed station statuses (same encoding as :class:`WorldState`), counter objects and robot, and the
+    acknowledgement rule's memory (``tracking``; ``None`` for a KB made from its contents alone, which the next
+    update takes up as it stands)."""
 
     objects: tuple[tuple[Pos, str], ...]
     grills: tuple[int | None, ...]
     boards: tuple[int | None, ...]
     sinks: tuple[int | None, ...]
     robot: AgentState | None
-    streaks: tuple[tuple[Pos, object, int], ...] = ()
+    tracking: Tracking | None = None
 
     def object_at(self, pos: Pos) -> str | None:
         for where, obj in self.objects:
@@ -56,31 +55,41 @@ class KnowledgeBase:
                 return obj
         return None
 
+    @property
+    def streaks(self) -> tuple[tuple[Pos, object, int], ...]:
+        """The robot's count of consecutive ticks in view, as ``(ROBOT_KEY, what it holds, count)``, while the
+        person sees it (empty otherwise)."""
+        if self.tracking is None or self.tracking.robot is None:
+            return ()
+        snap, count = self.tracking.robot
+        return ((ROBOT_KEY, snap.state.held, count),)
+
     def to_dict(self) -> dict[str, object]:
         return {
             "objects": [{"pos": list(p), "obj": o} for p, o in self.objects],
             "grills": list(self.grills), "boards": list(self.boards), "sinks": list(self.sinks),
             "robot": None if self.robot is None else self.robot.to_dict(),
-            "streaks": [[list(k), occ, n] for k, occ, n in self.streaks],
+            "tracking": None if self.tracking is None else tracking_to_dict(self.tracking),
         }
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> KnowledgeBase:
-        """The inverse of :meth:`to_dict` (resuming a trial keeps the streaks); ``ValueError`` on unknown
-        objects."""
+        """The inverse of :meth:`to_dict` (resuming a trial keeps the rule's memory; a KB stored before the rule
+        had one is read without it); ``ValueError`` on unknown objects or a malformed memory."""
         objects = []
         for item in data["objects"]:
             if item["obj"] not in OBJECTS:
                 raise ValueError(f"unknown object {item['obj']!r}")
             objects.append(((int(item["pos"][0]), int(item["pos"][1])), str(item["obj"])))
-        streaks = []
-        for key, occupant, count in data.get("streaks", []):
-            pos = (int(key[0]), int(key[1]))
-            streaks.append((ROBOT_KEY if pos == ROBOT_KEY else pos, occupant, int(count)))
         robot = data.get("robot")
+        tracking = data.get("tracking")
+        try:
+            memory = None if tracking is None else tracking_from_dict(tracking)
+        except (KeyError, TypeError, IndexError) as exc:
+            raise ValueError(f"malformed KB tracking: {exc}") from exc
         return cls(objects=tuple(sorted(objects)), grills=tuple(_count(v) for v in data["grills"]),
                    boards=tuple(_count(v) for v in data["boards"]), sinks=tuple(_count(v) for v in data["sinks"]),
-                   robot=None if robot is None else AgentState.from_dict(robot), streaks=tuple(streaks))
+                   robot=None if robot is None else AgentState.from_dict(robot), tracking=memory)
 
 
 def _count(value: Any) -> int | None:
@@ -88,9 +97,10 @@ def _count(value: Any) -> int | None:
 
 
 def initial_kb(state: WorldState) -> KnowledgeBase:
-    """The KB at the start of a trial: the kitchen is empty and the robot at its start (both know the setup)."""
-    return KnowledgeBase(objects=state.objects, grills=state.grills, boards=state.boards,
-                         sinks=state.sinks, robot=state.robot)
+    """The KB at the start of a trial: what lies in the kitchen (nothing, in a fresh one) and the robot at its
+    start (both know the setup). Needs no layout: the start's objects are taken as they lie."""
+    return KnowledgeBase(objects=state.objects, grills=state.grills, boards=state.boards, sinks=state.sinks,
+                         robot=state.robot)
 
 
 def omniscient_kb(state: WorldState) -> KnowledgeBase:
@@ -98,150 +108,78 @@ def omniscient_kb(state: WorldState) -> KnowledgeBase:
     return initial_kb(state)
 
 
-class _Working:
-    """Mutable copies of the KB's parts, made only when a part changes."""
-
-    __slots__ = ("kb", "layout", "objects", "robot", "stations")
-
-    def __init__(self, kb: KnowledgeBase, layout: Layout) -> None:
-        self.kb, self.layout = kb, layout
-        self.objects: dict[Pos, str] | None = None
-        self.stations: dict[Terrain, list[int | None]] = {}
-        self.robot = kb.robot
-
-    def counters(self) -> dict[Pos, str]:
-        if self.objects is None:
-            self.objects = dict(self.kb.objects)
-        return self.objects
-
-    def station_list(self, kind: Terrain) -> list[int | None]:
-        found = self.stations.get(kind)
-        if found is None:
-            found = self.stations[kind] = list(_statuses(self.kb, kind))
-        return found
-
-    def set_counter(self, cell: Pos, obj: str | None) -> None:
-        counters = self.counters()
-        if obj is None:
-            counters.pop(cell, None)
-        else:
-            counters[cell] = obj
-
-    def copy_cell(self, cell: Pos, world: WorldState, world_objects: dict[Pos, str]) -> None:
-        kind, i = self.layout.stations[cell]
-        if kind is Terrain.COUNTER:
-            self.set_counter(cell, world_objects.get(cell))
-        else:
-            value = _statuses(world, kind)[i]
-            if _statuses(self.kb, kind)[i] != value or kind in self.stations:
-                self.station_list(kind)[i] = value
-
-    def build(self, streaks: list[tuple[Pos, object, int]]) -> KnowledgeBase:
-        kb = self.kb
-        return KnowledgeBase(
-            objects=kb.objects if self.objects is None else tuple(sorted(self.objects.items())),
-            grills=_frozen(self.stations, Terrain.GRILL, kb.grills),
-            boards=_frozen(self.stations, Terrain.BOARD, kb.boards),
-            sinks=_frozen(self.stations, Terrain.SINK, kb.sinks),
-            robot=self.robot, streaks=tuple(streaks),
-        )
-
-
-def _frozen(changed: dict[Terrain, list[int | None]], kind: Terrain,
-            original: tuple[int | None, ...]) -> tuple[int | None, ...]:
-    values = changed.get(kind)
-    return original if values is None else tuple(values)
-
-
-def _statuses(source: WorldState | KnowledgeBase, kind: Terrain) -> tuple[int | None, ...]:
-    if kind is Terrain.GRILL:
-        return source.grills
-    if kind is Terrain.BOARD:
-        return source.boards
-    return source.sinks
-
-
 def update_kb(kb: KnowledgeBase, layout: Layout, world: WorldState, *, angle: float, kb_delay: int,
               own_events: Iterable[Event] = (), pose: AgentState | None = None) -> KnowledgeBase:
     """The KB after one tick, given the world after the step and the human's events of that step.
 
-    ``pose`` is the viewer (defaults to ``world.human``); its FOV decides what is in view.
-
-    Only counters whose world content differs from the KB need a streak (a counter that agrees with
-    the KB gains nothing from acknowledgement, and any change restarts its count anyway), so the work per
-    tick is proportional to the objects in the kitchen, not to the cells in view.
+    ``pose`` is the viewer (defaults to ``world.human``); its FOV decides what is in view. The person's own
+    interactions are read from their hands (:mod:`planner.kb_things`); ``own_events`` tell a swap of two equal
+    objects apart from standing still.
     """
     viewer = pose or world.human
-    seen = view(layout, viewer.pos, viewer.facing, angle)
-    in_view = seen.cells
-    w = _Working(kb, layout)
-    world_objects: dict[Pos, str] | None = None
-    previous = {key: (occ, n) for key, occ, n in kb.streaks}
-    streaks: list[tuple[Pos, object, int]] = []
-    own_cells = set()
-    for event in own_events:
-        entry = layout.stations.get(event.pos)
-        if entry is not None and entry[0] in _TRACKED_KINDS:
-            if world_objects is None:
-                world_objects = dict(world.objects)
-            own_cells.add(event.pos)
-            w.copy_cell(event.pos, world, world_objects)
-    if own_cells or world.objects != kb.objects:  # else every counter agrees with the KB: no streak to keep
-        if world_objects is None:
-            world_objects = dict(world.objects)
-        kb_objects = w.counters() if own_cells else dict(kb.objects)
-        for cell in world_objects.keys() | kb_objects.keys():
-            if cell not in in_view:
-                continue
-            occ = world_objects.get(cell)
-            if occ == kb_objects.get(cell):
-                continue
-            prev = previous.get(cell)
-            count = prev[1] + 1 if prev is not None and prev[0] == occ else 1
-            if count >= kb_delay:
-                w.set_counter(cell, occ)
-            else:
-                streaks.append((cell, occ, count))
-    for cell, kind, i in seen.stations:
-        value = _statuses(world, kind)[i]
-        occupied = value is not None
-        prev = previous.get(cell)
-        count = prev[1] + 1 if prev is not None and prev[0] == occupied else 1
-        if cell in own_cells:
-            count = max(count, kb_delay)
-        streaks.append((cell, occupied, count))
-        if count >= kb_delay:
-            w.copy_cell(cell, world, _NO_OBJECTS)  # a grill, board or sink: no counter read
-    robot = world.robot
-    if robot.pos in in_view:
-        prev = previous.get(ROBOT_KEY)
-        count = prev[1] + 1 if prev is not None and prev[0] == robot.held else 1
-        streaks.append((ROBOT_KEY, robot.held, count))
-        if count >= kb_delay:
-            before = w.robot.held if w.robot is not None else None
-            w.robot = robot
-            if robot.held is not None and robot.held != before:
-                _remove_elsewhere(w, robot, in_view)
-    return w.build(streaks)
+    seen = view(layout, viewer.pos, viewer.facing, angle).cells
+    if kb.tracking is None:
+        memory = _taken_up(kb, layout, world)
+        things = memory.things
+    else:
+        memory = kb.tracking
+        things = advance(memory.things, layout, world, own_events)
+    memory, robot = acknowledge(memory, things, world.human, world.robot, seen, kb_delay)
+    return _contents(memory, layout, kb.robot if robot is None else robot)
 
 
-_STATION_SOURCE = {CLEAN_PLATE: Terrain.SINK, STEAK_PLATE: Terrain.GRILL, DISH: Terrain.BOARD}
+def _taken_up(kb: KnowledgeBase, layout: Layout, world: WorldState) -> Tracking:
+    """The rule's memory for a KB known only by its contents: the world's objects get identities; each believed
+    object takes the identity of the world's object of its kind at its place, if any, and is remembered there
+    as if it had just left the view (so it is checked once its place is seen); the robot likewise."""
+    things = first_things(layout, world)
+    at = {t.place: t for t in things.lying}
+    next_id = things.next_id
+    believed: list[tuple[int, Snap]] = []
+    for cell, kind, state in _believed_contents(kb, layout):
+        match = at.get(cell)
+        if match is not None and match.kind == kind:
+            ident = match.id
+        else:
+            ident, next_id = next_id, next_id + 1
+        believed.append((ident, Snap(cell, kind, state)))
+    things = type(things)(things.lying, things.robot, things.human, next_id)
+    robot = None if kb.robot is None else RobotSnap(kb.robot, None, None)
+    return Tracking(things=things, untrack=tuple(believed), robot_untrack=robot, believed=tuple(believed))
 
 
-def _remove_elsewhere(w: _Working, robot: AgentState, in_view: frozenset[Pos]) -> None:
-    """The robot holds what the KB believed was elsewhere: take it from its believed place."""
-    held = robot.held
-    source = _STATION_SOURCE.get(held)  # type: ignore[arg-type]
-    if source is not None:
-        cells = {Terrain.SINK: w.layout.sinks, Terrain.GRILL: w.layout.grills,
-                 Terrain.BOARD: w.layout.boards}[source]
-        statuses = w.station_list(source)
-        candidates = [i for i, s in enumerate(statuses) if s is not None and cells[i] not in in_view]
-        if candidates:
-            nearest = min(candidates, key=lambda i: manhattan(cells[i], robot.pos))
-            statuses[nearest] = None
-        return
-    counters = w.counters()
-    places = [p for p, obj in counters.items() if obj == held and p not in in_view]
-    if places:
-        del counters[min(places, key=lambda p: manhattan(p, robot.pos))]
+def _believed_contents(kb: KnowledgeBase, layout: Layout) -> list[tuple[Pos, str, int | None]]:
+    found: list[tuple[Pos, str, int | None]] = []
+    for pos, obj in kb.objects:
+        kind = kind_at(layout, pos, obj)
+        if kind is not None:
+            found.append((pos, kind, None))
+    for cells, values in ((layout.grills, kb.grills), (layout.boards, kb.boards), (layout.sinks, kb.sinks)):
+        for cell, value in zip(cells, values, strict=True):
+            if value is not None:
+                found.append((cell, kind_at(layout, cell, None) or "", value))
+    return found
+
+
+def _contents(memory: Tracking, layout: Layout, robot: AgentState | None) -> KnowledgeBase:
+    """The KB's contents from the objects the rule believes: those on counters, and per station the largest
+    count believed there (a station holds one object; the rule can believe a second one for a tick)."""
+    counters: dict[Pos, str] = {}
+    stations: dict[Pos, int] = {}
+    for _ident, snap in memory.believed:
+        entry = layout.stations.get(snap.cell)
+        if entry is None:
+            continue
+        if entry[0] is Terrain.COUNTER:
+            obj = OBJECT_OF_KIND.get(snap.kind)
+            if obj is not None:
+                counters[snap.cell] = obj
+        elif snap.state is not None and kind_at(layout, snap.cell, None) == snap.kind:
+            stations[snap.cell] = max(snap.state, stations.get(snap.cell, snap.state))
+    return KnowledgeBase(
+        objects=tuple(sorted(counters.items())),
+        grills=tuple(stations.get(c) for c in layout.grills),
+        boards=tuple(stations.get(c) for c in layout.boards),
+        sinks=tuple(stations.get(c) for c in layout.sinks),
+        robot=robot, tracking=memory,
+    )

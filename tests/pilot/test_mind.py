@@ -64,9 +64,10 @@ def carrying_meat_to_a_busy_grill(loaded: LoadedStudy) -> TrialEngine:
 def test_it_stops_a_subtask_once_it_sees_the_grill_is_busy(paper) -> None:
     engine = carrying_meat_to_a_busy_grill(paper)
     config = ParticipantConfig(notice_probability=1.0, stop_weight=1, replace_weight=0, correct_weight=0)
-    replies = frames_until_reply(paper, engine, config, 4)
-    assert [r["type"] for r in replies[:2]] == ["heartbeat", "heartbeat"], "the KB needs kb_delay frames"
-    assert replies[2] == {"type": "interrupt", "action": "stop"}
+    delay = paper.study.world.kb_delay
+    replies = frames_until_reply(paper, engine, config, delay + 1)
+    assert [r["type"] for r in replies[:delay - 1]] == ["heartbeat"] * (delay - 1), "the KB needs kb_delay frames"
+    assert replies[delay - 1] == {"type": "interrupt", "action": "stop"}
 
 
 def test_it_replaces_a_pointless_subtask_with_one_that_fits_its_hands(paper) -> None:

@@ -22,17 +22,28 @@ from server.game.needs import NEEDS
 @pytest.mark.parametrize("kitchen", ["none_3", "mid_2"])
 @pytest.mark.parametrize("seed", [1, 2])
 def test_the_kb_built_from_frames_is_the_servers_model_of_the_participant(paper, kitchen: str, seed: int) -> None:
-    """At every tick the KB it builds from the masked frames alone agrees with the KB the server models for the
-    participant (stations occupied or not, objects on counters, the robot's cargo and where it was last seen)."""
+    """On every cell the frame shows, the KB it builds from the masked frames alone agrees with the KB the server
+    models for the participant (stations occupied or not, objects on counters, the robot's cargo and where it was
+    last seen while the robot is in view). Not always out of view: the
+    reference's rule, which the server models, follows objects the frames do not show (docs/domain.md §3: what a
+    watched robot lets go of is guessed to have become the last object of a kind, even one out of view; an object
+    carried off unseen is tracked by its identity)."""
     trial = play_offline(paper, kitchen, ParticipantConfig(), seed)
+    layout = paper.layout(kitchen)
     assert len(trial.perceptions) > 20
-    for tick, (seen, server) in enumerate(zip(trial.perceptions, trial.server_kbs, strict=True)):
+    for tick, (seen, server, frame) in enumerate(zip(trial.perceptions, trial.server_kbs, trial.frames, strict=True)):
         mine = seen.kb
         assert mine is not None
-        for name in ("grills", "boards", "sinks"):
-            assert [v is None for v in getattr(mine, name)] == [v is None for v in getattr(server, name)], (tick, name)
-        assert mine.objects == server.objects, tick
-        assert (mine.robot.pos, mine.robot.held) == (server.robot.pos, server.robot.held), tick
+        shown = {(c["x"], c["y"]) for c in frame["cells"]}
+        differing = {cell for name, cells in (("grills", layout.grills), ("boards", layout.boards),
+                                              ("sinks", layout.sinks))
+                     for cell, a, b in zip(cells, getattr(mine, name), getattr(server, name), strict=True)
+                     if (a is None) != (b is None)}
+        differing |= set(dict(mine.objects).items() ^ dict(server.objects).items())
+        differing = {c[0] if isinstance(c[0], tuple) else c for c in differing}
+        assert not differing & shown, (tick, differing & shown)
+        if frame.get("robot") is not None:
+            assert (mine.robot.pos, mine.robot.held) == (server.robot.pos, server.robot.held), tick
 
 
 def test_worlds_that_differ_only_out_of_view_get_the_same_answer(paper) -> None:

@@ -27,6 +27,14 @@ def test_a_pickup_counts_as_shown_only_with_kb_delay_consecutive_ticks_in_view()
     assert (counted.holdings, counted.shown, counted.shown_rate) == (2, 0, 0.0)
 
 
+def test_ticks_in_view_before_the_pickup_count_toward_showing_it():
+    """The person's count of the robot runs on whatever its hands do (docs/domain.md §3): a robot watched for 3
+    ticks shows what it picks up at the very tick it picks it up."""
+    watched = [Frame(None, True)] * 3 + [Frame(MEAT, True), Frame(MEAT, False)]
+    assert measure(watched, 3).shown == 1
+    assert measure([Frame(None, True), Frame(MEAT, True), Frame(MEAT, False)], 3).shown == 0
+
+
 def test_a_changed_object_starts_a_new_holding():
     ticks = [Frame(CLEAN_PLATE, True), Frame(CLEAN_PLATE, True), Frame(STEAK_PLATE, True), Frame(STEAK_PLATE, True),
              Frame(STEAK_PLATE, True)]
@@ -46,14 +54,18 @@ def test_a_dish_trip_counts_only_when_the_robot_delivers_it():
 
 
 def test_the_hands_gap_splits_the_ticks_the_kb_is_wrong_about_the_robots_hands():
-    # picked up in view: wrong until the third tick in view (2 ticks of lag), then right
-    assert hands_gap(frames("..HHHH"), 3) == HandsGap(ticks=6, lag=2, unseen=0, stale=0)
-    # picked up out of view: 2 ticks of lag, then unseen until it has stood 3 ticks in view
-    assert hands_gap(frames("..hhhhHHH"), 3) == HandsGap(ticks=9, lag=2, unseen=4, stale=0)
-    # shown, then put down out of view: 2 ticks of lag, then the person still believes the robot holds it
-    assert hands_gap(frames("HHHH...."), 3) == HandsGap(ticks=8, lag=4, unseen=0, stale=2)
+    # picked up in view after 2 ticks unseen: wrong until its third tick in view; a person watching from the
+    # start would have known from the third tick, so these 2 ticks are unseen, not lag
+    assert hands_gap(frames("..HHHH"), 3) == HandsGap(ticks=6, lag=0, unseen=2, stale=0)
+    # picked up out of view: unseen until it has stood 3 ticks in view
+    assert hands_gap(frames("..hhhhHHH"), 3) == HandsGap(ticks=9, lag=0, unseen=6, stale=0)
+    # shown from the first tick (2 ticks of lag), then put down out of view: the person still believes it holds it
+    assert hands_gap(frames("HHHH...."), 3) == HandsGap(ticks=8, lag=2, unseen=0, stale=4)
     # a load never seen and put down: the person was never wrong about the empty hands that follow
     assert hands_gap(frames("hhhh...."), 3) == HandsGap(ticks=8, lag=2, unseen=2, stale=0)
+    # watched all along: a change of hands is known at once, the only wrong ticks are the first two
+    watched = [Frame(MEAT, True)] * 3 + [Frame(None, True)] * 2
+    assert hands_gap(watched, 3) == HandsGap(ticks=5, lag=2, unseen=0, stale=0)
 
 
 def test_the_hands_gap_counts_what_the_kb_counts_in_a_simulated_trial():

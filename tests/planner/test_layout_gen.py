@@ -19,7 +19,7 @@ from planner.layout_gen import (
     parse_size,
     style_of,
 )
-from planner.play import run_trial
+from planner.play import TrialSettings, run_trial
 
 TUNING_SEEDS = range(100)
 
@@ -64,10 +64,15 @@ def test_each_style_has_its_shape(style):
 
 
 def test_a_simulated_team_finishes_every_kitchen():
+    """Every generated kitchen is finished at the 2D study's KB delay (1); at delay 3 the paper's models may
+    stall in a few (tests/planner/test_conformance.py), here at most one kitchen in forty."""
+    stalled = []
     for seed in range(40):
         layout = generate_named(seed)
-        result = run_trial(layout, seed % 3)
+        result = run_trial(layout, seed % 3, TrialSettings(kb_delay=1))
         assert result.finished, f"{layout.name} seed {seed % 3}: {result.delivered} delivered\n{layout.text()}"
+        stalled += [layout.name] if not run_trial(layout, seed % 3, TrialSettings(kb_delay=3)).finished else []
+    assert len(stalled) <= 1, f"stalled at delay 3: {stalled}"
 
 
 def test_size_is_honoured_and_bad_requests_name_the_reason():

@@ -37,7 +37,8 @@ def test_paper_study_is_the_papers_design() -> None:
     orders = study.condition_orders()
     assert len(orders) == 4 and {o[0] for o in orders} == {c.id for c in study.conditions}
     assert [(p.kitchen.name, p.robot, p.count) for p in study.practice] == [("practice", "stay", 1)]
-    assert (study.world.fov_angle, study.world.kb_delay, study.timing.tick_rate_hz) == (120, 3, 5)
+    # kb_delay 1: the 2D study's delay
+    assert (study.world.fov_angle, study.world.kb_delay, study.timing.tick_rate_hz) == (120, 1, 5)
     (questionnaire,) = study.questionnaires
     assert questionnaire.when == "after_each_trial"
     ratings = [i for i in questionnaire.items if i.type == "rating"]
