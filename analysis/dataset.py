@@ -176,7 +176,10 @@ def _tick_rows(participant: str, trial: StoredTrial, ticks: Sequence[StoredTick]
             "round_seconds": tick.round_seconds,
             "world_events": _events_text(tick.world_events),
         }
+        diff = tick.kb_diff or {}
+        row["kb_diff_total"] = sum(diff.values()) if tick.kb_diff is not None else None
         for component in GAP_COMPONENTS:
+            row[f"kb_diff_{component}"] = diff.get(component)
             row[f"kb_gap_{component}"] = int(tick.kb_gap.get(component, 0))
         rows.append(row)
     return rows

@@ -32,8 +32,15 @@ MEASURES: dict[str, Column] = {c.name: c for c in (
     Column("finished", FLAG, "1 when every order was delivered before the horizon"),
     Column("delivered", INT, "dishes delivered"),
     Column("score", INT, "score at the end (delivery reward per dish)"),
-    Column("kb_gap_mean", NUM, "mean KB gap per tick: number of components (grill, board, sink, robot's held "
-           "object) where the participant's modelled KB differs from the world (docs/domain.md §6)"),
+    Column("kb_diff_freq", NUM, "the paper's KB gap as its code computes it (docs/domain.md §6): % of ticks with a "
+           "gap between the participant's modelled KB and the world in any of grill, board, sink, robot's held object"),
+    Column("kb_diff_avg", NUM, "the paper's KB gap: mean gap over the ticks that have one (grill 0/1, board and sink "
+           "|chop / wash count difference| with −1 for empty and a KB 3 above the world counting 1, robot's held "
+           "object 0/1); empty when no tick has a gap"),
+    Column("kb_diff_mean", NUM, "the paper's KB gap: mean gap over all ticks (= kb_diff_freq / 100 × kb_diff_avg)"),
+    Column("kb_gap_mean", NUM, "our older status KB gap (secondary): mean per tick of the number of components "
+           "(grill, board, sink status, robot's held object) where the participant's modelled KB differs from the "
+           "world (docs/domain.md §6)"),
     Column("kb_gap_ticks_pct", NUM, "% of ticks with a KB gap in any component"),
     *(Column(f"kb_gap_{c}_pct", NUM, f"% of ticks where the {c.replace('_', ' ')} component of the KB differs "
                                      f"from the world (= its mean gap per tick × 100)") for c in GAP_COMPONENTS),
@@ -67,6 +74,7 @@ MEASURES: dict[str, Column] = {c.name: c for c in (
 
 UNITS: dict[str, str] = {
     "ticks": "world steps", "delivered": "dishes", "score": "points", "kb_gap_mean": "components",
+    "kb_diff_freq": "%", "kb_diff_avg": "gap", "kb_diff_mean": "gap",
     "interrupts": "actions", "selections": "choices", "interrupts_per_selection": "%", "subtask_switches": "switches",
     "redundant_actions": "pickups", "collisions": "steps", "deadline_misses": "ticks",
     **{name: "%" for name in MEASURES if name.endswith("_pct")},
@@ -109,7 +117,10 @@ TICK_COLUMNS: tuple[Column, ...] = (
     Column("kb_grill", TEXT, "grill status(es) in the participant's modelled KB"),
     Column("kb_board", TEXT, "board status(es) in the participant's modelled KB"),
     Column("kb_sink", TEXT, "sink status(es) in the participant's modelled KB"),
-    Column("kb_gap_total", INT, "KB gap at this tick: number of differing components (0-4)"),
+    Column("kb_diff_total", INT, "the paper's KB gap at this tick: the sum of kb_diff_<component> (0-8)"),
+    *(Column(f"kb_diff_{c}", INT, f"the paper's KB gap in the {c.replace('_', ' ')} component at this tick "
+                                  f"(docs/domain.md §6)") for c in GAP_COMPONENTS),
+    Column("kb_gap_total", INT, "our status KB gap at this tick: number of differing components (0-4)"),
     *(Column(f"kb_gap_{c}", FLAG, f"1 when the KB's {c.replace('_', ' ')} differs from the world")
       for c in GAP_COMPONENTS),
     Column("robot_in_fov", FLAG, "1 when the robot's cell is in the participant's field of view"),

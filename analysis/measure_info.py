@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 
 from analysis.dictionary import FLAG, INT, MEASURES, UNITS
-from planner.summary import GAP_COMPONENTS
+from planner.summary import GAP_COMPONENTS, KB_DIFF_MAX
 
 MAX_DIVISOR = 24
 """Resolutions looked for: 1/k for k = 1..MAX_DIVISOR (a rating item: 1; the mean of k items: 1/k)."""
@@ -64,6 +64,8 @@ def measure_info(name: str, values: pd.Series, horizon: int | None = None,
         lower, upper = 0.0, 100.0
     elif name == "kb_gap_mean":
         lower, upper = 0.0, float(len(GAP_COMPONENTS))
+    elif name in ("kb_diff_avg", "kb_diff_mean"):
+        lower, upper = 0.0, KB_DIFF_MAX
     elif name == "ticks":
         lower, upper = 0.0, float(horizon) if horizon else math.inf
     elif column is not None and column.type == FLAG:

@@ -2,6 +2,11 @@
 
 With n stored ticks t = 1..n of one trial:
 
+* the reference's KB gap (the paper's measure as its code computes it, docs/domain.md §6): d_t = Σ_c d_t,c, the
+  per-component gap of tick t (``ticks.kb_diff``: grill, board, sink, robot's held object, as
+  ``planner.summary.info_diff`` computes it from the reference's state info of the KB and of the world);
+  ``kb_diff_freq`` = 100 · #{t : d_t > 0} / n; ``kb_diff_avg`` = Σ_t d_t / #{t : d_t > 0} (empty when no tick
+  has a gap); ``kb_diff_mean`` = (1/n) Σ_t d_t.
 * ``kb_gap_mean`` = (1/n) Σ_t gap_t, where gap_t (``ticks.kb_gap_total``) is the number of components
   (grill, board, sink, robot's held object) on which the participant's modelled KB differs from the world;
   ``kb_gap_ticks_pct`` = 100 · #{t : gap_t > 0} / n; ``kb_gap_<component>_pct`` = 100 · #{t : component
@@ -32,10 +37,11 @@ import numpy as np
 
 from analysis.store_reader import StoredEvent, StoredTick, StoredTrial
 from analysis.work import redundant_action_flags, subtask_switch_flags, work_shares
-from planner.summary import GAP_COMPONENTS
+from planner.summary import GAP_COMPONENTS, kb_diff_trial
 
 TRIAL_MEASURES: tuple[str, ...] = (
     "ticks", "finished", "delivered", "score",
+    "kb_diff_freq", "kb_diff_avg", "kb_diff_mean",
     "kb_gap_mean", "kb_gap_ticks_pct", *(f"kb_gap_{c}_pct" for c in GAP_COMPONENTS),
     "interrupts", "selections", "interrupts_per_selection",
     "robot_in_fov_pct", "subtask_switches", "redundant_actions", "human_prep_pct", "human_plating_pct",
@@ -62,6 +68,7 @@ def trial_measures(trial: StoredTrial, ticks: Sequence[StoredTick], events: Sequ
         "delivered": trial.delivered,
         "score": trial.score,
     }
+    out.update(kb_diff_measures(ticks))
     out.update(kb_gap_measures(ticks))
     out.update(input_measures(events))
     out["robot_in_fov_pct"] = _pct([t.robot_in_fov for t in ticks])
@@ -72,6 +79,14 @@ def trial_measures(trial: StoredTrial, ticks: Sequence[StoredTick], events: Sequ
     for name, kind in _CONDUCT_KIND.items():
         out[name] = sum(1 for e in events if e.kind == kind)
     return out
+
+
+def kb_diff_measures(ticks: Sequence[StoredTick]) -> dict[str, float]:
+    """``kb_diff_freq``, ``kb_diff_avg`` and ``kb_diff_mean`` (the reference's KB gap; module docstring)."""
+    if not ticks:
+        return {"kb_diff_freq": NAN, "kb_diff_avg": NAN, "kb_diff_mean": NAN}
+    freq, avg, mean = kb_diff_trial([t.kb_diff or {} for t in ticks])
+    return {"kb_diff_freq": freq, "kb_diff_avg": NAN if avg is None else avg, "kb_diff_mean": mean}
 
 
 def kb_gap_measures(ticks: Sequence[StoredTick]) -> dict[str, float]:

@@ -13,7 +13,7 @@ explicit deferred ``BEGIN``, which in WAL mode reads one version of the file and
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from datetime import datetime
 from typing import Any
 
@@ -21,6 +21,9 @@ from sqlalchemy import Connection, Engine, inspect, select
 from sqlalchemy.exc import SQLAlchemyError
 
 from analysis.errors import AnalysisInputError
+from planner.kb import KnowledgeBase
+from planner.state import WorldState
+from planner.summary import info_diff, state_info
 from store.engine import NoStoreError, snapshot_engine
 from store.migrate import current_revision, head_revision
 from store.tables import AnswerRow, AssignmentRow, EventRow, ParticipantRow, StudyRow, TickRow, TrialRow
@@ -126,6 +129,9 @@ class StoredTick:
     """The step's world events (agent, kind, pos, obj); ``None`` for ticks stored before they were kept."""
     round_seconds: float | None = None
     """Seconds the round had run while the participant was connected; ``None`` for ticks stored before."""
+    kb_diff: dict[str, int] | None = None
+    """The reference's KB gap per component (``ticks.kb_diff``; for ticks stored before it was kept, computed by
+    :func:`read_ticks` from the stored world and KB)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -214,9 +220,26 @@ def read_ticks(conn: Connection, trial_id: int) -> list[StoredTick]:
         TickRow.tick, TickRow.human_action, TickRow.robot_action, TickRow.action_source, TickRow.subtask,
         TickRow.kb_summary, TickRow.world_summary, TickRow.kb_gap, TickRow.kb_gap_total, TickRow.robot_in_fov,
         TickRow.lateness_ms, TickRow.decision_ms, TickRow.robot_missed, TickRow.world_state, TickRow.controller,
-        TickRow.recorded_at, TickRow.world_events, TickRow.round_seconds,
+        TickRow.recorded_at, TickRow.world_events, TickRow.round_seconds, TickRow.kb_diff,
     ).where(TickRow.trial_id == trial_id).order_by(TickRow.tick))
-    return [StoredTick(**row._asdict()) for row in rows]
+    ticks = [StoredTick(**row._asdict()) for row in rows]
+    if any(t.kb_diff is None for t in ticks):
+        ticks = _with_kb_diff(conn, trial_id, ticks)
+    return ticks
+
+
+def _with_kb_diff(conn: Connection, trial_id: int, ticks: list[StoredTick]) -> list[StoredTick]:
+    """Ticks stored before ``kb_diff`` was kept get it from their stored world and KB states (the reference's
+    state info of each, ``planner.summary``)."""
+    query = select(TickRow.tick, TickRow.kb_state).where(TickRow.trial_id == trial_id)
+    kb_states: dict[int, dict[str, Any]] = {row.tick: row.kb_state for row in conn.execute(query)}
+    out = []
+    for t in ticks:
+        if t.kb_diff is None:
+            kb = KnowledgeBase.from_dict(kb_states[t.tick])
+            t = replace(t, kb_diff=info_diff(state_info(kb), state_info(WorldState.from_dict(t.world_state))))
+        out.append(t)
+    return out
 
 
 def _real(query: Any, include_pilot: bool) -> Any:

@@ -29,7 +29,10 @@ from analysis.run import analyze_long
 from analysis.study_design import StudyDesign
 
 DEFAULT_MEASURES: tuple[str, ...] = (
-    "kb_gap_mean", "kb_gap_ticks_pct", "interrupts", "interrupts_per_selection", "ticks", "robot_in_fov_pct")
+    "kb_diff_freq", "kb_diff_avg", "interrupts", "interrupts_per_selection", "ticks", "robot_in_fov_pct",
+    "kb_gap_mean", "kb_gap_ticks_pct")
+"""The paper's H1 (KB gap: ``kb_diff_freq``, ``kb_diff_avg``, as its code measures it) and H2 (interrupts) first;
+our older status gap last, as a secondary measure."""
 SUBJECT = "participant"
 PILOT = "pilot"
 """The ``include`` name that keeps simulated pilot participants (``--include-pilot``)."""

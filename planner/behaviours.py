@@ -28,6 +28,7 @@ from dataclasses import dataclass
 
 from planner.events import Event, EventKind
 from planner.fov import view
+from planner.kb import KnowledgeBase
 from planner.layout import Layout
 from planner.objects import DISH
 from planner.state import WorldState
@@ -35,11 +36,13 @@ from planner.state import WorldState
 
 @dataclass(frozen=True, slots=True)
 class Frame:
-    """One tick of a trial, as the behaviours read it."""
+    """One tick of a trial, as the behaviours read it; ``believed`` is what the person's KB says the robot holds,
+    when the trial kept the KB (``(held,)``; ``None`` when it did not, e.g. a log)."""
 
     held: str | None
     seen: bool
     delivered: bool = False
+    believed: tuple[str | None] | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -83,11 +86,14 @@ class HandsGap:
                         self.stale + other.stale)
 
 
-def frame_of(layout: Layout, world: WorldState, events: Sequence[Event], angle: float) -> Frame:
-    """The frame of one tick of our own trials: ``world`` after the step, ``events`` the step's events."""
+def frame_of(layout: Layout, world: WorldState, events: Sequence[Event], angle: float,
+             kb: KnowledgeBase | None = None) -> Frame:
+    """The frame of one tick of our own trials: ``world`` after the step, ``events`` the step's events, ``kb`` the
+    person's KB after it (if kept)."""
     seen = world.robot.pos in view(layout, world.human.pos, world.human.facing, angle).cells
     delivered = any(e.agent == "robot" and e.kind is EventKind.DELIVER for e in events)
-    return Frame(world.robot.held, seen, delivered)
+    believed = None if kb is None else (None if kb.robot is None else kb.robot.held,)
+    return Frame(world.robot.held, seen, delivered, believed)
 
 
 def holdings(frames: Sequence[Frame]) -> list[tuple[int, int]]:
@@ -127,14 +133,16 @@ def measure(frames: Sequence[Frame], kb_delay: int) -> Behaviours:
 
 
 def hands_gap(frames: Sequence[Frame], kb_delay: int) -> HandsGap:
-    """The person's KB about what the robot holds, tick by tick, by the KB's rule (docs/domain.md §3: it takes what
-    the robot holds at every tick the robot stands in view and has stood there ``kb_delay`` consecutive ticks,
-    whatever its hands did meanwhile; at the start it knows the robot's empty hands), and the ticks it is wrong,
-    split into lag, unseen and stale."""
+    """The person's KB about what the robot holds, tick by tick (the frames' ``believed`` when they carry it, else
+    by the KB's rule for the robot, docs/domain.md §3: it takes what the robot holds at every tick the robot stands
+    in view and has stood there ``kb_delay`` consecutive ticks, whatever its hands did meanwhile; at the start it
+    knows the robot's empty hands), and the ticks it is wrong, split into lag, unseen and stale."""
     believed = watched = None  # the KB's belief, and a person's who watched the robot every tick
     lag = unseen = stale = 0
     for t, (frame, run) in enumerate(zip(frames, in_view_runs(frames), strict=True)):
-        if frame.seen and run >= kb_delay:
+        if frame.believed is not None:
+            believed = frame.believed[0]
+        elif frame.seen and run >= kb_delay:
             believed = frame.held
         if t + 1 >= kb_delay:
             watched = frame.held

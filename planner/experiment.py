@@ -24,7 +24,8 @@ from planner.play import TrialResult, TrialSettings, run_trial
 from planner.robots import make_robot
 from planner.rules import Rules
 
-COLUMNS = ("layout", "robot", "seed", "ticks", "finished", "reward", "kb_gap_mean", "kb_gap_ticks_pct",
+COLUMNS = ("layout", "robot", "seed", "ticks", "finished", "reward", "kb_diff_freq", "kb_diff_avg", "kb_diff_mean",
+           "kb_gap_mean", "kb_gap_ticks_pct",
            "robot_in_fov_pct", "decision_ms_p50", "decision_ms_p99", "holdings", "shown", "trips",
            "trip_share_sum", "robot_gap_pct", "gap_lag_pct", "gap_unseen_pct", "gap_stale_pct",
            "robot_place_cells", "robot_place_wrong_pct", "person_deliveries", "robot_deliveries", "person_steps",
@@ -71,6 +72,9 @@ def run_spec(spec: TrialSpec) -> dict[str, object]:
     return {
         "layout": layout.name, "robot": spec.robot, "seed": spec.seed, "ticks": result.ticks,
         "finished": int(result.finished), "reward": result.score,
+        "kb_diff_freq": round(result.kb_diff_freq, 2),
+        "kb_diff_avg": "" if result.kb_diff_avg is None else round(result.kb_diff_avg, 4),
+        "kb_diff_mean": round(result.kb_diff_mean, 4),
         "kb_gap_mean": round(result.kb_gap_mean, 4), "kb_gap_ticks_pct": round(result.kb_gap_ticks_pct, 2),
         "robot_in_fov_pct": round(result.robot_in_fov_pct, 2),
         "decision_ms_p50": round(float(np.percentile(times, 50)), 3),

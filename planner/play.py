@@ -24,7 +24,7 @@ from planner.perception import FOV_ANGLE, KB_DELAY
 from planner.rules import Rules
 from planner.state import WorldState, initial_state, is_done
 from planner.step import step
-from planner.summary import GAP_COMPONENTS, kb_gap_components
+from planner.summary import GAP_COMPONENTS, info_diff, kb_diff_trial, kb_gap_components, state_info
 from planner.work_share import WorkShare
 
 
@@ -63,6 +63,12 @@ class TrialResult:
     """Mean over ticks of how far (cells, Manhattan) the person's KB places the robot from where it is."""
     robot_place_wrong_pct: float = 0.0
     """% of ticks at which the person's KB places the robot elsewhere than where it is."""
+    kb_diff_freq: float = 0.0
+    """The reference's KB gap (:mod:`planner.summary`): % of ticks with any gap."""
+    kb_diff_avg: float | None = None
+    """The reference's mean gap over the ticks that have one (``None`` when none has)."""
+    kb_diff_mean: float = 0.0
+    """The reference's mean gap over all ticks."""
     flickers: int = 0
     """Times the robot undid its own last touch of a counter in an unchanged scene (:mod:`planner.flicker`)."""
     work: WorkShare = field(default_factory=WorkShare)
@@ -75,6 +81,9 @@ class TrialResult:
             "kb_gap_ticks_pct": round(self.kb_gap_ticks_pct, 2),
             "gap_component_pct": {k: round(v, 2) for k, v in self.gap_component_pct.items()},
             "robot_in_fov_pct": round(self.robot_in_fov_pct, 2),
+            "kb_diff_freq": round(self.kb_diff_freq, 2),
+            "kb_diff_avg": None if self.kb_diff_avg is None else round(self.kb_diff_avg, 4),
+            "kb_diff_mean": round(self.kb_diff_mean, 4),
         }
 
 
@@ -97,6 +106,7 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
     events: tuple[Event, ...] = ()
     gap_ticks = gap_sum = place_cells = place_wrong = 0
     component_ticks = dict.fromkeys(GAP_COMPONENTS, 0)
+    diffs: list[dict[str, int]] = []
     actions: list[tuple[Action, Action]] = []
     decision_ms: list[float] = []
     frames: list[Frame] = []
@@ -120,12 +130,13 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
         kb = update_kb(kb, layout, world, angle=settings.angle, kb_delay=settings.kb_delay,
                        own_events=[e for e in events if e.agent == "human"])
         gaps = kb_gap_components(kb, world, rules)
+        diffs.append(info_diff(state_info(kb), state_info(world)))
         total = sum(gaps.values())
         gap_sum += total
         gap_ticks += total > 0
         for name, value in gaps.items():
             component_ticks[name] += value
-        frames.append(frame_of(layout, world, events, settings.angle))
+        frames.append(frame_of(layout, world, events, settings.angle, kb))
         if kb.robot is not None:
             off = manhattan(kb.robot.pos, world.robot.pos)
             place_cells += off
@@ -133,6 +144,7 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
         if record:
             actions.append((h_action, r_action))
     ticks = max(world.tick, 1)
+    diff_freq, diff_avg, diff_mean = kb_diff_trial(diffs)
     return TrialResult(
         layout=layout.name, seed=seed, ticks=world.tick, finished=world.orders_left == 0,
         delivered=rules.orders - world.orders_left, score=world.score,
@@ -142,5 +154,6 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
         decision_ms=tuple(decision_ms), timed_out=timed_out, cycles_broken=cycles_broken,
         behaviours=measure(frames, settings.kb_delay), hands=hands_gap(frames, settings.kb_delay),
         robot_place_cells=place_cells / ticks, robot_place_wrong_pct=100.0 * place_wrong / ticks,
+        kb_diff_freq=diff_freq, kb_diff_avg=diff_avg, kb_diff_mean=diff_mean,
         flickers=touches.flickers, work=work,
     )

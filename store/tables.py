@@ -7,7 +7,8 @@
 - ``trials``: one row per attempt at a practice or main trial: condition, kitchen, robot, view, FOV angle, seed, config
   hash, status (``running`` / ``finished`` / ``abandoned``) and outcome (ticks, delivered, score).
 - ``ticks``: one row per world step (primary key ``(trial_id, tick)``, so a tick can never be stored
-  twice): joint action, the participant's subtask, modelled KB and world summaries, KB-gap components,
+  twice): joint action, the participant's subtask, modelled KB and world summaries (with the reference's state
+  info), KB-gap components (ours, and the reference's per-component gap ``kb_diff``),
   robot in the participant's FOV, tick lateness, robot decision time, and the full world and KB state
   (replay and resume read them).
 - ``events``: selections, interrupts, connection, focus and idle events, errors, missed deadlines.
@@ -201,6 +202,10 @@ class TickRow(Base):
     """Wall-clock seconds the round had run at this tick while the participant was connected (what
     ``timing.max_round_seconds`` limits; a round resumed from the store goes on from it); NULL in ticks stored
     before revision 0009."""
+    kb_diff: Mapped[dict[str, int] | None] = mapped_column(JsonType, nullable=True)
+    """The reference's KB gap at this tick, per component (grill, board, sink, robot_held;
+    ``planner.summary.info_diff``), from the ``reference`` state info of ``kb_summary`` and ``world_summary``
+    (the writer fills it when the row does not bring it); NULL in ticks stored before revision 0010."""
 
 
 class EventRow(Base):

@@ -18,6 +18,7 @@ from sqlalchemy import insert
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
+from planner.summary import kb_diff_of_summaries
 from store import trials
 from store.engine import Store
 from store.tables import EventRow, TickRow
@@ -97,7 +98,9 @@ class BatchWriter:
 
 
 def write_batch(store: Store, ticks: Sequence[Row], events: Sequence[Row]) -> None:
-    """Insert the rows in one transaction, or row by row when a row violates a constraint."""
+    """Insert the rows in one transaction, or row by row when a row violates a constraint. A tick row without a
+    ``kb_diff`` gets it from its summaries (:func:`with_kb_diff`)."""
+    ticks = [with_kb_diff(row) for row in ticks]
     try:
         with store.transaction() as session:
             _insert(session, ticks, events)
@@ -130,3 +133,13 @@ def _touch_trials(session: Session, ticks: Sequence[Row]) -> None:
         if seen is None or row["tick"] > seen["tick"]:
             latest[row["trial_id"]] = row
     trials.touch_ticks(session, [(trial_id, row["recorded_at"], row["tick"]) for trial_id, row in latest.items()])
+
+
+def with_kb_diff(row: Row) -> Row:
+    """``row`` with ``kb_diff``, the reference's KB gap of the tick from the state infos its KB and world summaries
+    carry (``None`` when they carry none)."""
+    if row.get("kb_diff") is not None:
+        return row
+    kb, world = row.get("kb_summary"), row.get("world_summary")
+    diff = kb_diff_of_summaries(kb, world) if isinstance(kb, dict) and isinstance(world, dict) else None
+    return {**row, "kb_diff": diff}

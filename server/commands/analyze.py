@@ -44,8 +44,9 @@ def register(subparsers: Any) -> None:
     source.add_argument("--csv", metavar="FILE", type=Path, help="long table, one row per subject and cell")
     source.add_argument("--study", metavar="ID", help="analyse a study from the store")
     p.add_argument("--dv", metavar="COL[,COL...]",
-                   help="dependent variable column(s) (with --study default: kb_gap_mean, kb_gap_ticks_pct, "
-                        "interrupts, interrupts_per_selection, ticks, robot_in_fov_pct and the study's scales)")
+                   help="dependent variable column(s) (with --study default: kb_diff_freq, kb_diff_avg, "
+                        "interrupts, interrupts_per_selection, ticks, robot_in_fov_pct, kb_gap_mean, kb_gap_ticks_pct "
+                        "and the study's scales)")
     p.add_argument("--within", metavar="A[,B[,C]]", help="one to three within factors, e.g. robot,kitchen")
     p.add_argument("--subject", metavar="COL", help="subject (participant) id column")
     p.add_argument("--between", metavar="COL",

@@ -70,13 +70,14 @@ def test_a_measure_without_variance_is_not_testable_and_the_rest_runs(stored, tm
     captured = capsys.readouterr()
     assert "warning: interrupts: not testable: every value is 0, nothing varies" in captured.err
     anova = pd.read_csv(tmp_path / "anova.csv")
-    assert set(anova["measure"]) == {"kb_gap_mean", "kb_gap_ticks_pct", "interrupts", "interrupts_per_selection",
-                                     "ticks", "robot_in_fov_pct"}
+    assert set(anova["measure"]) == {"kb_diff_freq", "kb_diff_avg", "kb_gap_mean", "kb_gap_ticks_pct", "interrupts",
+                                     "interrupts_per_selection", "ticks", "robot_in_fov_pct"}
     assert (anova.groupby("measure").size() == 3).all()
     flat = anova[anova["measure"] == "interrupts"]
     assert set(flat["note"]) == {"not testable: every value is 0, nothing varies"} and flat["F"].isna().all()
     report = (tmp_path / "report.md").read_text()
-    assert report.index("## Data quality") < report.index("## Method") < report.index("## kb_gap_mean")
+    assert report.index("## Data quality") < report.index("## Method") < report.index("## kb_diff_freq")
+    assert report.index("## kb_diff_avg") < report.index("## kb_gap_mean")  # the paper's gap first, ours after
     assert "Study quiet: 3 participants in the store" in report
     assert "- interrupts: not testable: every value is 0, nothing varies" in report
     descriptives = pd.read_csv(tmp_path / "descriptives.csv")

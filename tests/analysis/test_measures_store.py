@@ -52,6 +52,7 @@ EVENTS = [(0, "select_subtask", {"subtask": "pickup_meat"}), (1, "interrupt", {"
           (3, "connect", {})]
 EXPECTED = {
     "ticks": 4, "finished": 1, "delivered": 1, "score": 20,
+    "kb_diff_freq": 50.0, "kb_diff_avg": 1.5, "kb_diff_mean": 0.75,
     "kb_gap_mean": 0.75, "kb_gap_ticks_pct": 50.0, "kb_gap_grill_pct": 50.0, "kb_gap_board_pct": 0.0,
     "kb_gap_sink_pct": 0.0, "kb_gap_robot_held_pct": 25.0,
     "interrupts": 2, "selections": 3, "interrupts_per_selection": 40.0,
@@ -63,26 +64,40 @@ EXPECTED = {
 }
 
 
-def tick_rows() -> list[dict[str, Any]]:
+def tick_rows(with_reference: bool = True) -> list[dict[str, Any]]:
+    """The scripted ticks. The modelled KB misses the steak on the grill and believes the robot holds meat where
+    the script has a grill and a robot-held gap; the reference's gap is then the same as ours (1 each). Summaries
+    ``with_reference`` carry the reference's state infos (the writer derives ``kb_diff`` from them); without,
+    they are as stored before, and the reader computes the gap from the stored world and KB."""
     rows = []
     for n, (gap, in_fov, subtask, after, late, decision, missed, state) in enumerate(SCRIPT, 1):
         components = dict(zip(("grill", "board", "sink", "robot_held"), gap, strict=True))
+        kb_robot = dict(state["robot"], held="meat" if gap[3] else state["robot"]["held"])
+        kb_state = {"objects": [], "grills": [None if gap[0] else state["grills"][0]], "boards": [None],
+                    "sinks": [None], "robot": kb_robot}
+        kb_summary: dict[str, Any] = {"grill": ["empty"], "board": ["empty"], "sink": ["empty"], "robot_held": None}
+        world_summary: dict[str, Any] = {"grill": ["cooking"], "board": ["empty"], "sink": ["empty"],
+                                         "robot_held": None}
+        if with_reference:
+            kb_summary["reference"] = {"grill": 0 if gap[0] else 1, "board": -1, "sink": -1,
+                                       "robot_held": kb_robot["held"]}
+            world_summary["reference"] = {"grill": 1, "board": -1, "sink": -1, "robot_held": state["robot"]["held"]}
         rows.append({
             "tick": n, "human_action": "interact", "robot_action": "stay", "action_source": "subtask",
-            "subtask": subtask, "kb_summary": {"grill": ["empty"], "board": ["empty"], "sink": ["empty"],
-                                               "robot_held": None},
-            "world_summary": {"grill": ["cooking"], "board": ["empty"], "sink": ["empty"], "robot_held": None},
+            "subtask": subtask, "kb_summary": kb_summary, "world_summary": world_summary,
             "kb_gap": components, "kb_gap_total": sum(gap), "robot_in_fov": in_fov, "lateness_ms": late,
             "decision_ms": decision, "robot_missed": missed, "robot_info": None, "world_state": state,
-            "kb_state": {}, "controller": {"subtask": after, "last": subtask}, "world_events": WORLD_EVENTS[n - 1],
+            "kb_state": kb_state, "controller": {"subtask": after, "last": subtask},
+            "world_events": WORLD_EVENTS[n - 1],
         })
     return rows
 
 
-@pytest.fixture
-def tiny(store, loaded_2x2) -> tuple[str, int]:
+@pytest.fixture(params=["reference", "older"])
+def tiny(request, store, loaded_2x2) -> tuple[str, int]:
+    """The tiny trial stored with the reference's gap (``ticks.kb_diff``), or as a version before it stored them."""
     participant = join(store, loaded_2x2, "tiny-1")
-    trial_id = hand_trial(store, loaded_2x2, participant, INITIAL, tick_rows(), EVENTS)
+    trial_id = hand_trial(store, loaded_2x2, participant, INITIAL, tick_rows(request.param == "reference"), EVENTS)
     return str(store.url.render_as_string(hide_password=False)), trial_id
 
 
@@ -108,5 +123,6 @@ def test_interrupts_per_selection_is_empty_without_any_input() -> None:
     measures = trial_measures(trial, [], [])
     assert math.isnan(measures["interrupts_per_selection"]) and measures["interrupts"] == 0
     assert math.isnan(measures["kb_gap_mean"]) and math.isnan(measures["decision_ms_p95"])
+    assert math.isnan(measures["kb_diff_freq"]) and math.isnan(measures["kb_diff_avg"])
     assert measures["finished"] == 0 and measures["ticks"] == 0
     assert set(TRIAL_MEASURES) <= set(measures)

@@ -17,7 +17,7 @@ def test_migrations_match_the_models(empty_db_url):
     store = Store(empty_db_url)
     try:
         store.migrate()
-        assert current_revision(store.engine) == "0009"
+        assert current_revision(store.engine) == "0010"
         with store.engine.connect() as conn:
             context = MigrationContext.configure(conn, opts={"compare_type": True})
             diff = compare_metadata(context, Base.metadata)
@@ -47,7 +47,7 @@ def test_migrating_again_and_concurrently_is_harmless(empty_db_url):
             thread.join()
         stores[0].migrate()
         assert errors == []
-        assert current_revision(stores[0].engine) == "0009"
+        assert current_revision(stores[0].engine) == "0010"
     finally:
         for store in stores:
             store.dispose()

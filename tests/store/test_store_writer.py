@@ -184,3 +184,19 @@ def test_a_flush_cut_short_by_shutdown_is_written_once(store, loaded, monkeypatc
     assert stored(store, trial_id) == [1, 2]
     assert batches == [[1], [2]]
     assert not caplog.records
+
+
+def test_a_tick_gets_the_references_gap_from_its_summaries(store, loaded) -> None:
+    """The live game's rows carry the reference's state infos in their summaries; the writer stores the
+    reference's per-component gap beside them (``ticks.kb_diff``), and NULL for a row without them."""
+    from store.tables import TickRow
+    from store.writer import write_batch
+
+    _, trial_id = new_trial(store, loaded)
+    with_info = tick_row(trial_id, 1) | {
+        "kb_summary": {"reference": {"grill": 0, "board": 2, "sink": -1, "robot_held": None}},
+        "world_summary": {"reference": {"grill": 1, "board": -1, "sink": -1, "robot_held": "onion"}}}
+    write_batch(store, [with_info, tick_row(trial_id, 2)], [])
+    with store.transaction() as session:
+        stored_rows = {t.tick: t.kb_diff for t in session.query(TickRow).filter_by(trial_id=trial_id)}
+    assert stored_rows == {1: {"grill": 1, "board": 1, "sink": 0, "robot_held": 1}, 2: None}
