@@ -31,15 +31,15 @@ import numpy as np
 from scipy import stats
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from behaviours import kitchen_layout, kitchens_of, read_rows, trial_arguments  # noqa: E402
-from vr_logs import KITCHENS, Source, log_files, work_of  # noqa: E402
+from behaviours import kitchen_layout, kitchens_of, read_rows, trial_arguments
+from vr_logs import KITCHENS, Source, log_files, work_of
 
-from planner.perception import FOV_ANGLE, KB_DELAY  # noqa: E402
-from planner.planner_config import PlannerConfig  # noqa: E402
-from planner.play import TrialSettings, run_trial  # noqa: E402
-from planner.robots import make_robot  # noqa: E402
-from planner.rules import Rules  # noqa: E402
-from planner.work_share import Tally, WorkShare  # noqa: E402
+from planner.perception import FOV_ANGLE, KB_DELAY
+from planner.planner_config import PlannerConfig
+from planner.play import TrialSettings, run_trial
+from planner.robots import make_robot
+from planner.rules import Rules
+from planner.work_share import Tally, WorkShare
 
 COLUMNS = ("kitchen", "robot", "seed", "ticks", "finished", "person_deliveries", "robot_deliveries", "person_steps",
            "robot_steps", "person_presses", "robot_presses", "person_steps_to_first", "robot_steps_to_first",
@@ -108,7 +108,8 @@ def vr_table(reference: Path, include_ignored: bool) -> list[str]:
             absent.append(log.path)
             continue
         works.setdefault((KITCHENS[log.kitchen], log.robot), []).append(work_of(data))
-    lines = [line("VR logs", kitchen, robot, len(ws), sum(ws, WorkShare())) for (kitchen, robot), ws in sorted(works.items())]
+    lines = [line("VR logs", kitchen, robot, len(ws), sum(ws, WorkShare()))
+             for (kitchen, robot), ws in sorted(works.items())]
     every = [w for ws in works.values() for w in ws]
     lines.append(line("VR logs", "all", "both", len(every), sum(every, WorkShare())))
     if absent:
@@ -148,7 +149,8 @@ def sim_table(rows: list[dict[str, Any]]) -> list[str]:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("reference", type=Path, help="the fetched SophieHsu/FOV-aware-planner (bare git dir or checkout)")
+    parser.add_argument("reference", type=Path,
+                        help="the fetched SophieHsu/FOV-aware-planner (bare git dir or checkout)")
     trial_arguments(parser, "fov_aware,fov_aware_showing,baseline")
     parser.add_argument("--include-ignored", action="store_true", help="also participants 5, 11, 12 of the logs")
     parser.add_argument("--out", required=True, type=Path)

@@ -204,14 +204,16 @@ def main(argv: list[str] | None = None) -> int:
     if not args.table_only:
         kitchens = write_kitchens(seed_range(args.generator_seeds), args.out / "kitchens") if args.sim_seeds else []
         specs = trial_specs(kitchens, layout_names() if args.shipped_seeds else (), robots, args.sim_seeds,
-                            args.shipped_seeds, reference_kitchens(), args.reference_seeds, person, args.model_delay)
+                            args.shipped_seeds, reference_kitchens(), args.reference_seeds, person,
+                            args.model_delay)
         done = {(r["layout"], r["robot"], int(r["seed"])) for r in read_rows(csv_path)} if csv_path.exists() else set()
         for _ in run(specs, args.jobs, csv_path, done):
             pass
     rows = read_rows(csv_path)
     print(f"generator seeds {args.generator_seeds} × sim seeds 0–{args.sim_seeds - 1}; shipped kitchens × seeds "
           f"0–{args.shipped_seeds - 1}; reference kitchens × seeds 0–{args.reference_seeds - 1}; robots model 120°, "
-          f"delay {args.model_delay}; simulated person {args.person or 'as modelled'}; {len(rows)} trials in {csv_path}")
+          f"delay {args.model_delay}; simulated person {args.person or 'as modelled'}; {len(rows)} trials in "
+          f"{csv_path}")
     for robot in robots:
         if robot != "baseline":
             print(table(rows, robots, robot))
