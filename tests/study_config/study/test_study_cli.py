@@ -98,7 +98,8 @@ def test_kitchen_files_are_checked_as_serve_would_and_every_problem_is_listed(
         f"{study}: kitchens[2]: no kitchen file at {(tmp_path / 'my' / 'missing.layout').resolve()}",
         f"{study}: kitchens[3]: duplicate kitchen 'none_3' (already at [0])",
         f"{study}: kitchens[4] (my/open.layout:1:8): the kitchen is not closed: floor on the border",
-        f"{study}: robots[1]: unknown robot 'terminator'; choose one of: fov_aware, baseline, no_rollout, stay",
+        f"{study}: robots[1]: unknown robot 'terminator'; choose one of: fov_aware, fov_aware_showing, baseline, "
+        "no_rollout, stay",
         f"{study}: robots[2]: duplicate robot 'fov_aware' (already at [0])",
         *(f"{study}: practice[0].kitchen {problem}" for problem in kitchen_problems),
     ], "\n".join(lines)
@@ -118,7 +119,8 @@ def test_a_bad_kitchen_or_robot_does_not_hide_the_checks_of_factors_and_counterb
     problems = [line.split(" (line ")[0].split(": ", 1)[1] for line in capsys.readouterr()[1].splitlines()[:-1]]
     assert problems == [
         f"kitchens[1]: no kitchen file at {(tmp_path / 'missing.layout').resolve()}",
-        "robots[1]: unknown robot 'terminator'; choose one of: fov_aware, baseline, no_rollout, stay",
+        "robots[1]: unknown robot 'terminator'; choose one of: fov_aware, fov_aware_showing, baseline, no_rollout, "
+        "stay",
         "counterbalancing.order[0]: unknown condition 'nope@none_3'; conditions are: fov_aware@none_3, "
         "fov_aware@missing, terminator@none_3, terminator@missing",
         "counterbalancing.order: missing conditions: fov_aware@none_3, fov_aware@missing, terminator@none_3, "
