@@ -52,8 +52,6 @@ from planner.state import WorldState
 from planner.subtasks import NOTHING_NEEDED, Subtask
 from planner.valuation import Valuation
 
-ROBOTS: tuple[str, ...] = ("fov_aware", "fov_aware_showing", "baseline", "no_rollout")
-
 
 class QmdpRobot:
     """One robot of the module docstring: what it keeps from tick to tick (``person``, ``stance``, ``touches``, the show

@@ -1,4 +1,5 @@
-"""Names of the robot planners a study or a simulation may ask for (docs/domain.md §5)."""
+"""Names of the robot planners a study or a simulation may ask for (docs/domain.md §5, "The robots"): every one is a
+level a study file's ``robots:`` may name."""
 
 from __future__ import annotations
 
