@@ -10,8 +10,11 @@ counters, whether each grill, board and sink is empty, at work or done, the orde
 A steak cooking on or a chop pressed changes no phase, so a robot cannot flicker "because the grill moved on"; the
 person taking the clean plate from the sink in the very step the robot put its dirty plate down is a change.
 
-The robot keeps its last touch (:class:`FlickerWatch`) and never chooses an interaction that would undo it in an
-unchanged scene (:func:`undoes`); the same watch, fed from outside with each step, counts the undone touches of a
+An undo is a flicker only within ``STALL_TICKS`` ticks of the touch: after that long with nothing changed the team
+is stalled (the standoff rules' own threshold, docs/domain.md §5, "Standoffs"), and taking the item back breaks the
+stalemate (a simulated participant waiting for the plate the robot had put down in front of itself would otherwise
+wait with the robot for the rest of the trial). The robot keeps its last touch (:class:`FlickerWatch`) and never
+chooses an interaction that would undo it in an unchanged scene within that time (:func:`undoes`); the same watch, fed from outside with each step, counts the undone touches of a
 trial (the ``flickers`` of robot health and of a headless trial), so one rule both forbids and measures them.
 """
 
@@ -27,6 +30,9 @@ from planner.rules import Rules
 from planner.state import WorldState
 from planner.step import step
 
+STALL_TICKS = 30
+"""Ticks after a touch within which undoing it in an unchanged scene is a flicker (``PlannerConfig.stall_ticks``'s
+default: a team quiet this long is stalled)."""
 Scene = tuple[object, ...]
 """What an undo is judged against (:func:`scene_of`)."""
 COUNTER_KINDS = frozenset({EventKind.PUT_DOWN, EventKind.PICK_UP, EventKind.SWAP})
@@ -35,16 +41,19 @@ COUNTER_KINDS = frozenset({EventKind.PUT_DOWN, EventKind.PICK_UP, EventKind.SWAP
 @dataclass(frozen=True, slots=True)
 class Touch:
     """One robot interaction with a counter: at ``cell`` it gave ``gave`` (``None``: nothing) and took ``took``,
-    chosen in ``scene`` (:func:`scene_of` the world it was chosen in, without ``cell``)."""
+    chosen in ``scene`` (:func:`scene_of` the world it was chosen in, without ``cell``) at ``tick``."""
 
     cell: Pos
     gave: str | None
     took: str | None
     scene: Scene
+    tick: int = 0
 
     def undone_by(self, other: Touch) -> bool:
-        """``other`` (a later touch) gives back what this one took and takes back what it gave, at the same cell."""
-        return other.cell == self.cell and other.gave == self.took and other.took == self.gave
+        """``other`` (a later touch) gives back what this one took and takes back what it gave, at the same cell, in
+        the same scene, within :data:`STALL_TICKS` ticks: a flicker."""
+        return (other.cell == self.cell and other.gave == self.took and other.took == self.gave
+                and other.scene == self.scene and other.tick - self.tick < STALL_TICKS)
 
 
 def scene_of(world: WorldState, rules: Rules, skip: Pos) -> Scene:
@@ -64,7 +73,7 @@ def touch_of(before: WorldState, events: Sequence[Event], rules: Rules) -> Touch
         if event.agent == "robot" and event.kind in COUNTER_KINDS:
             took = None if event.kind is EventKind.PUT_DOWN else event.obj
             return Touch(event.pos, before.robot.held if event.kind is not EventKind.PICK_UP else None, took,
-                         scene_of(before, rules, event.pos))
+                         scene_of(before, rules, event.pos), before.tick)
     return None
 
 
@@ -81,22 +90,21 @@ class FlickerWatch:
     flickers: int = 0
 
     def observe(self, before: WorldState, events: Sequence[Event], rules: Rules) -> FlickerWatch:
-        """The watch after the step from ``before`` with ``events``; an undo of the last touch chosen in the scene
-        that touch was chosen in counts."""
+        """The watch after the step from ``before`` with ``events``; a flicker (:meth:`Touch.undone_by`) counts."""
         if not robot_interacted(events):
             return self
         touch = touch_of(before, events, rules)
-        undone = touch is not None and self.last is not None and self.last.undone_by(touch) and (
-            touch.scene == self.last.scene)
+        undone = touch is not None and self.last is not None and self.last.undone_by(touch)
         return replace(self, last=touch, flickers=self.flickers + undone)
 
 
 def undoes(watch: FlickerWatch, layout: Layout, world: WorldState, rules: Rules) -> bool:
-    """Whether the robot's interact in ``world`` would undo its last touch in an unchanged scene (the robot acts
-    first in a step, so what the person does cannot change the robot's effect)."""
+    """Whether the robot's interact in ``world`` would be a flicker, undoing its last touch in an unchanged scene
+    within :data:`STALL_TICKS` ticks (the robot acts first in a step, so what the person does cannot change the
+    robot's effect)."""
     last = watch.last
     if last is None or world.robot.facing.ahead(world.robot.pos) != last.cell:
         return False
     _, events = step(layout, world, {"robot": Action.INTERACT, "human": Action.STAY}, rules)
     touch = touch_of(world, events, rules)
-    return touch is not None and last.undone_by(touch) and touch.scene == last.scene
+    return touch is not None and last.undone_by(touch)

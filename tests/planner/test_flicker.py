@@ -8,12 +8,14 @@ robot put a clean plate down and pick it up again tick after tick before the rul
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from planner.events import Event, EventKind
-from planner.flicker import FlickerWatch, Touch, scene_of, undoes
+from planner.flicker import STALL_TICKS, FlickerWatch, Touch, scene_of, undoes
 from planner.geometry import Action, Direction
 from planner.layout import parse_layout
 from planner.layout_gen import generate_named
@@ -46,7 +48,7 @@ def test_a_put_down_then_a_pick_up_of_the_same_plate_is_a_flicker():
     start = _world(robot_held=CLEAN_PLATE)
     down, events = _interact(start)
     watch = FlickerWatch().observe(start, events, RULES)
-    assert watch.last == Touch((3, 0), CLEAN_PLATE, None, scene_of(start, RULES, (3, 0)))
+    assert watch.last == Touch((3, 0), CLEAN_PLATE, None, scene_of(start, RULES, (3, 0)), start.tick)
     assert undoes(watch, KITCHEN, down, RULES), "picking the plate up again undoes the put-down"
     _, events = _interact(down)
     assert watch.observe(down, events, RULES).flickers == 1
@@ -94,3 +96,18 @@ def test_no_robot_undoes_its_last_touch_in_an_unchanged_scene(partner, generator
                        human=partner_model(partner, layout, RULES))
     assert result.flickers == 0, (f"kitchen {layout.name} (generator seed {generator_seed}) seed {seed}: {robot} "
                                   f"with the {partner} partner undid its last touch {result.flickers} times")
+
+
+def test_after_a_stall_as_long_as_the_standoff_rules_taking_the_item_back_is_no_flicker():
+    """A robot that put its plate down in front of a person who then waits for that very plate would otherwise stand
+    with them for the rest of the trial (a simulated participant of the pilot did): after ``STALL_TICKS`` ticks with
+    nothing changed the team is stalled, and taking the plate back breaks the stalemate."""
+    start = _world(robot_held=CLEAN_PLATE)
+    down, events = _interact(start)
+    watch = FlickerWatch().observe(start, events, RULES)
+    soon = replace(down, tick=down.tick + STALL_TICKS - 2)
+    late = replace(down, tick=down.tick + STALL_TICKS)
+    assert undoes(watch, KITCHEN, soon, RULES)
+    assert not undoes(watch, KITCHEN, late, RULES)
+    _, events = _interact(late)
+    assert watch.observe(late, events, RULES).flickers == 0
