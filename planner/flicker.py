@@ -14,8 +14,9 @@ An undo is a flicker only within ``STALL_TICKS`` ticks of the touch: after that 
 is stalled (the standoff rules' own threshold, docs/domain.md §5, "Standoffs"), and taking the item back breaks the
 stalemate (a simulated participant waiting for the plate the robot had put down in front of itself would otherwise
 wait with the robot for the rest of the trial). The robot keeps its last touch (:class:`FlickerWatch`) and never
-chooses an interaction that would undo it in an unchanged scene within that time (:func:`undoes`); the same watch, fed from outside with each step, counts the undone touches of a
-trial (the ``flickers`` of robot health and of a headless trial), so one rule both forbids and measures them.
+chooses an interaction that would undo it in an unchanged scene within that time (:func:`undoes`); the same watch,
+fed from outside with each step, counts the undone touches of a trial (the ``flickers`` of robot health and of a
+headless trial), so one rule both forbids and measures them.
 """
 
 from __future__ import annotations
