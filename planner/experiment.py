@@ -23,6 +23,7 @@ from scipy import stats
 from planner import robot_catalog
 from planner.decision import Decision, Robot
 from planner.layout import Layout
+from planner.partner import Person as SimulatedPerson
 from planner.perception import FOV_ANGLE, KB_DELAY
 from planner.play import TrialResult, TrialSettings, run_trial
 from planner.robot_api import Person
@@ -34,7 +35,8 @@ COLUMNS = ("layout", "robot", "seed", "ticks", "finished", "reward", "kb_diff_fr
            "kb_gap_mean", "kb_gap_ticks_pct",
            "robot_in_fov_pct", "decision_ms_p50", "decision_ms_p99", "holdings", "shown", "trips",
            "trip_share_sum", "robot_gap_pct", "gap_lag_pct", "gap_unseen_pct", "gap_stale_pct",
-           "robot_place_cells", "robot_place_wrong_pct", "robot_faults", "robot_fault")
+           "robot_place_cells", "robot_place_wrong_pct", "person_deliveries", "robot_deliveries", "person_steps",
+           "robot_steps", "first_delivery", "robot_flickers", "robot_faults", "robot_fault")
 GAP_PARTS = ("lag", "unseen", "stale")
 """The robot gap's parts (:func:`planner.behaviours.hands_gap`), % of ticks: they sum to ``robot_gap_pct``."""
 
@@ -43,19 +45,20 @@ GAP_PARTS = ("lag", "unseen", "stale")
 class TrialSpec:
     """One simulated trial. ``robot`` names the robot in the results; ``planner`` is the installed robot that plays
     it (default: ``robot``) with ``settings`` (fields of its declared settings, checked by the study) changed: a
-    study's own robot (its ``robot_variants``). ``rollout_samples`` and ``lookahead`` are the shipped planners'
-    (``simulate --lookahead``). ``rules``: the kitchen's numbers (a study's ``world``)."""
+    study's own robot (its ``robot_variants``). ``human_angle`` and ``kb_delay`` are the study's person: what every
+    robot is told of them and, unless ``person`` says otherwise, the simulated person
+    (:class:`planner.partner.Person`: a person who differs from the robots' model). ``rules``: the kitchen's numbers
+    (a study's ``world``)."""
 
     layout: Layout
     robot: str
     seed: int
     human_angle: float = FOV_ANGLE
     kb_delay: int = KB_DELAY
-    rollout_samples: int = 1
-    lookahead: str = "rollout"
     planner: str | None = None
     settings: tuple[tuple[str, Any], ...] = ()
     rules: Rules = field(default_factory=Rules)
+    person: SimulatedPerson | None = None
     hang_s: float = HANG_S
     """A decision running this long is stopped and the trial flagged (:mod:`planner.robot_guard`)."""
 
@@ -65,11 +68,12 @@ class TrialSpec:
         return self.planner or self.robot
 
     def setup(self) -> RobotSetup:
-        """What the robot is built with: the simulated person's view and KB delay, and its settings (for a shipped
-        planner its rollout samples and lookahead first)."""
-        shipped = robot_catalog.entry(self.installed).shipped
-        base = {"rollout_samples": self.rollout_samples, "lookahead": self.lookahead} if shipped else {}
-        return RobotSetup(Person(self.human_angle, self.kb_delay), tuple({**base, **dict(self.settings)}.items()))
+        """What the robot is built with: the study's person's view and KB delay, and its settings."""
+        return RobotSetup(Person(self.human_angle, self.kb_delay), self.settings)
+
+    def simulated(self) -> SimulatedPerson:
+        """The simulated person: ``person``, or the study's."""
+        return self.person if self.person is not None else SimulatedPerson(self.human_angle, self.kb_delay)
 
 
 class _Unbuilt:
@@ -88,14 +92,14 @@ class _Unbuilt:
 def run_spec(spec: TrialSpec) -> dict[str, object]:
     """One simulated trial as a row of ``trials.csv`` (importable by worker processes; the kitchen travels in
     the spec, so planner/ reads no files)."""
-    layout, rules = spec.layout, spec.rules
+    layout, rules, person = spec.layout, spec.rules, spec.simulated()
     try:
         built: Robot = robot_catalog.build(spec.installed, layout, rules, spec.setup())
     except Exception as exc:  # flagged below, like a robot that fails later
         built = _Unbuilt(exc)
     robot = GuardedRobot(built, spec.hang_s)
-    result = run_trial(layout, spec.seed, TrialSettings(angle=spec.human_angle, kb_delay=spec.kb_delay,
-                                                         rules=rules), robot=robot)
+    result = run_trial(layout, spec.seed, TrialSettings(angle=person.angle, kb_delay=person.delay, rules=rules),
+                       robot=robot, human=person.model(layout, rules))
     times = np.array(result.decision_ms) if result.decision_ms else np.zeros(1)
     return {
         "layout": layout.name, "robot": spec.robot, "seed": spec.seed, "ticks": result.ticks,
@@ -107,9 +111,18 @@ def run_spec(spec: TrialSpec) -> dict[str, object]:
         "robot_in_fov_pct": round(result.robot_in_fov_pct, 2),
         "decision_ms_p50": round(float(np.percentile(times, 50)), 3),
         "decision_ms_p99": round(float(np.percentile(times, 99)), 3),
-        **behaviour_columns(result),
+        **behaviour_columns(result), **work_columns(result),
         "robot_faults": robot.faults, "robot_fault": robot.first_fault or "",
     }
+
+
+def work_columns(result: TrialResult) -> dict[str, object]:
+    """Who delivered and who did the task steps (:mod:`planner.work_share`), and the robot's flickers."""
+    work = result.work
+    first = "human" if work.first.person else "robot" if work.first.robot else ""
+    return {"person_deliveries": work.deliveries.person, "robot_deliveries": work.deliveries.robot,
+            "person_steps": work.steps.person, "robot_steps": work.steps.robot, "first_delivery": first,
+            "robot_flickers": result.flickers}
 
 
 def behaviour_columns(result: TrialResult) -> dict[str, object]:

@@ -14,6 +14,7 @@ import numpy as np
 from planner.behaviours import Behaviours, Frame, HandsGap, frame_of, hands_gap, measure
 from planner.decision import Robot
 from planner.events import Event
+from planner.flicker import FlickerWatch
 from planner.geometry import Action, manhattan
 from planner.human import HumanMemory, HumanModel
 from planner.kb import KnowledgeBase, initial_kb, update_kb
@@ -24,6 +25,7 @@ from planner.rules import Rules
 from planner.state import WorldState, initial_state, is_done
 from planner.step import step
 from planner.summary import GAP_COMPONENTS, info_diff, kb_diff_trial, kb_gap_components, state_info
+from planner.work_share import WorkShare
 
 
 @dataclass(frozen=True, slots=True)
@@ -67,6 +69,10 @@ class TrialResult:
     """The reference's mean gap over the ticks that have one (``None`` when none has)."""
     kb_diff_mean: float = 0.0
     """The reference's mean gap over all ticks."""
+    flickers: int = 0
+    """Times the robot undid its own last touch of a counter in an unchanged scene (:mod:`planner.flicker`)."""
+    work: WorkShare = field(default_factory=WorkShare)
+    """Who delivered and who did the task steps (:mod:`planner.work_share`)."""
 
     def to_dict(self) -> dict[str, object]:
         return {
@@ -105,6 +111,8 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
     decision_ms: list[float] = []
     frames: list[Frame] = []
     timed_out = cycles_broken = 0
+    touches = FlickerWatch()
+    work = WorkShare()
     while not is_done(world, rules):
         if before_human is not None:
             before_human(kb, memory, human_rng)
@@ -115,7 +123,10 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
             decision_ms.append(decision.elapsed_ms)
             timed_out += decision.timed_out
             cycles_broken += decision.cycle_broken
+        before = world
         world, events = step(layout, world, {"human": h_action, "robot": r_action}, rules)
+        touches = touches.observe(before, events, rules)
+        work = work.observe(events)
         kb = update_kb(kb, layout, world, angle=settings.angle, kb_delay=settings.kb_delay,
                        own_events=[e for e in events if e.agent == "human"])
         gaps = kb_gap_components(kb, world, rules)
@@ -144,4 +155,5 @@ def run_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings
         behaviours=measure(frames, settings.kb_delay), hands=hands_gap(frames, settings.kb_delay),
         robot_place_cells=place_cells / ticks, robot_place_wrong_pct=100.0 * place_wrong / ticks,
         kb_diff_freq=diff_freq, kb_diff_avg=diff_avg, kb_diff_mean=diff_mean,
+        flickers=touches.flickers, work=work,
     )

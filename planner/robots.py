@@ -1,7 +1,7 @@
 """The robot planners by name (docs/domain.md §5): ``make_robot(name, layout, rules, config)``.
 
-``stay`` never moves (practice trials); ``fov_aware``, ``baseline`` and ``no_rollout`` are the
-hierarchical QMDP planner with different models of the human (see :mod:`planner.qmdp`).
+``stay`` never moves (practice trials); ``fov_aware``, ``fov_aware_showing``, ``baseline`` and ``no_rollout`` are
+the hierarchical QMDP planner with different models of the person and what they value (see :mod:`planner.qmdp`).
 """
 
 from __future__ import annotations

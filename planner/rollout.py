@@ -225,24 +225,15 @@ class Rollout:
 
     def knowing(self, before: SimState, world: WorldState, kb: KnowledgeBase, showing: str | None,
                 still_showing: bool = True) -> float:
-        """This tick's value of what the modelled person comes to know of the robot (docs/domain.md §5, "The
-        person's knowing"): at the tick their KB acknowledges ``showing`` (what the robot held when the decision
-        was made; ``still_showing``: it has held that ever since) ``+shown_value`` for an object and
-        ``+shown_empty`` for empty hands (a load put down where the person did not see it); a dish's way through
-        their view is planned apart (:mod:`planner.dish_walk`). Zero for a person who sees everything. Only what
-        the robot holds now earns the shown value: a cost for every unknown load in the lookahead made the robot
-        avoid and delay work, and one for every tick the KB still believes the robot holds what it put down made it
-        keep its load in view (measured, docs/domain.md §5). ``−wrong_hands`` (off by default) at every tick their
-        KB is wrong about what the robot holds, now that the exploration's candidates are bounded walks (the show
-        plan, a shortest path)."""
+        """The showing robot's value of what the modelled person comes to know of it this tick (docs/domain.md §5,
+        "The showing robot"): ``shown_value`` at the tick their KB acknowledges ``showing`` (the object the robot
+        held when the decision was made; ``still_showing``: it has held it ever since). Zero for empty hands and for
+        a person who sees everything. Only what the robot holds now earns it: a cost for every unknown load in the
+        lookahead made the robot avoid and delay work (measured, docs/benchmarks.md, "The showing robot")."""
         held = world.robot.held
-        value = 0.0
-        if still_showing and held == showing and kb.robot is not None and kb.robot.held == held and (
-                before.kb.robot is None or before.kb.robot.held != held):
-            value += self.cfg.shown_value if held is not None else self.cfg.shown_empty
-        if self.cfg.wrong_hands and (kb.robot is None or kb.robot.held != held):
-            value -= self.cfg.wrong_hands
-        return value
+        if held is None or not still_showing or held != showing or kb.robot is None or kb.robot.held != held:
+            return 0.0
+        return self.cfg.shown_value if before.kb.robot is None or before.kb.robot.held != held else 0.0
 
     def robot_move(self, world: WorldState, subtask: Subtask, human_parked: bool = False) -> Action:
         """The robot's next move toward ``subtask`` (walking around a human parked for two ticks)."""

@@ -5,7 +5,9 @@ stream per seed for every robot, so trials are paired): behaviour 1 (a pickup sh
 ``kb_delay`` consecutive ticks), behaviour 2 (share of a dish trip's ticks in the person's view), the robot
 component of the KB gap (% of ticks the person's KB is wrong about what the robot holds; split into lag, unseen
 and stale, :func:`planner.behaviours.hands_gap`), where the KB places the robot (``place_cells``: how many cells
-from where it is, on average; ``place_wrong``: % of ticks elsewhere) and ticks (:mod:`planner.behaviours`).
+from where it is, on average; ``place_wrong``: % of ticks elsewhere), the paper's KB gap (``kb_freq`` = its
+``kb_diff_freq``, % of ticks with a gap; ``kb_avg`` = ``kb_diff_avg``, the mean gap over those ticks;
+:mod:`planner.summary`), the person's share of the deliveries (``p_deliv``) and ticks (:mod:`planner.behaviours`).
 Kitchens: shipped ones by name (``--shipped``, default the paper's two study kitchens) and generated ones by
 generator seed (``--generator-seeds``; tune only on seeds < 1000, report on seeds ≥ 1000, as ``generated.py``
 does). Rows are appended to ``OUT/trials.csv`` as trials finish.
@@ -55,7 +57,8 @@ from study_config import load_layout
 
 COLUMNS = ("kitchen", "robot", "seed", "ticks", "finished", "holdings", "shown", "trips", "trip_share_sum",
            "robot_gap_pct", "gap_lag_pct", "gap_unseen_pct", "gap_stale_pct", "robot_place_cells",
-           "robot_place_wrong_pct", "kb_gap_mean", "robot_faults", "robot_fault")
+           "robot_place_wrong_pct", "kb_gap_mean", "kb_diff_freq", "kb_diff_avg", "person_deliveries",
+           "robot_deliveries", "robot_faults", "robot_fault")
 
 
 @dataclass(frozen=True, slots=True)
@@ -100,7 +103,9 @@ def run_one(spec: Spec) -> dict[str, object]:
     result = run_trial(layout, spec.seed, TrialSettings(FOV_ANGLE, KB_DELAY, rules), robot=robot)
     return {"kitchen": spec.kitchen, "robot": spec.robot, "seed": spec.seed, "ticks": result.ticks,
             "finished": int(result.finished), **behaviour_columns(result),
-            "kb_gap_mean": round(result.kb_gap_mean, 4),
+            "kb_gap_mean": round(result.kb_gap_mean, 4), "kb_diff_freq": round(result.kb_diff_freq, 2),
+            "kb_diff_avg": "" if result.kb_diff_avg is None else round(result.kb_diff_avg, 4),
+            "person_deliveries": result.work.deliveries.person, "robot_deliveries": result.work.deliveries.robot,
             "robot_faults": robot.faults, "robot_fault": robot.first_fault or ""}
 
 
@@ -172,9 +177,14 @@ def trial_values(row: dict[str, Any]) -> dict[str, float | None]:
              for part in GAP_PARTS}
     place = {name: float(row[column]) if row.get(column) else None
              for name, column in (("place_cells", "robot_place_cells"), ("place_wrong", "robot_place_wrong_pct"))}
+    delivered = int(row.get("person_deliveries") or 0) + int(row.get("robot_deliveries") or 0)
     return {"b1": int(row["shown"]) / holdings if holdings else None,
             "b2": float(row["trip_share_sum"]) / trips if trips else None,
-            "robot_gap": float(row["robot_gap_pct"]), **parts, **place, "ticks": float(row["ticks"])}
+            "robot_gap": float(row["robot_gap_pct"]), **parts, **place,
+            "kb_freq": float(row["kb_diff_freq"]) if row.get("kb_diff_freq") else None,
+            "kb_avg": float(row["kb_diff_avg"]) if row.get("kb_diff_avg") else None,
+            "p_deliv": int(row["person_deliveries"]) / delivered if delivered else None,
+            "ticks": float(row["ticks"])}
 
 
 def paired(a: list[float], b: list[float]) -> str:
@@ -207,8 +217,9 @@ def table(rows: list[dict[str, Any]]) -> str:
         part = groups[name]
         lines.append(f"== {name}: {len({r['kitchen'] for r in part})} kitchen(s), "
                      f"seeds {len({r['seed'] for r in part})}")
-        lines.append(f"{'robot':<12}{'trials':>7}{'unf.':>6}{'b1 shown':>16}{'b2 trip share':>20}"
-                     f"{'robot gap %':>13}{'ticks':>9}   robot gap = lag + unseen + stale")
+        lines.append(f"{'robot':<19}{'trials':>7}{'unf.':>6}{'b1 shown':>16}{'b2 trip share':>20}"
+                     f"{'robot gap %':>13}{'kb_diff freq':>13}{'avg':>7}{'ticks':>9}"
+                     "   robot gap = lag + unseen + stale")
         for robot in robots:
             mine = [r for r in part if r["robot"] == robot]
             if not mine:
@@ -219,8 +230,12 @@ def table(rows: list[dict[str, Any]]) -> str:
             share = sum(float(r["trip_share_sum"]) for r in mine)
             b1 = f"{shown / holdings:.2f} ({holdings})" if holdings else "-"
             b2 = f"{share / trips:.2f} ({trips} trips)" if trips else "-"
-            lines.append(f"{robot:<12}{len(mine):>7}{sum(1 for r in mine if not int(r['finished'])):>6}{b1:>16}"
+            freq = [float(r["kb_diff_freq"]) for r in mine if r.get("kb_diff_freq")]
+            avg = [float(r["kb_diff_avg"]) for r in mine if r.get("kb_diff_avg")]
+            lines.append(f"{robot:<19}{len(mine):>7}{sum(1 for r in mine if not int(r['finished'])):>6}{b1:>16}"
                          f"{b2:>20}{statistics.mean(float(r['robot_gap_pct']) for r in mine):>13.1f}"
+                         f"{statistics.mean(freq) if freq else float('nan'):>13.1f}"
+                         f"{statistics.mean(avg) if avg else float('nan'):>7.3f}"
                          f"{statistics.mean(float(r['ticks']) for r in mine):>9.1f}{gap_parts(mine)}")
         base = {(r["kitchen"], r["seed"]): trial_values(r) for r in part if r["robot"] == "baseline"}
         for robot in robots:
@@ -232,7 +247,7 @@ def table(rows: list[dict[str, Any]]) -> str:
                 continue
             lines.append(f"  {robot} − baseline (paired per kitchen × seed, mean [95% CI]):")
             for measure_name in ("b1", "b2", "robot_gap", *(f"gap_{part}" for part in GAP_PARTS), "place_cells",
-                                 "place_wrong", "ticks"):
+                                 "place_wrong", "kb_freq", "kb_avg", "p_deliv", "ticks"):
                 pairs = [(values[k][measure_name], base[k][measure_name]) for k in keys
                          if values[k][measure_name] is not None and base[k][measure_name] is not None]
                 if not pairs:

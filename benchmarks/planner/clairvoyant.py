@@ -45,15 +45,32 @@ from planner.geometry import Action
 from planner.human import HumanMemory
 from planner.kb import KnowledgeBase
 from planner.layout import Layout, LayoutError
+from planner.moment import Moment
 from planner.planner_config import PlannerConfig
 from planner.play import TrialSettings, run_trial
 from planner.qmdp import QmdpRobot
 from planner.rules import Rules
 from planner.state import WorldState
 from planner.subtasks import Subtask
+from planner.valuation import Valuation
 from study_config import layout_names, load_layout
 
 ROBOTS = ("clairvoyant", "fov_aware", "baseline")
+
+
+class ClairvoyantValuation(Valuation):
+    """Rollouts that replay the true human (see the module docstring)."""
+
+    snapshot: tuple[KnowledgeBase, HumanMemory, np.random.Generator] | None = None
+
+    def sampled(self, m: Moment, human_subtask: Subtask, robot_subtask: Subtask, prefix: tuple[Action, ...] = (),
+                knowing: bool = False) -> float:
+        """One rollout from the true human state (``human_subtask`` and the moment's seed are ignored); ``knowing``
+        as :meth:`planner.valuation.Valuation.sampled`."""
+        assert self.snapshot is not None, "see_human() must be called before decide()"
+        kb, memory, human_rng = self.snapshot
+        return self.rollout(m).run(m.world, kb, memory, copy.deepcopy(human_rng), robot_subtask, m.horizon, prefix,
+                                   parked_for=m.human_still, knowing=knowing)
 
 
 class ClairvoyantRobot(QmdpRobot):
@@ -61,20 +78,14 @@ class ClairvoyantRobot(QmdpRobot):
 
     def __init__(self, layout: Layout, rules: Rules, config: PlannerConfig) -> None:
         super().__init__(layout, rules, config, explore=True)
-        self.snapshot: tuple[KnowledgeBase, HumanMemory, np.random.Generator] | None = None
+
+    def make_valuation(self, showing: bool) -> Valuation:
+        return ClairvoyantValuation(self.layout, self.rules, self.cfg, knowing=False)
 
     def see_human(self, kb: KnowledgeBase, memory: HumanMemory, rng: np.random.Generator) -> None:
         """The human's true state before it acts this tick (``rng`` must be a copy; it is not consumed)."""
-        self.snapshot = (kb, memory, rng)
-
-    def sampled(self, world: WorldState, human_subtask: Subtask, robot_subtask: Subtask, horizon: int,
-                seed: int, prefix: tuple[Action, ...] = (), knowing: bool = False) -> float:
-        """One rollout from the true human state (``human_subtask`` and ``seed`` are ignored); ``knowing`` as
-        :meth:`planner.qmdp.QmdpRobot.sampled`."""
-        assert self.snapshot is not None, "see_human() must be called before decide()"
-        kb, memory, human_rng = self.snapshot
-        return self.rollout.run(world, kb, memory, copy.deepcopy(human_rng), robot_subtask, horizon, prefix,
-                                parked_for=self.human_still, knowing=knowing)
+        assert isinstance(self.valuation, ClairvoyantValuation)
+        self.valuation.snapshot = (kb, memory, rng)
 
 
 def clairvoyant_trial(layout: Layout, seed: int, settings: TrialSettings = TrialSettings()) -> WorldState:

@@ -54,7 +54,7 @@ from planner.state import WorldState, initial_state
 from planner.step import step
 from study_config import layout_names, load_layout
 
-ROBOTS = ("fov_aware", "baseline", "no_rollout")
+ROBOTS = ("fov_aware", "fov_aware_showing", "baseline", "no_rollout")
 
 
 @dataclass(frozen=True, slots=True)
@@ -143,7 +143,7 @@ def main(argv: list[str] | None = None) -> int:
                 print(f"{i}/{len(specs)} trials", file=sys.stderr, flush=True)
     print(f"{len(shipped)} shipped + {len(generated)} generated kitchens × seeds {seeds.start}–{seeds.stop - 1}; "
           f"adversary budget {args.budget} ticks; horizon {Rules().horizon}")
-    print(f"{'partner':<11}{'robot':<12}{'unfinished':>11}{'impossible':>11}{'trials':>8}{'mean ticks':>12}"
+    print(f"{'partner':<11}{'robot':<19}{'unfinished':>11}{'impossible':>11}{'trials':>8}{'mean ticks':>12}"
           f"{'extra steaks':>14}{'max excess':>12}{'cycles broken':>15}")
     for partner in partners:
         for robot in robots:
@@ -156,7 +156,7 @@ def main(argv: list[str] | None = None) -> int:
             extra = sum(int(str(r["extra_steaks"])) for r in part)
             excess = max(int(str(r["excess"])) for r in part)
             cycles = sum(int(str(r["cycles"])) for r in part)
-            print(f"{partner:<11}{robot:<12}{stalled:>11}{impossible:>11}{len(part):>8}{mean:>12.1f}{extra:>14}"
+            print(f"{partner:<11}{robot:<19}{stalled:>11}{impossible:>11}{len(part):>8}{mean:>12.1f}{extra:>14}"
                   f"{excess:>12}{cycles:>15}")
     stalls = [r for r in rows if not r["finished"] and r["possible"]]
     print(f"stalls: {len(stalls)}")

@@ -40,6 +40,7 @@ from planner.fov import in_view_heading
 from planner.geometry import Direction, Pos
 from planner.objects import CLEAN_PLATE, DIRTY_PLATE, DISH, MEAT, ONION, STEAK_PLATE
 from planner.perception import KB_DELAY
+from planner.work_share import Tally, WorkShare
 
 LOG_DIR = "overcooked_ai_py/data/logs/vr_study_logs"
 LOG_NAME = re.compile(r"^(\d+)/\1_(none|mid)_(aware|unaware)\.json$")
@@ -121,6 +122,36 @@ def frames_of(log: dict[str, Any], kitchen: str, angle: float) -> list[Frame]:
         frames.append(Frame(held, seen, delivered))
         orders_before = orders
     return frames
+
+
+def work_of(log: dict[str, Any]) -> WorkShare:
+    """Who did the work in a parsed log (:mod:`planner.work_share`): a task step is a change of what an agent holds
+    from one decision step to the next (the states sent to the planner; the presses of chopping and washing are not
+    seen there, so ``presses`` stays empty), a delivery an agent's dish gone with one order fewer. The logs end
+    after the first delivery, so the steps up to it are all of them."""
+    if "i" not in log:
+        raise LogError("no key 'i' (the number of decision steps)")
+    steps, deliveries, first = Tally(), Tally(), Tally()
+    before: tuple[list[str | None], int] | None = None
+    for k in range(1, int(log["i"])):
+        entry = log.get(str(k))
+        if entry is None or "overcooked_state_sent" not in entry:
+            continue
+        state = entry["overcooked_state_sent"]
+        try:
+            held = [_held(state["players"][i], k) for i in (0, 1)]
+            orders = len(state["order_list"])
+        except (KeyError, IndexError, TypeError) as exc:
+            raise LogError(f"step {k}: overcooked_state_sent lacks {exc}") from exc
+        if before is not None:
+            for agent, was, now in zip(("robot", "human"), before[0], held, strict=True):
+                if now != was:
+                    steps = steps.plus(agent)
+                    if was == DISH and now is None and orders < before[1]:
+                        deliveries = deliveries.plus(agent)
+                        first = first if first.total else first.plus(agent)
+        before = (held, orders)
+    return WorkShare(deliveries=deliveries, steps=steps, steps_to_first=steps, first=first)
 
 
 def log_files(names: list[str], include_ignored: bool) -> list[LogFile]:

@@ -28,9 +28,6 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     parser.add_argument("--human-angle", type=float, metavar="DEG",
                         help=f"the simulated person's field of view (default {FOV_ANGLE:g}, or the study's)")
     parser.add_argument("--kb-delay", type=int, help=f"the person's KB delay (default {KB_DELAY})")
-    parser.add_argument("--lookahead", default="rollout", choices=("rollout", "abstract"),
-                        help="how the QMDP robots plan: tick rollouts (default) or docs/domain.md §5 as the "
-                             "reference did it (motion-sequence exploration and abstract-state search)")
     parser.add_argument("--jobs", type=int, default=0, help="worker processes (0 = one per core)")
     parser.add_argument("--out", required=True, metavar="DIR")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -62,7 +59,6 @@ def _simulate(args: argparse.Namespace) -> int:
         writer = csv.DictWriter(handle, fieldnames=COLUMNS)
         writer.writeheader()
         writer.writerows(rows)
-    print(f"lookahead: {args.lookahead}")
     print(summarize_trials(rows))
     for measure in ("kb_diff_freq", "kb_diff_mean", "kb_gap_mean"):  # the paper's KB gap first, ours last
         for line in robot_effects(rows, measure, robots):
@@ -102,7 +98,7 @@ def _named_specs(args: argparse.Namespace) -> tuple[list[str], list[TrialSpec]]:
     angle = FOV_ANGLE if args.human_angle is None else args.human_angle
     delay = KB_DELAY if args.kb_delay is None else args.kb_delay
     _check_person(angle, delay)
-    return robots, [TrialSpec(lay, r, s, angle, delay, lookahead=args.lookahead) for lay in layouts
+    return robots, [TrialSpec(lay, r, s, angle, delay) for lay in layouts
                     for r in robots for s in range(args.seeds)]
 
 
@@ -132,7 +128,7 @@ def _study_specs(args: argparse.Namespace) -> tuple[list[str], list[TrialSpec]]:
     robots = list(study.robots)
     settings = {name: tuple(variant.settings.items()) for name, variant in study.robot_variants.items()}
     specs = [TrialSpec(loaded.layout(kitchen.name), robot, seed, angle, study.world.kb_delay,
-                       lookahead=args.lookahead, planner=loaded.planner(robot), settings=settings.get(robot, ()),
+                       planner=loaded.planner(robot), settings=settings.get(robot, ()),
                        rules=loaded.rules)
              for kitchen in study.kitchens for robot in robots for seed in range(args.seeds)]
     return robots, specs

@@ -11,14 +11,25 @@ trial with many of them did not test the robot its condition names. The study's
 - **at the end**: the trial is invalid when ``lost > P % × decisions`` (a trial that ended early, all orders
   delivered, is judged on the decisions it made).
 
+A robot that undoes its own last touch of a counter while nothing else has changed (puts a plate down and picks it
+up again, :mod:`planner.flicker`) flickers; the planners never choose to, so each such cycle is counted from outside
+(:meth:`RobotHealth.stepped`) and more than the study's ``validity.max_robot_flickers`` (default 0) makes the trial
+invalid as it happens, like the missed decisions.
+
 Once invalid, a trial stays invalid. The state is an immutable value; :meth:`RobotHealth.record` returns the
 next one.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
 from typing import Any
+
+from planner.events import Event
+from planner.flicker import FlickerWatch
+from planner.rules import Rules
+from planner.state import WorldState
 
 
 @dataclass(frozen=True, slots=True)
@@ -32,11 +43,23 @@ class RobotHealth:
     invalid_reason: str | None = None
     failed: int = 0
     """Decisions the robot failed (counted apart from the late ones: ``missed``)."""
+    max_flickers: int = 0
+    """The study's ``validity.max_robot_flickers``."""
+    touches: FlickerWatch = field(default_factory=FlickerWatch)
+    """The robot's last touch and its undone touches so far (counted in this process: a resumed trial starts at 0)."""
 
     @property
     def lost(self) -> int:
         """Decisions the robot did not make in time: late or failed."""
         return self.missed + self.failed
+
+    @property
+    def flickers(self) -> int:
+        return self.touches.flickers
+
+    @property
+    def flickered(self) -> bool:
+        return self.flickers > self.max_flickers
 
     @property
     def missed_pct(self) -> float:
@@ -55,9 +78,19 @@ class RobotHealth:
             return replace(after, invalid_reason=after.reason())
         return after
 
+    def stepped(self, before: WorldState, events: Sequence[Event], rules: Rules) -> RobotHealth:
+        """The health after the world's step from ``before`` (``events``: the step's): a flicker past the study's
+        limit makes the trial invalid."""
+        now = replace(self, touches=self.touches.observe(before, events, rules))
+        if not now.invalid and now.flickered:
+            return replace(now, invalid_reason=(f"the robot undid its own last interaction {now.flickers} times "
+                                                f"with nothing else changed (> {now.max_flickers})"))
+        return now
+
     def final(self) -> RobotHealth:
-        """The health judged over the decisions the trial made (at its end)."""
-        if self.invalid or 100.0 * self.lost > self.threshold_pct * self.decisions:
+        """The health judged over the decisions the trial made (at its end); a flicker's reason stays."""
+        if (100.0 * self.lost > self.threshold_pct * self.decisions
+                or (self.invalid and not self.flickered)):
             return replace(self, invalid_reason=self.reason())
         return self
 
@@ -70,5 +103,6 @@ class RobotHealth:
 
     def to_dict(self) -> dict[str, Any]:
         return {"decisions": self.decisions, "missed": self.missed, "failed": self.failed,
-                "missed_pct": round(self.missed_pct, 2),
-                "threshold_pct": self.threshold_pct, "invalid": self.invalid, "invalid_reason": self.invalid_reason}
+                "missed_pct": round(self.missed_pct, 2), "threshold_pct": self.threshold_pct,
+                "flickers": self.flickers, "max_flickers": self.max_flickers,
+                "invalid": self.invalid, "invalid_reason": self.invalid_reason}

@@ -10,9 +10,12 @@ from __future__ import annotations
 
 import asyncio
 import logging
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
+from planner.events import Event
+from planner.rules import Rules
+from planner.state import WorldState
 from server.game.health import RobotHealth
 from server.game.meta import TrialMeta
 from store import trials
@@ -31,7 +34,16 @@ class HealthKeeper:
     def record(self, missed: bool, failed: bool = False) -> None:
         """Count one decision (late: ``missed``; the robot's fault: ``failed``); the moment the trial becomes
         invalid, say so and store it."""
-        if self.update(self.health.record(missed, failed), "is invalid"):
+        self.take(self.health.record(missed, failed))
+
+    def stepped(self, before: WorldState, events: Sequence[Event], rules: Rules) -> None:
+        """Watch the step from ``before`` for a flicker of the robot (:meth:`RobotHealth.stepped`), as :meth:`record`
+        counts a decision."""
+        self.take(self.health.stepped(before, events, rules))
+
+    def take(self, health: RobotHealth) -> None:
+        """Take ``health``; the moment it makes the trial invalid, say so and store it."""
+        if self.update(health, "is invalid"):
             task = asyncio.create_task(asyncio.to_thread(self.store_now, self.health))
             self._writes.add(task)
             task.add_done_callback(self._writes.discard)

@@ -111,7 +111,8 @@ class LiveGame:
                                     PILOT_DECISION_S if fast else deps.deadline_fraction * self.pacing.period,
                                     PILOT_DECISION_S if fast else FIRST_DECISION_S)
         self.keeper = HealthKeeper(
-            health or RobotHealth(loaded.study.validity.max_missed_decisions_pct, engine.rules.horizon),
+            health or RobotHealth(loaded.study.validity.max_missed_decisions_pct, engine.rules.horizon,
+                                  max_flickers=loaded.study.validity.max_robot_flickers),
             deps.store, meta, self.event)
         self.stalls = StallHints(timing.stall_hint_ticks())
         self.part = TakingPart(loaded.study.validity, timing.tick_rate_hz, judged=meta.kind == "main")
@@ -282,7 +283,9 @@ class LiveGame:
                 continue
             started = time.monotonic()
             choice = await self._take_decision()
+            before = self.engine.world
             outcome = self.engine.advance(choice.action)
+            self.keeper.stepped(before, outcome.events, self.engine.rules)
             self._record(outcome, choice, max(started - scheduled, 0.0) * 1000)
             if outcome.blocked is not None:
                 self._blocked(outcome.blocked)

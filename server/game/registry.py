@@ -223,7 +223,8 @@ class GameRegistry:
     def _build(self, loaded: LoadedStudy, participant: ParticipantRow, prepared: Prepared) -> LiveGame:
         row, study = prepared.trial, loaded.study
         health = RobotHealth(study.validity.max_missed_decisions_pct, loaded.rules.horizon, prepared.decisions,
-                             prepared.missed, row.invalid_reason, failed=prepared.failed)
+                             prepared.missed, row.invalid_reason, failed=prepared.failed,
+                             max_flickers=study.validity.max_robot_flickers)
         last = prepared.last_tick
         meta = dataclasses.replace(trial_meta(loaded, participant, row), epoch=prepared.epoch)
         return LiveGame(meta, loaded, trial_engine(loaded, row, last), self.deps,

@@ -56,11 +56,12 @@ class Study(StudyModel):
     kitchens: Annotated[tuple[KitchenEntry, ...], NotEmpty]
     """Levels of the kitchen factor: shipped kitchen names or layout paths relative to the study file."""
     robot_variants: dict[VariantName, RobotVariant] = Field(default_factory=dict)
-    """The study's own robots, by name: a planner with some of its settings changed, e.g. ``fov_aware_no_walk:
-    {planner: fov_aware, settings: {hands_walk: false}}`` (``study_config/study/robots.py``)."""
+    """The study's own robots, by name: a planner with some of its settings changed, e.g. ``fov_aware_far:
+    {planner: fov_aware, settings: {exploration_depth: 6}}`` (``study_config/study/robots.py``)."""
     robots: Annotated[tuple[Slug, ...], NotEmpty]
-    """Levels of the robot factor: installed robots (the shipped ``fov_aware``, ``baseline``, ``no_rollout``,
-    ``stay``, and plug-ins: ``steakhouse robots`` lists them, docs/robots.md) or the names of ``robot_variants``."""
+    """Levels of the robot factor: installed robots (the shipped ``fov_aware``, ``fov_aware_showing``, ``baseline``,
+    ``no_rollout``, ``stay``, and plug-ins: ``steakhouse robots`` lists them, docs/robots.md) or the names of
+    ``robot_variants``."""
     view: ViewName | None = None
     """How participants see the kitchen in every trial: ``top_down`` (the default) or ``first_person``
     (``study_config.study.views``). Shorthand for ``views`` with one entry; write one of the two."""

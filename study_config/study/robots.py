@@ -1,13 +1,13 @@
 """A study's own robots: an installed robot (``planner.robot_catalog``: a shipped planner or a plug-in) with some
 of its settings changed.
 
-A researcher who compares, say, the FOV-aware robot with and without its hands walk writes::
+A researcher who compares, say, the FOV-aware robot with one that explores longer walks writes::
 
-    robots: [fov_aware, fov_aware_no_walk, baseline]
+    robots: [fov_aware, fov_aware_far, baseline]
     robot_variants:
-      fov_aware_no_walk:
+      fov_aware_far:
         planner: fov_aware
-        settings: {hands_walk: false}
+        settings: {exploration_depth: 6}
 
 A variant's name is a level of the robot factor like a planner's (it appears in conditions, the store and the
 exports; never in the participant's browser). Its settings are fields of the robot's declared settings (for the
@@ -39,7 +39,8 @@ class RobotVariant(StudyModel):
     """A robot of the study: ``planner`` with ``settings`` changed."""
 
     planner: RobotName
-    """The installed robot it is (``fov_aware``, ``baseline``, ``no_rollout``, ``stay``, or a plug-in)."""
+    """The installed robot it is (``fov_aware``, ``fov_aware_showing``, ``baseline``, ``no_rollout``, ``stay``, or a
+    plug-in)."""
     settings: dict[str, Any] = Field(default_factory=dict)
     """Settings of that robot (for the shipped planners ``PlannerConfig`` fields, docs/domain.md §5; for a plug-in
     its declared settings, ``steakhouse robots --settings NAME``) that differ from its defaults."""
@@ -62,7 +63,7 @@ class RobotVariant(StudyModel):
         raise_problems(problems, settings)
         try:
             declared(**checked)
-        except (ValueError, TypeError) as exc:  # the settings' own check (e.g. the planner's lookahead)
+        except (ValueError, TypeError) as exc:  # the settings dataclass's own checks
             raise_problems([((), str(exc))], settings)
         return checked
 

@@ -1,10 +1,11 @@
 """When a trial counts as data: the study's ``validity`` section (docs/operations.md, "Robot health" and
 "Engagement").
 
-Two rules mark a main trial as not analysable: the robot's health (decisions past their deadline,
-``server.game.health``) and the participant's engagement (``server.flow.engagement``: a round played without
-taking part). A participant with more abandoned or low-engagement main rounds than ``max_invalid_rounds`` gets
-the screen-out outcome instead of the completion code (``server.flow.standing``).
+Two rules mark a main trial as not analysable: the robot's health (decisions past their deadline, or a robot that
+undoes its own last interaction: ``server.game.health``) and the participant's engagement
+(``server.flow.engagement``: a round played without taking part). A participant with more abandoned or
+low-engagement main rounds than ``max_invalid_rounds`` gets the screen-out outcome instead of the completion code
+(``server.flow.standing``).
 
 :func:`round_status` is the one rule for what an attempt at a trial is worth as data, shared by the server
 (whether a participant still counts toward their condition order, and whether they took part:
@@ -71,6 +72,10 @@ class Validity(StudyModel):
     max_missed_decisions_pct: float = Field(default=DEFAULT_MAX_MISSED_DECISIONS_PCT, ge=0, le=100)
     """The robot stood still for a missed decision; past this share of the trial's decisions (in %) the trial
     did not test the robot the condition names, and is marked invalid with the share as the reason."""
+    max_robot_flickers: int = Field(default=0, ge=0)
+    """The robot undid its own last interaction (put an item down and picked it up again, or the reverse) with
+    nothing else changed more often than this (``planner/flicker.py``; the planners never choose to): the trial did
+    not test the robot the condition names, and is marked invalid with the count as the reason."""
     min_participant_actions: int = Field(default=1, ge=0)
     """A main trial with fewer of the participant's actions (task choices plus interrupts) is
     ``low_engagement``: the robot played it alone."""

@@ -12,7 +12,7 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "benchmarks" / "planner"))
-behaviours = importlib.import_module("behaviours")  # the benchmark script, as hands_bound.py imports it
+behaviours = importlib.import_module("behaviours")  # the benchmark script, as dish_bound.py imports it
 
 
 def parsed(*argv: str) -> argparse.Namespace:

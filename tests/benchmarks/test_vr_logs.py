@@ -88,3 +88,17 @@ def test_it_reads_a_checked_out_folder(tmp_path, capsys):
     assert vr_logs.main([str(tmp_path), "--angles", "120"]) == 0
     out = capsys.readouterr().out
     assert "mid_2" in out and "1.00 (1)" in out and "1.00 (1 trips)" in out
+
+
+def test_who_did_the_work_is_read_from_the_agents_hands():
+    """The robot takes the dish and delivers it (two steps of its own, one delivery, the first); the person, who
+    takes an onion between, one step."""
+    steps = [step([5, 3], None, [5, 1], SOUTH), step([5, 3], "dish", [5, 1], SOUTH)]
+    onion = step([5, 3], "dish", [5, 1], SOUTH)
+    onion["overcooked_state_sent"]["players"][1]["held_object"] = {"id": 2, "name": "onion", "position": [5, 1]}
+    steps += [onion, step([5, 3], None, [5, 1], SOUTH, orders=1)]
+    steps[-1]["overcooked_state_sent"]["players"][1]["held_object"] = {"id": 2, "name": "onion", "position": [5, 1]}
+    work = vr_logs.work_of({"i": len(steps) + 1, **{str(k + 1): s for k, s in enumerate(steps)}})
+    assert (work.steps.robot, work.steps.person) == (2, 1)
+    assert (work.deliveries.robot, work.deliveries.person, work.first.robot) == (1, 0, 1)
+    assert work.steps_to_first == work.steps and work.presses.total == 0

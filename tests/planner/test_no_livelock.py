@@ -22,7 +22,7 @@ from planner.rules import Rules
 from planner.state import initial_state
 
 RULES = Rules()
-ROBOTS = ("fov_aware", "baseline", "no_rollout")
+ROBOTS = ("fov_aware", "fov_aware_showing", "baseline", "no_rollout")
 
 
 @settings(max_examples=5, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])

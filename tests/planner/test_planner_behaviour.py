@@ -1,16 +1,12 @@
-"""Behaviours the paper reports from the FOV-aware robot (§VI-C), in hand-built situations.
+"""The exploration of the FOV-aware robot (docs/domain.md §5) in a hand-built situation: a walk through the person's
+view is explored, and taken only when the team's progress in the robot's model pays for it.
 
-The robot has just plated a steak out of the human's view; the human last saw it with a clean plate.
-The FOV-aware robot steps into the human's view and stays there until the human can acknowledge what
-it holds (``kb_delay`` ticks), then goes on to the board; the baseline, and the no-rollout robot, which
-shares the FOV-aware belief but does not explore, walk straight to the board out of view.
-
-The person here stands still while the robot's model of them expects them to carry their plate west to the
-sink, ahead of the robot. Valuing the person's knowing (the default, docs/domain.md §5) the FOV-aware robot
-expects to be seen on that way anyway and walks straight on; so these scenes run the exploration on the
-shaping potential alone (``shown_value`` and ``wrong_hands`` 0) and with the show plan (``hands_walk`` off),
-where the show plan wins on what the person's knowing does for the team. The default robot's hands walk:
-``test_planner_behaviour_pickup.py``.
+The robot has just plated a steak out of the human's view; the human last saw it with a clean plate and stands
+with a dirty plate. The FOV-aware robot explores the show plan (a step into the person's view, then staying there
+until the person could acknowledge the plated steak), but in its model the person carries their plate west to the
+sink at once and would not see it, so the rollouts value the direct way more and it goes straight to the board.
+The baseline and the no-rollout robot, which explore nothing, go straight too. (The scenes where showing pays:
+``test_planner_behaviour_onion.py`` and ``…_island.py``.)
 """
 
 from __future__ import annotations
@@ -19,7 +15,6 @@ from dataclasses import replace
 
 import numpy as np
 
-from planner.events import Event
 from planner.fov import visible_cells
 from planner.geometry import Action, Direction
 from planner.objects import CLEAN_PLATE, DIRTY_PLATE, STEAK_PLATE
@@ -27,13 +22,12 @@ from planner.planner_config import PlannerConfig
 from planner.robots import make_robot
 from planner.rules import Rules
 from planner.state import AgentState, initial_state
-from planner.step import step
 from study_config import load_layout
 
 RULES = Rules()
 LAYOUT = load_layout("none_3")
 HUMAN = AgentState((9, 2), Direction.NORTH, DIRTY_PLATE)
-POTENTIAL_ONLY = PlannerConfig(shown_value=0.0, wrong_hands=0.0, hands_walk=False)
+DEFAULT = PlannerConfig()
 
 
 def situation():
@@ -45,7 +39,7 @@ def situation():
 
 def first_decision(name: str):
     before, now = situation()
-    robot = make_robot(name, LAYOUT, RULES, POTENTIAL_ONLY)
+    robot = make_robot(name, LAYOUT, RULES, DEFAULT)
     robot.reset(before)
     return robot, now, robot.decide(now, (), np.random.default_rng(0))
 
@@ -62,30 +56,17 @@ def test_the_situation_is_out_of_view_and_the_kb_is_stale():
     assert robot.kb.robot.held == CLEAN_PLATE
 
 
-def test_fov_aware_robot_steps_into_view_to_show_the_plated_steak():
+def test_fov_aware_robot_explores_the_way_into_view_and_goes_straight_when_the_person_will_not_see():
     robot, now, decision = first_decision("fov_aware")
-    assert lands_in_view(now, decision.action)
-    assert decision.explored_kbs >= 2
-    assert robot.pending == (Action.STAY,) * (3 - 1)
+    assert decision.explored_kbs >= 2, "the show plan and the direct move were both rolled out"
+    assert robot.show.plan(now, robot.kb, ((4, 1),)), "a way into the person's view exists"
+    assert decision.action is Action.WEST and not lands_in_view(now, decision.action)
+    assert robot.show.pending == ()
 
 
 def test_baseline_and_no_rollout_robots_go_straight_to_the_board_out_of_view():
     for name in ("baseline", "no_rollout"):
         _, now, decision = first_decision(name)
         assert decision.action is Action.WEST, name
+        assert decision.explored_kbs == 0, name
         assert not lands_in_view(now, decision.action), name
-
-
-def test_it_stays_until_the_human_can_know_then_goes_on():
-    robot, world, decision = first_decision("fov_aware")
-    rng = np.random.default_rng(0)
-    actions = [decision.action]
-    events: tuple[Event, ...] = ()
-    for _ in range(6):
-        world, events = step(LAYOUT, world, {"human": Action.STAY, "robot": actions[-1]}, RULES)
-        actions.append(robot.decide(world, events, rng).action)
-        if robot.kb.robot.held == STEAK_PLATE:
-            break
-    assert robot.kb.robot.held == STEAK_PLATE
-    assert actions[1:3] == [Action.STAY, Action.STAY]
-    assert actions[-1] is Action.WEST

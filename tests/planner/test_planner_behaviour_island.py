@@ -7,21 +7,13 @@ to fill. Both ways around the island to the board are equally short. The FOV-awa
 island's west end, where the human is looking, and steps a little further out of its way to be seen
 long enough (``kb_delay`` ticks) for the human to acknowledge the onion; the baseline, which models an
 omniscient human, takes a shortest way around the east end and puts the onion on the board unseen. Checked
-for several planner seeds (the rollouts' random streams). Which end the FOV-aware robot takes is the rollouts'
-call: with the showing walk of docs/domain.md §5 (through the view on the way, else into it and waiting) it
-mostly goes round the east end and along the top row to stand beside the human (a cell the human's view always
-holds), as long a way as round the west end (where the human looks; the planner before 2026-12-03 afternoon
-mostly went there); on one seed of five it takes the short way unseen. Asserted: a longer way, and the onion
-acknowledged before it is put down, on most seeds. With the ``wrong_hands`` option (0.5; off by default) the
-robot also weighs that this person, standing still facing west, will not see the onion put down, so that showing
-it leaves their KB wrong afterwards (docs/domain.md §5, "The person's knowing"): it then shows the onion on 3 of
-the 5 seeds and takes the short way unseen on the others.
+for several planner seeds (the rollouts' random streams).
 
-The human's KB here is the test's own, updated with the FOV rules (120°, delay 3) as the simulated human's is.
-
-The FOV-aware robot here plans with the *show plan* (``hands_walk`` off; docs/domain.md §5). The default robot's
-hands walk plans on where its model expects the person to look next; here that model has the person walk on
-west (they do not in this scene), so it takes the short way round the east end on every seed.
+The default FOV-aware robot values nothing but the team's progress (docs/domain.md §5): it takes the west end on
+every seed because its rollouts of the person, who knows the robot carries an onion, have them go for something
+else than a second onion. The showing robot's hands walk plans on where its model expects the person to look next;
+here that model has the person walk on west (they do not in this scene), so it takes the short way round the east
+end on every seed.
 """
 
 from __future__ import annotations
@@ -57,8 +49,6 @@ def situation():
     return before, now
 
 
-SHOW_PLAN = PlannerConfig(hands_walk=False)
-WEIGHING_PUT_DOWN = PlannerConfig(wrong_hands=0.5, hands_walk=False)
 
 
 def play_until_the_onion_is_on_the_board(name: str, seed: int, max_ticks: int = 25,
@@ -108,11 +98,7 @@ def shown_on(config: PlannerConfig | None) -> int:
 
 
 def test_fov_aware_robot_mostly_goes_a_longer_way_to_be_seen():
-    assert shown_on(SHOW_PLAN) >= len(SEEDS) - 1
-
-
-def test_weighing_the_unseen_put_down_the_fov_aware_robot_shows_the_onion_less_often():
-    assert 1 <= shown_on(WEIGHING_PUT_DOWN) < shown_on(SHOW_PLAN)
+    assert shown_on(PlannerConfig()) >= len(SEEDS) - 1
 
 
 @pytest.mark.parametrize("seed", SEEDS)

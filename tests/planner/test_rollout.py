@@ -116,8 +116,10 @@ def test_the_shown_value_is_earned_once_when_the_persons_kb_takes_in_the_load(ki
     assert rollout.knowing(before, world, aware, showing=ONION) == CFG.shown_value
     already = rollout.start(world, aware, HumanMemory(), Subtask.DROP_ONION)
     assert rollout.knowing(already, world, aware, showing=ONION) == 0.0
-    # Only what the robot held when it decided counts.
+    # Only what the robot held when it decided counts, and empty hands earn nothing.
     assert rollout.knowing(before, world, aware, showing=None) == 0.0
+    empty = replace(world, robot=replace(world.robot, held=None))
+    assert rollout.knowing(before, empty, replace(unaware, robot=empty.robot), showing=None) == 0.0
 
 
 def test_the_robot_offers_to_put_a_plated_steak_down_while_no_garnish_is_coming(kitchen):
@@ -139,17 +141,3 @@ def test_the_robot_takes_the_nearest_subtask_the_person_is_not_doing(kitchen):
     assert tasker.nearest(world, options, avoid=None) is Subtask.PICKUP_ONION
     assert tasker.nearest(world, options, avoid=Subtask.PICKUP_ONION) is Subtask.PICKUP_MEAT
 
-
-def test_the_wrong_hands_option_costs_every_tick_the_person_is_wrong_about_the_robots_hands(kitchen):
-    """``wrong_hands`` (off by default; docs/domain.md §5, "The person's knowing"): the knowing value loses it at
-    every tick the modelled KB believes the robot holds something else than it does, stale or unknown alike."""
-    config = replace(CFG, wrong_hands=1.5, shown_value=0.0)
-    assert config.values_knowing and CFG.wrong_hands == 0.0
-    rollout = Rollout(kitchen, RULES, config)
-    start = initial_state(kitchen, RULES)
-    kb = initial_kb(start)  # believes the robot's hands are empty
-    sim = rollout.start(start, kb, HumanMemory(), Subtask.PICKUP_MEAT)
-    holding = replace(start, robot=replace(start.robot, held=MEAT))
-    assert rollout.knowing(sim, holding, kb, showing=MEAT) == -1.5
-    assert rollout.knowing(sim, start, kb, showing=None) == 0.0
-    assert rollout.knowing(sim, start, initial_kb(holding), showing=None) == -1.5  # a put-down it did not see

@@ -23,6 +23,10 @@ from server.cli import main
 from store.tables import AnswerRow, ParticipantRow, TrialRow
 from study_config.catalog import load_one
 
+SCRIPTED_ROBOT = {"max_robot_flickers": 1000}
+"""The robot here is the simulated human's model (``simulated_partner``), not a planner: it may put an item down and
+pick it up again, which robot health would count as flickers (docs/operations.md, "Robot health") and leave the
+trial out of the cells; these tests are about the pilot's flow, not the robot."""
 QUIZ = {"max_attempts": 2, "questions": [{"id": "q1", "text": "?", "options": ["a", "b"], "answer": 2,
                                     "explanation": "b"}]}
 
@@ -31,7 +35,8 @@ QUIZ = {"max_attempts": 2, "questions": [{"id": "q1", "text": "?", "options": ["
 def piloted(live_server, study_file, db_url):
     path = study_file(kitchens=["none_3"], robots=["stay", "baseline"], quiz=QUIZ,
                       practice=[{"kitchen": "practice", "robot": "stay", "count": 1}],
-                      world={"orders": 1, "horizon": 60, "kb_delay": 2}, timing={"tick_rate_hz": 5})
+                      world={"orders": 1, "horizon": 60, "kb_delay": 2}, timing={"tick_rate_hz": 5},
+                      validity=SCRIPTED_ROBOT)
     server = live_server([path], robot_factory=simulated_partner)
     loaded = load_one(path)
     seat = Seat(server.url, "admin-secret", loaded, ParticipantConfig(), keep_frames=True)
@@ -127,7 +132,7 @@ def test_power_of_a_pilot_with_the_view_between_participants(live_server, study_
     designs within participants only, is refused with the reason."""
     path = study_file("between_view", kitchens=["none_3"], robots=["stay", "baseline"], factors=["robot"],
                       views=["top_down", "first_person"], between=["view"],
-                      world={"orders": 1, "horizon": 60, "kb_delay": 2})
+                      world={"orders": 1, "horizon": 60, "kb_delay": 2}, validity=SCRIPTED_ROBOT)
     server = live_server([path], robot_factory=simulated_partner)
     loaded = load_one(path)
     result = asyncio.run(run_pilot(Seat(server.url, "admin-secret", loaded, ParticipantConfig()), 6, 3, seed=2))

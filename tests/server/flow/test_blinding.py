@@ -22,9 +22,11 @@ from study_config.study import load_study
 pytestmark = pytest.mark.store_agnostic
 
 STUDY = {
-    "title": "FOV-aware robot versus baseline and no_rollout (none_3, mid_2)",
-    "description": "fov_aware vs baseline vs no_rollout", "notes": "conditions: fov_aware@none_3 …",
-    "kitchens": ["none_3", "mid_2"], "robots": ["fov_aware", "baseline", "no_rollout"], "factors": ["robot", "kitchen"],
+    "title": "FOV-aware robot versus the showing robot, baseline and no_rollout (none_3, mid_2)",
+    "description": "fov_aware vs fov_aware_showing vs baseline vs no_rollout",
+    "notes": "conditions: fov_aware@none_3 …",
+    "kitchens": ["none_3", "mid_2"], "robots": ["fov_aware", "fov_aware_showing", "baseline", "no_rollout"],
+    "factors": ["robot", "kitchen"],
     "practice": [{"kitchen": "side_1", "robot": "stay"}],
     "world": {"orders": 1, "horizon": 12, "kb_delay": 1, "fov_angle": 100},
     "quiz": {"questions": [{"id": "seen", "text": "What do you see?", "options": ["Everything", "Your view"],
@@ -113,7 +115,7 @@ def test_nothing_a_participant_receives_names_their_conditions(live_server, stud
     server = live_server([path], robot_factory=simulated_partner, static_dir=REPO / "static")
     record = Recorder()
     result = asyncio.run(probe(server.url, record))
-    assert result["states"].count("trial") == len(study.conditions) == 6
+    assert result["states"].count("trial") == len(study.conditions) == 8
     assert result["states"].count("practice") == 1 and "quiz" in result["states"]
     hello = next(json.loads(data) for where, data in record.received
                  if where == "ws" and json.loads(data)["type"] == "hello")
@@ -144,6 +146,6 @@ def test_every_session_view_and_hello_carry_the_studys_one_field_of_view(live_se
     sessions = [json.loads(data) for where, data in record.received if where == "GET /api/session → 200"]
     hellos = [m for m in (json.loads(data) for where, data in record.received if where == "ws") if m["type"] == "hello"]
     assert {s["state"] for s in sessions} >= {"consent", "instructions", "quiz", "practice", "trial", "questionnaire"}
-    assert len(hellos) == 7, "the practice round and the six conditions"
+    assert len(hellos) == 9, "the practice round and the eight conditions"
     assert [s.get("fov_angle") for s in sessions] == [100] * len(sessions)
     assert [h.get("fov_angle") for h in hellos] == [100] * len(hellos)

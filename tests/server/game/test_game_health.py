@@ -2,8 +2,18 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
+from planner.geometry import Action, Direction
+from planner.layout import parse_layout
+from planner.objects import CLEAN_PLATE
+from planner.rules import Rules
+from planner.state import AgentState, initial_state
+from planner.step import step
 from server.game.health import RobotHealth
 from study_config.study.validity import DEFAULT_MAX_MISSED_DECISIONS_PCT, Validity
+
+RULES = Rules()
 
 
 def run(health: RobotHealth, misses: list[bool]) -> list[RobotHealth]:
@@ -47,7 +57,7 @@ def test_an_invalid_trial_stays_invalid_and_its_reason_carries_the_final_counts(
 def test_a_healthy_trial_reports_its_share():
     final = run(RobotHealth(5.0, 50), [False] * 50)[-1].final()
     assert final.to_dict() == {"decisions": 50, "missed": 0, "failed": 0, "missed_pct": 0.0, "threshold_pct": 5.0,
-                               "invalid": False, "invalid_reason": None}
+                               "flickers": 0, "max_flickers": 0, "invalid": False, "invalid_reason": None}
 
 
 def test_failed_decisions_count_with_the_late_ones_and_are_named():
@@ -58,3 +68,31 @@ def test_failed_decisions_count_with_the_late_ones_and_are_named():
     assert (health.missed, health.failed, health.lost) == (1, 2, 3)
     assert health.invalid and health.invalid_reason == (
         "robot decisions missed their deadline or failed: 1 missed and 2 failed of 3 (100.0 % > 5 %)")
+
+
+KITCHEN = parse_layout("XXXXXXX\nO  1 2M\nX     D\nXPBWSXX\n", name="flicker")
+"""The robot at (3, 1) faces north, the counter (3, 0)."""
+
+
+def _flicker(health: RobotHealth) -> RobotHealth:
+    """The robot puts a clean plate down on the counter it faces and picks it up again, nothing else changing."""
+    start = initial_state(KITCHEN, RULES)
+    world = replace(start, robot=AgentState((3, 1), Direction.NORTH, CLEAN_PLATE))
+    for _ in range(2):
+        after, events = step(KITCHEN, world, {"robot": Action.INTERACT, "human": Action.STAY}, RULES)
+        health, world = health.stepped(world, events, RULES), after
+    return health
+
+
+def test_a_robot_that_undoes_its_last_interaction_makes_the_trial_invalid_and_the_reason_stays():
+    health = _flicker(RobotHealth(5.0, 100))
+    assert health.flickers == 1 and health.invalid
+    assert health.invalid_reason == "the robot undid its own last interaction 1 times with nothing else changed (> 0)"
+    final = run(health, [False] * 10)[-1].final()
+    assert final.invalid_reason == health.invalid_reason, "a healthy share of decisions does not clear a flicker"
+    assert Validity().max_robot_flickers == 0
+
+
+def test_a_study_may_allow_some_flickers():
+    health = _flicker(RobotHealth(5.0, 100, max_flickers=1))
+    assert health.flickers == 1 and not health.invalid

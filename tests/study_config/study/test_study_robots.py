@@ -13,11 +13,11 @@ from study_config.study.warnings import study_warnings
 
 BASE = "id: t\ntitle: Variants\nkitchens: [none_3]\nfactors: [robot]\n"
 VARIANTS = """\
-robots: [fov_aware, fov_aware_no_walk, baseline]
+robots: [fov_aware, showing_no_walk, baseline]
 robot_variants:
-  fov_aware_no_walk:
-    planner: fov_aware
-    settings: {hands_walk: false, walk_price: 0, view_detour: 2}
+  showing_no_walk:
+    planner: fov_aware_showing
+    settings: {shown_value: 0, walk_price: 0, view_detour: 2}
 world: {kb_delay: 2, fov_angle: 90}
 """
 
@@ -31,11 +31,11 @@ def write(tmp_path: Path, text: str) -> Path:
 def test_a_variant_is_a_robot_level_played_by_its_planner_with_its_settings(tmp_path):
     loaded = load_one(write(tmp_path, VARIANTS))
     study = loaded.study
-    assert [c.id for c in study.conditions] == ["fov_aware@none_3", "fov_aware_no_walk@none_3", "baseline@none_3"]
-    assert [loaded.planner(r) for r in study.robots] == ["fov_aware", "fov_aware", "baseline"]
-    variant = loaded.robot_setup("fov_aware_no_walk", 90.0)
+    assert [c.id for c in study.conditions] == ["fov_aware@none_3", "showing_no_walk@none_3", "baseline@none_3"]
+    assert [loaded.planner(r) for r in study.robots] == ["fov_aware", "fov_aware_showing", "baseline"]
+    variant = loaded.robot_setup("showing_no_walk", 90.0)
     plain = loaded.robot_setup("fov_aware", 90.0)
-    assert dict(variant.settings) == {"hands_walk": False, "walk_price": 0.0, "view_detour": 2}
+    assert dict(variant.settings) == {"shown_value": 0.0, "walk_price": 0.0, "view_detour": 2}
     assert plain.settings == (), "other robots keep their defaults"
     # The robot's model of the person is the trial's, for a variant too.
     assert variant.person == plain.person == Person(fov_angle=90.0, kb_delay=2)
@@ -48,7 +48,7 @@ robots: [fov_aware, careful, careles]
 robot_variants:
   careful:
     planner: fov_aware
-    settings: {hands_walk: 1, view_detour: -2, human_angle: 90, walk_pric: 0.1, lookahead: guess}
+    settings: {shown_value: true, view_detour: -2, human_angle: 90, walk_pric: 0.1}
   baseline: {planner: baseline}
   other: {planner: nobody}
   a_variant_with_a_name_too_long_to_store: {planner: baseline}
@@ -56,7 +56,7 @@ robot_variants:
     found = {p.path: p.reason for p in validate_study_file(write(tmp_path, text))}
     installed = ", ".join(usable_names())
     assert found == {
-        "robot_variants.careful.settings.hands_walk": "must be true or false, not 1",
+        "robot_variants.careful.settings.shown_value": "must be a number, not True",
         "robot_variants.careful.settings.view_detour": "must be 0 or more",
         "robot_variants.careful.settings.human_angle":
             "set by the study for every robot (world.fov_angle or fov_angles), not by a robot variant",
@@ -68,15 +68,11 @@ robot_variants:
         "robots[2]": f"unknown robot 'careles'; choose one of: {installed}, careful, other, "
                      "a_variant_with_a_name_too_long_to_store",
     }
-    assert installed.startswith("fov_aware, baseline, no_rollout, stay"), "the shipped robots, then any plug-ins"
+    assert installed.startswith("fov_aware, fov_aware_showing, baseline, no_rollout, stay"), \
+        "the shipped robots, then any plug-ins"
     assert found["robot_variants.careful.settings.walk_pric"].startswith(
         "unknown setting 'walk_pric' of robot 'fov_aware'; its settings: ")
     assert "walk_price" in found["robot_variants.careful.settings.walk_pric"]
-    only_lookahead = ("robots: [fov_aware, careful]\n"
-                      "robot_variants: {careful: {planner: fov_aware, settings: {lookahead: guess}}}\n")
-    lookahead = {p.path: p.reason for p in validate_study_file(write(tmp_path, only_lookahead))}
-    assert lookahead == {"robot_variants.careful.settings": "lookahead must be one of rollout, abstract, got 'guess'"}
-
 
 def test_a_variant_no_robot_plays_is_warned_about_and_a_study_without_variants_keeps_its_hash(tmp_path):
     unused = load_study(write(tmp_path, "robots: [stay]\nrobot_variants: {spare: {planner: baseline}}\n"))
