@@ -11,7 +11,7 @@ STAMP := $(VENV)/.installed-$(shell cat pyproject.toml | cksum | cut -d' ' -f1)
 # The example plug-in package (docs/robots.md) is installed for the tests, never by `make run`.
 EXAMPLES_STAMP := $(VENV)/.examples-$(shell cat examples/mylab_robots/pyproject.toml | cksum | cut -d' ' -f1)
 
-.PHONY: setup run test lint browser postgres examples
+.PHONY: setup run test lint browser postgres examples flake-hunt
 
 setup: $(STAMP)
 
@@ -45,4 +45,11 @@ lint: setup
 
 test: setup examples lint browser postgres
 	@bash tests/tools/ensure_nginx.sh
-	$(PY) -m pytest -n $(PYTEST_WORKERS) --dist $(PYTEST_DIST) $(PYTEST_ARGS)
+	$(PY) -m pytest -n $(PYTEST_WORKERS) --dist $(PYTEST_DIST) --cov --cov-report= $(PYTEST_ARGS)
+	$(PY) tests/tools/coverage_floor.py
+
+# The whole suite RUNS times from a fresh clone with every core kept busy, then once in random order
+# (docs/testing.md, "Flake hunt").
+RUNS ?= 5
+flake-hunt:
+	@bash tests/tools/flake_hunt.sh $(RUNS)

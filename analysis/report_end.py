@@ -47,7 +47,7 @@ def end_of_study_section(summary: EndOfStudy | None) -> list[Block]:
 
 
 def _range(low: object, high: object) -> str:
-    return "" if pd.isna(low) else f"{float(low):g}–{float(high):g}"  # type: ignore[call-overload,arg-type]
+    return "" if pd.isna(low) else f"{float(low):g}–{float(high):g}"  # type: ignore[arg-type]
 
 
 def _alpha(row: Any) -> str:

@@ -103,7 +103,7 @@ def apa_sentences(result: MeasureResult) -> list[str]:
 
 def _dz(dz: object) -> str:
     """``, d_z = 0.47`` (empty for a difference between groups, which has none)."""
-    return "" if pd.isna(dz) else f", d_z = {number(dz, 2)}"  # type: ignore[call-overload]
+    return "" if pd.isna(dz) else f", d_z = {number(dz, 2)}"
 
 
 def _at(label: str) -> str:

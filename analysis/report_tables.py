@@ -28,7 +28,7 @@ def number(value: object, digits: int | None = None) -> str:
 
 def interval(low: object, high: object, proportion: bool = False, digits: int | None = None) -> str:
     """``[.21, .52]`` (proportions) or ``[1.234, 5.678]``; empty when unknown."""
-    if pd.isna(low) or pd.isna(high):  # type: ignore[call-overload]
+    if pd.isna(low) or pd.isna(high):
         return ""
     if proportion:
         return f"[{format_proportion(float(low), 2)}, {format_proportion(float(high), 2)}]"  # type: ignore[arg-type]

@@ -75,9 +75,9 @@ def load_reference(path: Path) -> types.SimpleNamespace:
     """The reference's modules and functions, imported from the fetched repository at ``path``."""
     sys.modules.setdefault("torch", types.ModuleType("torch"))
     sys.path.insert(0, str(path))
-    from overcooked_ai_py.agents import agent  # type: ignore[import-not-found]
-    from overcooked_ai_py.mdp import overcooked_mdp  # type: ignore[import-not-found]
-    from overcooked_ai_py.planning import planners  # type: ignore[import-not-found]
+    from overcooked_ai_py.agents import agent
+    from overcooked_ai_py.mdp import overcooked_mdp
+    from overcooked_ai_py.planning import planners
 
     source = (path / "overcooked_ai_py/vr_analysis.py").read_text(encoding="utf-8")
     namespace: dict[str, Any] = {"np": __import__("numpy"), "OvercookedState": overcooked_mdp.OvercookedState}

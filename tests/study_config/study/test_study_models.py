@@ -103,7 +103,7 @@ def test_completion_redirect_fills_in_the_code(tmp_path: Path) -> None:
 def test_study_is_frozen() -> None:
     study = load_study(STUDY_CONFIG / "demo.yaml")
     with pytest.raises(ValidationError):
-        study.world = study.world  # type: ignore[misc]
+        study.world = study.world
 
 
 def test_config_hash_is_stable_across_loads_and_processes() -> None:

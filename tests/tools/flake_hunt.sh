@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# The flake hunt (docs/testing.md, "Flake hunt"): the whole suite, from a fresh clone of this checkout's HEAD, run
+# RUNS times (default 5) while busy loops keep every core taken, then once more in a random test order
+# (pytest-random-order, bucket "global"). Prints one line per run (pass/fail, wall seconds, pytest's summary)
+# and exits 1 if any run failed; each run's whole output stays in the hunt's folder for reading.
+#
+#   bash tests/tools/flake_hunt.sh [RUNS]        (make flake-hunt RUNS=5)
+set -uo pipefail
+runs="${1:-5}"
+case "$runs" in
+  ''|*[!0-9]*) echo "usage: bash tests/tools/flake_hunt.sh [RUNS]  (RUNS: a whole number of loaded runs)" >&2; exit 2 ;;
+esac
+repo="$(cd "$(dirname "$0")/../.." && pwd)"
+hunt="$(mktemp -d /tmp/flake-hunt.XXXXXX)"
+git clone -q "$repo" "$hunt/clone" || exit 1
+echo "flake hunt of $(git -C "$repo" rev-parse --short HEAD) in $hunt: $runs loaded runs and one in random order"
+
+loads=()
+stop_loads() { for pid in "${loads[@]}"; do kill "$pid" 2>/dev/null; done; }
+trap stop_loads EXIT
+for _ in $(seq "$(nproc)"); do
+  ( while :; do :; done ) &
+  loads+=("$!")
+done
+
+failed=0
+run() {  # name, extra pytest arguments
+  local log="$hunt/$1.log" start status
+  start=$(date +%s)
+  (cd "$hunt/clone" && CI=true make test PYTEST_ARGS="$2" </dev/null >"$log" 2>&1)
+  status=$?
+  local summary
+  summary=$(grep -E '^=+ .*(passed|failed|error).* in [0-9.]+s' "$log" | tail -1 | tr -d '=')
+  printf '%-14s %-4s %5ss %s\n' "$1" "$([ $status -eq 0 ] && echo pass || echo FAIL)" \
+    "$(( $(date +%s) - start ))" "${summary:-(no pytest summary: see $log)}"
+  [ $status -eq 0 ] || failed=1
+}
+for i in $(seq "$runs"); do
+  run "loaded-$i" ""
+done
+run "random-order" "--random-order-bucket=global"
+exit $failed
