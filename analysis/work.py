@@ -1,5 +1,5 @@
 """Who did which work, tick by tick: subtask switches, redundant actions and the share of the prep and
-plating work each agent did (docs/domain.md §6, "also worth logging").
+plating work each agent did (docs/domain.md §6, "Who does the work").
 
 Switches and redundant actions are judged from the stored ticks alone (``subtask`` and ``controller`` columns, and
 the world state after each step), so they can be recomputed from an export of the store.

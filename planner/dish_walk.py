@@ -1,4 +1,4 @@
-"""Behaviour 2's dish walk, planned on the person's predicted views (docs/domain.md §5, "The person's knowing").
+"""Behaviour 2's dish walk, planned on the person's predicted views (docs/domain.md §5, "The showing robot").
 
 The robot with a dish (or with a plated steak at a ready garnish, about to make the dish) takes, among all walks to
 a serving counter at most ``budget`` ticks longer than the shortest (stays included, so waiting where it stands for

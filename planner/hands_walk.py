@@ -1,5 +1,5 @@
 """The hands walk: the robot's way to its next station planned so that the person comes to know what it holds
-(behaviour 1, and the robot gap), on the person's predicted views (docs/domain.md §5, "The person's knowing").
+(behaviour 1, and the robot gap), on the person's predicted views (docs/domain.md §5, "The showing robot").
 
 While the modelled KB is wrong about the robot's hands (a load the person has not acknowledged, or empty hands
 after a put-down they did not see), the robot takes, among all walks to a cell facing one of ``cells`` at most

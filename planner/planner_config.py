@@ -33,7 +33,7 @@ class PlannerConfig:
     **The person in the way** (every QMDP robot; :mod:`planner.standoff`, :mod:`planner.cycle`, :mod:`planner.alone`):
     ``standoff_ticks`` without progress behind the person before the robot plans around them; ``stall_ticks``
     without team progress before it takes the person's stalled work over (above most quiet stretches of finished
-    trials: p90 24 ticks, max 56, docs/domain.md §5, "Standoffs"); ``visit_ticks`` the person stands in one cell
+    trials: p90 24 ticks, max 56, docs/changes.md, "Measurement history"); ``visit_ticks`` the person stands in one cell
     before the robot stands beside them once; ``cycle_returns`` returns to one of the last ``cycle_window`` joint
     situations without progress make a joint cycle, after which the robot holds still ``cycle_hold`` ticks;
     ``alone_ticks`` the person does nothing before the robot plans as if alone.
@@ -44,7 +44,7 @@ class PlannerConfig:
     the same for a whole dish trip; ``walk_price``, the share of a dish trip in view an extra tick must buy;
     ``hands_price``, the expected ticks of the KB being wrong about the robot's hands an extra tick must save;
     ``hands_still``: a person who has stood in one cell ``n`` ticks keeps their pose with weight
-    ``n / (n + hands_still)``. Tuned on generated kitchens of generator seeds 0–29 only (docs/benchmarks.md)."""
+    ``n / (n + hands_still)``. Tuned on generated kitchens of generator seeds 0–29 only (docs/changes.md)."""
 
     human_angle: float = FOV_ANGLE
     human_delay: int = KB_DELAY

@@ -229,7 +229,7 @@ class Rollout:
         "The showing robot"): ``shown_value`` at the tick their KB acknowledges ``showing`` (the object the robot
         held when the decision was made; ``still_showing``: it has held it ever since). Zero for empty hands and for
         a person who sees everything. Only what the robot holds now earns it: a cost for every unknown load in the
-        lookahead made the robot avoid and delay work (measured, docs/benchmarks.md, "The showing robot")."""
+        lookahead made the robot avoid and delay work (measured, docs/changes.md, "Measurement history")."""
         held = world.robot.held
         if held is None or not still_showing or held != showing or kb.robot is None or kb.robot.held != held:
             return 0.0

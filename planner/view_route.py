@@ -1,5 +1,5 @@
 """The show walk through the person's view (paper §VI-C, "walks alongside the human", "a staircase path";
-docs/domain.md §5, "The person's knowing"): the cheapest walk toward a station after which the robot has stood
+docs/domain.md §5, the show plan): the cheapest walk toward a station after which the robot has stood
 ``need`` consecutive ticks in the person's current view.
 
 A tick of the walk is a move or a stay (a move into a non-floor cell only turns the agent); it avoids the
@@ -17,7 +17,7 @@ from planner.paths import UNREACHABLE, Pose, nearest_distances, tick_successors
 def show_walk(layout: Layout, start: Pose, cells: tuple[Pos, ...], seen: frozenset[Pos], person: Pos, need: int,
               run: int, detour: int) -> tuple[Action, ...]:
     """The cheapest walk after which the robot has stood ``need`` consecutive ticks in ``seen`` (the person's
-    current view), so the person can acknowledge what it holds (docs/domain.md §5, "The person's knowing").
+    current view), so the person can acknowledge what it holds (docs/domain.md §5, the show plan).
 
     ``run``: the ticks it has already stood in view (its streak in the person's KB). A tick of the walk is a move
     or a stay; a walk that keeps moving toward ``cells`` through the view costs nothing, one that must wait in
