@@ -7,7 +7,7 @@ killed process), foreign keys on and a 30 s busy timeout; every transaction star
 it) and concurrent writers queue instead of failing. PostgreSQL runs at READ COMMITTED; transactions that
 must not interleave take a row lock (``SELECT ... FOR UPDATE``, see :mod:`store.assignment`).
 
-A store is read (the analysis's export, ``analysis/store_reader.py``) while a server may keep writing to it, so
+A store is read (the analysis's export, ``analysis/source/store_reader.py``) while a server may keep writing to it, so
 :func:`snapshot_engine` gives engines whose transactions are snapshots: SQLite starts them with a deferred
 ``BEGIN`` (in WAL mode it reads one version of the file and takes no write lock), PostgreSQL runs them at
 REPEATABLE READ. Reading never creates a database: a SQLite file that does not exist is an error.

@@ -7,8 +7,8 @@ Needs a stored study with pilot participants, e.g. the 3 robots × 2 kitchens pi
     python benchmarks/power/speed.py --database-url sqlite:///power.sqlite3 --study power_3x2 --n 8,12,24,36
 
 Prints, per phase, the wall-clock and CPU seconds of this process: the export and preparation of the pilot's
-table, the simulations of every measure (``analysis.power.measure_power``, default 1000 per n), the whole
-``power_study`` call as ``steakhouse power`` makes it (plots included), and, for comparison, the per-resample
+table, the simulations of every measure (``analysis.power_analysis.within_power.measure_power``, default 1000 per n),
+the whole ``power_study`` call as ``steakhouse power`` makes it (plots included), and, for comparison, the per-resample
 ``anova_table`` path the vectorised tests replaced (run on ``--reference-simulations`` resamples per n, with
 its time scaled to the same number of simulations as the measured run; the line says so) and whether both gave
 the same p values on those resamples.
@@ -36,8 +36,8 @@ def timed(run: Callable[[], Any]) -> tuple[Any, float, float]:
 def reference_pvalues(values: np.ndarray, levels: Sequence[int], within: Sequence[str], tests: Sequence[Any]
                       ) -> np.ndarray:
     """The per-resample path: ``anova_table`` on each resample for every effect with more than one df."""
-    from analysis.anova import anova_table
-    from analysis.power import holm_matrix, one_df_p
+    from analysis.power_analysis.within_power import holm_matrix, one_df_p
+    from analysis.statistics.anova import anova_table
 
     p = np.full((values.shape[0], len(tests)), np.nan)
     for t, test in enumerate(tests):
@@ -67,9 +67,9 @@ def main() -> None:
     parser.add_argument("--reference-simulations", type=int, default=50)
     parser.add_argument("--jobs", type=int, default=1)
     args = parser.parse_args()
-    from analysis.power import measure_data, measure_power, planned_tests, sample_pvalues
-    from analysis.power_study import pilot_table, power_study
-    from analysis.study import DEFAULT_MEASURES, SUBJECT
+    from analysis.pipeline.analyze_study import DEFAULT_MEASURES, SUBJECT
+    from analysis.pipeline.study_power import pilot_table, power_study
+    from analysis.power_analysis.within_power import measure_data, measure_power, planned_tests, sample_pvalues
 
     ns = [int(x) for x in args.n.split(",")]
     with tempfile.TemporaryDirectory() as tmp:

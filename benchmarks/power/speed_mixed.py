@@ -11,9 +11,9 @@ robot × kitchen pilot of docs/benchmarks.md:
 
 Runs ``power_study`` as ``steakhouse power --jobs 1`` runs it (export, simulations, plot, report) twice: first with
 the one-resample-at-a-time path it replaced (``mixed_anova_table`` on each resample, as the code before did),
-then as it is (``analysis.power_mixed.mixed_pvalues`` on all resamples at once), and prints the wall-clock and CPU
-seconds of each, their ratio, and whether both wrote the same ``power.csv`` (same seed, same resamples: the same
-power, not only the same to Monte-Carlo error).
+then as it is (``analysis.power_analysis.mixed_power.mixed_pvalues`` on all resamples at once), and prints the
+wall-clock and CPU seconds of each, their ratio, and whether both wrote the same ``power.csv`` (same seed, same
+resamples: the same power, not only the same to Monte-Carlo error).
 """
 
 from __future__ import annotations
@@ -40,7 +40,7 @@ def timed(run: Callable[[], Any]) -> tuple[Any, float, float]:
 def one_at_a_time(stack: np.ndarray, slots: Sequence[int], n_groups: int, levels: Sequence[int],
                   within: Sequence[str], ss_type: int = 3) -> tuple[np.ndarray, np.ndarray]:
     """The path before: ``mixed_anova_table`` on each resample (F and the p read)."""
-    from analysis.mixed_anova import mixed_anova_table
+    from analysis.statistics.mixed_anova import mixed_anova_table
 
     tables = [mixed_anova_table(sample, slots, n_groups, levels, within, "between", intervals=False,
                                 ss_type=ss_type) for sample in stack]
@@ -55,7 +55,7 @@ def main() -> None:
     parser.add_argument("--n", default="8,12,16,20,24,32,40,48")
     parser.add_argument("--simulations", type=int, default=1000)
     args = parser.parse_args()
-    from analysis.power_study import power_study
+    from analysis.pipeline.study_power import power_study
 
     ns = [int(x) for x in args.n.split(",")]
     print(f"load average at start {os.getloadavg()[0]:.2f} ({os.cpu_count()} CPUs)")
@@ -65,7 +65,7 @@ def main() -> None:
                                                           simulations=args.simulations, jobs=1))
             return result.table, wall, cpu
 
-        with mock.patch("analysis.power_mixed.mixed_pvalues", one_at_a_time):
+        with mock.patch("analysis.power_analysis.mixed_power.mixed_pvalues", one_at_a_time):
             before, wall_before, cpu_before = run("before")
         after, wall_after, cpu_after = run("after")
     measures = before["measure"].nunique()

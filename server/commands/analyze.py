@@ -7,9 +7,9 @@
 
 The CSV has one row per subject and within cell, with one to three within factors. Levels are taken in the order
 they first appear unless ``--levels`` gives it. A stored study is first exported to ``<out>/data/``
-(``analysis.export``) and analysed with the factors, level order, horizon and scales its configuration declares
-(``analysis.study``). Output files are listed in ``analysis.run``. A test that cannot be computed is reported as
-not testable with the reason (a warning on stderr); the exit code is still 0.
+(``analysis.exports.study_export``) and analysed with the factors, level order, horizon and scales its configuration
+declares (``analysis.pipeline.analyze_study``). Output files are listed in ``analysis.pipeline.analyze_long``. A test
+that cannot be computed is reported as not testable with the reason (a warning on stderr); the exit code is still 0.
 """
 
 from __future__ import annotations
@@ -105,10 +105,10 @@ def handle(args: argparse.Namespace) -> int:
         raise UsageError(f"--within takes one to three factors (A, A,B or A,B,C), got {args.within!r}")
     df = _read_csv(args.csv)
 
-    from analysis.errors import AnalysisInputError
-    from analysis.levels import parse_level_option
-    from analysis.options import AnalysisOptions
-    from analysis.run import analyze_long
+    from analysis.pipeline.analyze_long import analyze_long
+    from analysis.preparation.levels import parse_level_option
+    from analysis.preparation.options import AnalysisOptions
+    from analysis.source.input_errors import AnalysisInputError
 
     try:
         options = AnalysisOptions(levels=parse_level_option(args.levels), ratings=_ratings(args.ratings),
@@ -134,8 +134,8 @@ def _handle_study(args: argparse.Namespace, include: frozenset[str]) -> int:
 
     check_out(args.out, "data", "plots")
 
-    from analysis.errors import AnalysisInputError
-    from analysis.study import analyze_study
+    from analysis.pipeline.analyze_study import analyze_study
+    from analysis.source.input_errors import AnalysisInputError
     from server.commands.export import database_url
 
     measures = _names(args.dv, "--dv") if args.dv is not None else None

@@ -1,4 +1,5 @@
-"""``steakhouse export``: a stored study's tidy CSV files and data dictionary (see :mod:`analysis.export`).
+"""``steakhouse export``: a stored study's tidy CSV files and data dictionary (see
+:mod:`analysis.exports.study_export`).
 
     steakhouse export --study paper_study --out exports/paper_study [--database-url URL] [--include-invalid]
                       [--include-pilot]
@@ -74,8 +75,8 @@ def check_out(path: Path, *inside: str) -> None:
 
 
 def handle(args: argparse.Namespace) -> int:
-    from analysis.errors import AnalysisInputError
-    from analysis.export import export_study
+    from analysis.exports.study_export import export_study
+    from analysis.source.input_errors import AnalysisInputError
 
     check_out(args.out)
     url = database_url(args.database_url)

@@ -6,10 +6,10 @@
 
 For each measure and planned test (main effects, interaction, each factor's simple effects) the pilot
 participants (``steakhouse pilot``) are resampled with replacement at each n and the test ``analyze`` runs is
-run on each sample (:mod:`analysis.power`, :mod:`analysis.power_study`); with ``--effect eta2g=0.1`` also each
-omnibus effect set to that generalized η² (:mod:`analysis.power_effect`). A study with a factor between
-participants gets the mixed ANOVA's tests, n the total over its groups (:mod:`analysis.power_mixed`; no
-``--effect``). A progress bar (on a terminal) counts
+run on each sample (:mod:`analysis.power_analysis.within_power`, :mod:`analysis.pipeline.study_power`); with ``--effect
+eta2g=0.1`` also each omnibus effect set to that generalized η² (:mod:`analysis.power_analysis.chosen_effect`). A study
+with a factor between participants gets the mixed ANOVA's tests, n the total over its groups
+(:mod:`analysis.power_analysis.mixed_power`; no ``--effect``). A progress bar (on a terminal) counts
 measure × n steps; otherwise a line per measure. Writes power.csv, n_needed.csv, power.png and power.md to
 ``--out``.
 """
@@ -73,9 +73,9 @@ def handle(args: argparse.Namespace) -> int:
     from server.commands.export import check_out
 
     check_out(args.out, "data")
-    from analysis.errors import AnalysisInputError
-    from analysis.power_effect import EffectSize
-    from analysis.power_study import power_study
+    from analysis.pipeline.study_power import power_study
+    from analysis.power_analysis.chosen_effect import EffectSize
+    from analysis.source.input_errors import AnalysisInputError
     from pilot.progress import Progress
     from server.commands.export import database_url
 

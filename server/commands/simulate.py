@@ -38,7 +38,7 @@ def _simulate(args: argparse.Namespace) -> int:
     import os
     from concurrent.futures import ProcessPoolExecutor
 
-    from analysis.simulation import robot_effects
+    from analysis.pipeline.simulation import robot_effects
     from planner.experiment import COLUMNS, flagged_lines, run_spec, summarize_trials
 
     if args.seeds < 1:

@@ -1,8 +1,8 @@
 """The admin download of a study's export (admin bearer token, as the rest of ``/api/admin/``).
 
 ``GET /api/admin/studies/{study_id}/export.zip``: the files of ``steakhouse export`` (tidy CSVs and the
-data dictionary, see :mod:`analysis.export`) in one zip, built from the store at request time. The store is
-read on an engine of its own, so a long export never holds the SQLite write lock the game loop needs.
+data dictionary, see :mod:`analysis.exports.study_export`) in one zip, built from the store at request time. The store
+is read on an engine of its own, so a long export never holds the SQLite write lock the game loop needs.
 """
 
 from __future__ import annotations
@@ -20,8 +20,8 @@ router = APIRouter(prefix="/api/admin", tags=["admin"], dependencies=[Depends(re
 
 @router.get("/studies/{study_id}/export.zip")
 def study_export(study_id: Annotated[str, Path(max_length=64)], services: ServicesDep) -> Response:
-    from analysis.export import export_zip
-    from analysis.store_reader import UnknownStudyError
+    from analysis.exports.study_export import export_zip
+    from analysis.source.store_reader import UnknownStudyError
 
     url = services.store.url.render_as_string(hide_password=False)
     try:

@@ -9,7 +9,7 @@ low-engagement main rounds than ``max_invalid_rounds`` gets the screen-out outco
 
 :func:`round_status` is the one rule for what an attempt at a trial is worth as data, shared by the server
 (whether a participant still counts toward their condition order, and whether they took part:
-``server.flow.standing``) and the analysis (the ``trial_status`` column: ``analysis.participation``).
+``server.flow.standing``) and the analysis (the ``trial_status`` column: ``analysis.measures.participation``).
 """
 
 from __future__ import annotations

@@ -11,7 +11,7 @@ from typing import Any
 import httpx
 from steakhouse_testing import Player, condition_order, play_every_trial
 
-from analysis.export import read_dataset
+from analysis.exports.study_export import read_dataset
 from planner import robot_catalog
 from planner.decision import Robot
 from planner.layout import Layout

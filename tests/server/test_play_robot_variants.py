@@ -9,7 +9,7 @@ from typing import Any
 
 from steakhouse_testing import Player, play_to_end
 
-from analysis.export import read_dataset
+from analysis.exports.study_export import read_dataset
 from planner.decision import Robot
 from planner.layout import Layout
 from planner.planner_config import PlannerConfig

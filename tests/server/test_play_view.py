@@ -8,7 +8,7 @@ import asyncio
 
 from steakhouse_testing import Player, condition_order, play_every_trial
 
-from analysis.export import read_dataset
+from analysis.exports.study_export import read_dataset
 from store.tables import TrialRow
 
 

@@ -1,4 +1,4 @@
-# Reference values of the mixed-design conventions (tests/analysis/test_mixed_conventions.py), computed with R's
+# Reference values of the mixed-design conventions (tests/analysis/followups/test_mixed_conventions.py), computed with R's
 # afex (ANOVA, sums of squares of type 3 and 2, sphericity corrections) and emmeans (follow-ups on the model afex
 # fits: its default multivariate model, the within-group covariance pooled over the groups).
 #

@@ -10,7 +10,7 @@ import pytest
 from sqlalchemy import create_engine, select
 from steakhouse_test_robots import simulated_partner
 
-from analysis.export import read_dataset
+from analysis.exports.study_export import read_dataset
 from pilot.client import Seat, respond, trial_rng
 from pilot.config import ParticipantConfig
 from pilot.mind import WAIT_REASONS, Mind, belief_of, told_refused
