@@ -83,7 +83,7 @@ def test_a_plug_in_that_raises_answers_illegally_or_hangs_flags_its_trial_and_th
         live_server, study_file, broken_robots, example_robots):
     order = ["broken_raises@practice", "broken_illegal@practice", "broken_hangs@practice", "mylab_scripted@practice"]
     path = study_file(robots=["broken_raises", "broken_illegal", "broken_hangs", "mylab_scripted"],
-                      counterbalancing={"scheme": "fixed", "order": order}, validity={"max_missed_decisions_pct": 5},
+                      counterbalancing={"scheme": "fixed", "order": order}, validity={"max_missed_decisions_pct": 50},
                       world={"orders": 1, "horizon": 150, "kb_delay": 1}, timing={"mode": "fixed_rate",
                                                                                    "tick_rate_hz": 20})
     server = live_server([path], robot_workers=1)
@@ -112,7 +112,7 @@ def test_a_plug_in_that_raises_answers_illegally_or_hangs_flags_its_trial_and_th
     missed = hung.missed_decisions or 0
     assert missed >= hung.decisions - 2 and hung.failed_decisions == 0
     assert hung.invalid_reason == f"robot decisions missed their deadline: {missed} of {hung.decisions} " \
-        f"({100 * missed / hung.decisions:.1f} % > 5 %)"
+        f"({100 * missed / hung.decisions:.1f} % > 50 %)"
     # The next trial, on the same worker, is played as if nothing had happened.
     assert fine.invalid_reason is None and fine.failed_decisions == 0
 
