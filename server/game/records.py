@@ -11,7 +11,7 @@ from server.flow import service
 from server.game.engine import TickOutcome, TrialEngine
 from server.game.meta import TrialMeta
 from server.game.taking_part import TakingPart
-from server.protocol.server import Error, ServerMessage, TrialEnd
+from server.protocol.server import Error, TrialEnd
 from server.robots import RobotChoice
 from store.engine import Store
 from store.types import utcnow
@@ -68,7 +68,7 @@ class TrialRecords:
         self.writer.add_tick(tick_row(self.meta.trial_id, outcome, choice, lateness_ms,
                                       self.engine.controller.to_dict(), round_seconds, self.meta.epoch))
 
-    async def store_end(self, store: Store, study: Study, status: str, reason: str) -> tuple[int, ServerMessage]:
+    async def store_end(self, store: Store, study: Study, status: str, reason: str) -> tuple[int, Error | TrialEnd]:
         """Store the trial's end (``finished`` or ``abandoned``, with ``reason``) and its event together under this
         process's lease, moving the participant on, or not at all (the round was taken over by another process
         meanwhile: it ends there, once); the close code and last message the participant's connection gets."""
