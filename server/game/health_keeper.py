@@ -9,6 +9,7 @@ the decisions the trial made and stored once more.
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import logging
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -20,6 +21,7 @@ from server.game.health import RobotHealth
 from server.game.meta import TrialMeta
 from store import trials
 from store.engine import Store
+from study_config.study.validity import Validity
 
 log = logging.getLogger("server.game.live")
 """The game's log: a trial turning invalid is reported where the rest of its story is."""
@@ -30,6 +32,14 @@ class HealthKeeper:
                  event: Callable[[str, dict[str, Any]], None]) -> None:
         self.health, self.store, self.meta, self.event = health, store, meta, event
         self._writes: set[asyncio.Task[None]] = set()
+
+    @classmethod
+    def fresh(cls, validity: Validity, horizon: int, store: Store, meta: TrialMeta,
+              event: Callable[[str, dict[str, Any]], None], health: RobotHealth | None = None) -> HealthKeeper:
+        """The keeper of ``health`` (a resumed trial's, recounted from its ticks) or, if none, of a new trial's,
+        judged by the study's ``validity`` thresholds."""
+        return cls(health or RobotHealth(validity.max_missed_decisions_pct, horizon,
+                                         max_flickers=validity.max_robot_flickers), store, meta, event)
 
     def record(self, missed: bool, failed: bool = False) -> None:
         """Count one decision (late: ``missed``; the robot's fault: ``failed``); the moment the trial becomes
@@ -65,8 +75,19 @@ class HealthKeeper:
             trials.record_health(session, self.meta.trial_id, decisions=health.decisions, missed=health.missed,
                                  invalid_reason=health.invalid_reason, failed=health.failed, epoch=self.meta.epoch)
 
+    def finish(self) -> None:
+        """The trial ends: judge the health over the decisions it made (:meth:`RobotHealth.final`); a trial that
+        turns invalid only now says so (stored by :meth:`settle`)."""
+        self.update(self.health.final(), "ended invalid")
+
     async def settle(self) -> None:
         """Wait for the writes under way, then store the health as it is now."""
         if self._writes:
             await asyncio.gather(*self._writes, return_exceptions=True)
         await asyncio.to_thread(self.store_now, self.health)
+
+    async def keep(self) -> None:
+        """The trial is suspended: store the counts if the store lets us (they are recounted from the ticks on
+        resume anyway)."""
+        with contextlib.suppress(Exception):
+            await asyncio.to_thread(self.store_now, self.health)

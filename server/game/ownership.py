@@ -71,7 +71,7 @@ class Ownership:
         for game in games:
             if game.finished:
                 continue
-            waiting = game.waiting_since
+            waiting = game.pacing.waiting_since
             clock = game.pacing.clock
             away = None if game.connection is not None else self._away.setdefault(game.meta.trial_id, utcnow())
             out.append(lease.Beat(game.meta.trial_id, game.meta.epoch, away, game.pacing.times.elapsed(),

@@ -156,8 +156,8 @@ def live(services: ServicesDep) -> list[dict[str, Any]]:
     recruit = _recruit_ids(services, {g.meta.participant_id for g in games})
     here = process_name()
     out = [{**g.meta.to_dict(), "recruit_id": recruit.get(g.meta.participant_id), "tick": g.engine.tick,
-            "connected": g.connection is not None, "deadline_misses": g.misses, "stall_hints": g.stall_hints,
-            "health": g.health.to_dict(),
+            "connected": g.connection is not None, "deadline_misses": g.robot.misses,
+            "stall_hints": g.hints.stall_hints, "health": g.health.to_dict(),
             "lateness_ms": g.spectator()["lateness_ms"], "process": here, "source": "process"}
            for g in games]
     with services.store.transaction() as session:

@@ -39,4 +39,4 @@ def test_a_stalled_team_gets_a_hint_that_is_logged(live_server, study_file):
     found = eventually(logged, lambda rows: len(rows) >= 1)
     assert found[0] == {"code": hint["code"], "text": hint["text"]}
     game = server.services.registry.games.get(trial_id)
-    assert game is None or game.stall_hints >= 1
+    assert game is None or game.hints.stall_hints >= 1

@@ -40,7 +40,7 @@ def test_the_live_view_warns_once_the_trial_is_invalid(admin_server, admin_page)
     game = admin_server.thread.services.registry.games[player.trial_id]
     # What the game loop does when the share passes the threshold (server.game.health), without overloading
     # the machine: the next live-view poll shows it.
-    game.health = replace(game.health, decisions=40, missed=40, invalid_reason=REASON)
+    game.keeper.health = replace(game.health, decisions=40, missed=40, invalid_reason=REASON)
     page.wait_for_selector("#live-invalid")
     assert REASON in page.inner_text("#live-invalid")
     assert page.inner_text("#missed-share").endswith("% (limit 5 %)")

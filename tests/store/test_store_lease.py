@@ -10,23 +10,12 @@ from datetime import timedelta
 from typing import Any
 
 from sqlalchemy import select
+from steakhouse_stored_trial import new_trial
 
-from planner.state import initial_state
-from server.flow import service
 from store import lease, trials
 from store.tables import EventRow, TickRow, TrialRow
 from store.types import utcnow
 from store.writer import write_batch
-
-
-def new_trial(store, loaded) -> tuple[int, int]:
-    joined = service.join(store, loaded, {}, False)
-    with store.transaction() as session:
-        row = trials.create(session, study_id=loaded.id, participant_id=joined.participant.id, kind="main", index=0,
-                            condition_id="stay@practice", kitchen="practice", robot="stay", seed=1,
-                            config_hash="0" * 64,
-                            initial_state=initial_state(loaded.layout("practice"), loaded.rules).to_dict())
-        return joined.participant.id, row.id
 
 
 def tick(trial_id: int, number: int, epoch: int) -> dict[str, Any]:

@@ -7,22 +7,12 @@ import contextlib
 from datetime import timedelta
 from typing import Any
 
-from planner.state import initial_state
-from server.flow import service
+from steakhouse_stored_trial import new_trial
+
 from store import trials
 from store.tables import EventRow, TrialRow
 from store.types import utcnow
 from store.writer import BatchWriter
-
-
-def new_trial(store, loaded) -> tuple[int, int]:
-    joined = service.join(store, loaded, {}, False)
-    layout = loaded.layout("practice")
-    with store.transaction() as session:
-        row = trials.create(session, study_id=loaded.id, participant_id=joined.participant.id, kind="main", index=0,
-                            condition_id="stay@practice", kitchen="practice", robot="stay", seed=1,
-                            config_hash="0" * 64, initial_state=initial_state(layout, loaded.rules).to_dict())
-        return joined.participant.id, row.id
 
 
 def tick_row(trial_id: int, tick: int) -> dict[str, Any]:

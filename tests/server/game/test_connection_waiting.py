@@ -4,25 +4,13 @@ then keeps the same numbering and sender; a waiting connection cannot go back.""
 from __future__ import annotations
 
 import asyncio
-import json
 from typing import Any
 
 import pytest
+from steakhouse_live_parts import Socket
 
 from server.game.connection import Connection, ConnState, IllegalConnectionTransition
 from server.protocol.server import Pong, Waiting
-
-
-class Socket:
-    def __init__(self) -> None:
-        self.sent: list[dict[str, Any]] = []
-        self.closed_with: int | None = None
-
-    async def send_text(self, text: str) -> None:
-        self.sent.append(json.loads(text))
-
-    async def close(self, code: int = 1000) -> None:
-        self.closed_with = code
 
 
 def test_waiting_messages_come_first_and_the_numbering_goes_on_after_opening() -> None:
