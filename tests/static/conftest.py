@@ -11,18 +11,14 @@ from __future__ import annotations
 import os
 import shutil
 import sys
-import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
-import httpx
 import pytest
 
 HERE = Path(__file__).resolve().parent
-REPO = HERE.parents[1]
 STUDIES = HERE / "studies"
-ADMIN_TOKEN = "browser-admin-secret"
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",
                  "--disable-sync", "--no-first-run"]
 WEBGL_ARGS = ["--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
@@ -30,10 +26,11 @@ WEBGL_ARGS = ["--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader", "--en
               "--disable-sync", "--no-first-run"]
 """Chromium with software WebGL (SwiftShader through ANGLE), for the first-person view."""
 
-sys.path.insert(0, str(REPO / "tests" / "server"))
+sys.path.insert(0, str(HERE.parent / "server"))
 sys.path.insert(0, str(HERE))
 
 from steakhouse_browser import RECRUIT_SITE, screenshot  # noqa: E402, F401  (screenshot re-exported for old imports)
+from steakhouse_study_server import ADMIN_TOKEN, REPO, StudyServer  # noqa: E402
 from steakhouse_testing import ThreadServer  # noqa: E402
 
 
@@ -77,51 +74,6 @@ def browser(playwright_driver: Any) -> Iterator[Any]:
 def gl_browser(playwright_driver: Any) -> Iterator[Any]:
     """Chromium with software WebGL (``WEBGL_ARGS``)."""
     yield from _launch(playwright_driver, WEBGL_ARGS)
-
-
-class StudyServer:
-    """The running server, with helpers to read what the store holds (admin API and store queries)."""
-
-    def __init__(self, thread: ThreadServer) -> None:
-        self.thread = thread
-        self.url = thread.url
-        self.admin = httpx.Client(base_url=thread.url, headers={"Authorization": f"Bearer {ADMIN_TOKEN}"},
-                                  timeout=10)
-
-    @property
-    def services(self) -> Any:
-        return self.thread.services
-
-    def link(self, study: str = "browser_flow", **params: str) -> str:
-        query = "&".join(f"{k}={v}" for k, v in {"study": study, **params}.items())
-        return f"{self.url}/?{query}"
-
-    def get(self, path: str, **params: Any) -> Any:
-        response = self.admin.get(path, params=params)
-        response.raise_for_status()
-        return response.json()
-
-    def participant(self, public_id: str) -> dict[str, Any]:
-        found: list[dict[str, Any]] = [p for p in self.get("/api/admin/participants") if p["participant_id"] == public_id]
-        assert len(found) == 1, found
-        return found[0]
-
-    def trials(self, public_id: str) -> list[dict[str, Any]]:
-        return list(self.get("/api/admin/trials", participant_id=public_id))
-
-    def live(self, trial_id: int) -> dict[str, Any]:
-        return dict(self.get(f"/api/admin/live/{trial_id}"))
-
-    def events(self, trial_id: int, until: Callable[[list[str]], bool] | None = None,
-               timeout: float = 10.0) -> list[dict[str, Any]]:
-        """The trial's stored events; with ``until``, asked again (events reach the store in batches) until
-        ``until(kinds)`` holds or ``timeout`` seconds pass."""
-        end = time.monotonic() + timeout
-        while True:
-            events = list(self.get(f"/api/admin/trials/{trial_id}/events"))
-            if until is None or until([e["kind"] for e in events]) or time.monotonic() > end:
-                return events
-            time.sleep(0.05)
 
 
 @pytest.fixture(scope="module")

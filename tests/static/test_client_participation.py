@@ -9,8 +9,8 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from conftest import ADMIN_TOKEN, REPO, StudyServer
 from steakhouse_browser import start_first_round
+from steakhouse_study_server import ADMIN_TOKEN, REPO, StudyServer
 from steakhouse_testing import ManualClock, ThreadServer, write_study
 
 pytestmark = pytest.mark.browser

@@ -12,9 +12,8 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from conftest import ADMIN_TOKEN
-from steakhouse_browser import (FIRST_FRAME_TIMEOUT_MS, TIMEOUT_MS, kitchen, screenshot, start_first_round,
-                                wait_drawn)
+from steakhouse_browser import FIRST_FRAME_TIMEOUT_MS, TIMEOUT_MS, kitchen, screenshot, start_first_round, wait_drawn
+from steakhouse_study_server import ADMIN_TOKEN
 
 from planner.fov import view
 from planner.geometry import Direction
