@@ -27,6 +27,8 @@ import yaml
 from websockets.asyncio.client import ClientConnection, connect
 from websockets.exceptions import ConnectionClosedOK
 
+from study_config.study.validity import DEFAULT_MAX_IDLE_PCT, DEFAULT_MAX_REFUSED_TASK_PCT, DEFAULT_MIN_TASK_STEP_PCT
+
 REPO = Path(__file__).resolve().parents[2]
 RECV_TIMEOUT = 10.0
 # One TLS context for every test client: httpx otherwise loads the certificate bundle for each new client.
@@ -38,6 +40,13 @@ def _merge(base: dict[str, Any], extra: dict[str, Any]) -> dict[str, Any]:
     for key, value in extra.items():
         out[key] = _merge(out[key], value) if isinstance(value, dict) and isinstance(out.get(key), dict) else value
     return out
+
+
+ENGAGEMENT_RULES: dict[str, float] = {"min_task_step_pct": DEFAULT_MIN_TASK_STEP_PCT,
+                                      "max_refused_task_pct": DEFAULT_MAX_REFUSED_TASK_PCT,
+                                      "max_idle_pct": DEFAULT_MAX_IDLE_PCT}
+"""The engagement rules as a study gets them by default, for the tests that judge participants by them
+(:func:`write_study` sets them aside)."""
 
 
 def write_study(folder: Path, study_id: str = "tiny", **overrides: Any) -> Path:
@@ -52,7 +61,12 @@ def write_study(folder: Path, study_id: str = "tiny", **overrides: Any) -> Path:
         # Robot health is judged on the wall clock, and these tests' robots decide at 30 Hz on a machine shared by
         # parallel test workers: a test not about health must not fail because one decision of a few was late.
         # The health tests set their own threshold (tests/server/test_play_health.py).
-        "validity": {"max_missed_decisions_pct": 100},
+        # The engagement rules judge the participant, and these tests' participants are scripts that answer each
+        # state as it comes: on a loaded machine they read states a few ticks old and choose tasks that the world has
+        # moved past (refused), or make too few of a short round's steps. A test not about engagement must not fail
+        # for that; the engagement tests set the rules they test (tests/server/test_play_gaming.py and others).
+        "validity": {"max_missed_decisions_pct": 100, "min_task_step_pct": 0, "max_refused_task_pct": 100,
+                     "max_idle_pct": 100},
     }
     path = folder / f"{study_id}.yaml"
     path.write_text(yaml.safe_dump(_merge(data, overrides)), encoding="utf-8")

@@ -17,7 +17,7 @@ import httpx
 import numpy as np
 import pytest
 from steakhouse_test_robots import simulated_partner
-from steakhouse_testing import ManualClock, Player
+from steakhouse_testing import ENGAGEMENT_RULES, ManualClock, Player
 
 from pilot.client import Seat, SimulatedParticipant
 from pilot.config import ParticipantConfig
@@ -33,9 +33,9 @@ ADMIN = {"Authorization": "Bearer admin-secret"}
 
 
 def paper_clock_study(study_file: Any, **extra: Any) -> Any:
-    """One main round in none_3 on the paper's clock, the study's default validity rules (robot health aside)."""
+    """One main round in none_3 on the paper's clock, the study's default engagement rules (robot health aside)."""
     return study_file(kitchens=["none_3"], robots=["stay"], timing=PAPER_CLOCK, world={"orders": 1, "horizon": 400},
-                      recruiting=CODES, **extra)
+                      recruiting=CODES, validity=ENGAGEMENT_RULES, **extra)
 
 
 def main_trial(server: Any, public_id: str) -> dict[str, Any]:
@@ -143,7 +143,7 @@ def test_a_random_task_every_8_seconds_is_screened_out_with_its_rule(live_server
 def test_the_human_like_simulated_participant_takes_part(live_server, study_file):
     clock = ManualClock()
     path = study_file(kitchens=["none_3"], robots=["baseline"], timing=PAPER_CLOCK,
-                      world={"orders": 2, "horizon": 400, "kb_delay": 3}, recruiting=CODES)
+                      world={"orders": 2, "horizon": 400, "kb_delay": 3}, recruiting=CODES, validity=ENGAGEMENT_RULES)
     server = live_server([path], robot_factory=simulated_partner, clock=clock)
 
     async def think(seconds: float) -> None:

@@ -8,7 +8,7 @@ import asyncio
 
 import pytest
 from steakhouse_test_robots import simulated_partner
-from steakhouse_testing import ManualClock, Player, eventually
+from steakhouse_testing import ENGAGEMENT_RULES, ManualClock, Player, eventually
 
 from store import trials
 
@@ -66,7 +66,8 @@ def test_a_refused_step_moves_nothing_and_says_why_while_keys_and_walks_step(liv
 def test_a_waiting_participant_is_reminded_warned_counted_down_and_told_the_true_reason(live_server, study_file):
     clock = ManualClock()
     timing = {**PAPER, "idle_nudge_seconds": 10, "max_round_seconds": 120}
-    server = live_server([study_file(timing=timing, recruiting={"screen_out_code": "OUT-1"})], clock=clock)
+    study = study_file(timing=timing, recruiting={"screen_out_code": "OUT-1"}, validity=ENGAGEMENT_RULES)
+    server = live_server([study], clock=clock)
 
     async def scenario():
         player = Player(server.url)

@@ -10,7 +10,7 @@ from typing import Any
 
 import httpx
 import pytest
-from steakhouse_testing import ManualClock, Player, condition_order, play_to_end, until_unloaded
+from steakhouse_testing import ENGAGEMENT_RULES, ManualClock, Player, condition_order, play_to_end, until_unloaded
 
 from store.tables import TrialRow
 
@@ -154,7 +154,7 @@ def test_a_participant_allowed_one_invalid_round_goes_on_without_its_questionnai
 def test_a_participant_who_plays_is_unaffected(live_server, study_file, mode):
     clock = ManualClock()
     path = study_file(kitchens=["practice", "none_3"], factors=["kitchen"],
-                      timing={"mode": mode, "tick_rate_hz": 30}, recruiting=CODES)
+                      timing={"mode": mode, "tick_rate_hz": 30}, recruiting=CODES, validity=ENGAGEMENT_RULES)
     server = live_server([path], clock=clock)
 
     async def scenario():

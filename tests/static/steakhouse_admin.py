@@ -72,16 +72,18 @@ class AdminServer:
 
         async def scenario() -> tuple[str, int]:
             player = Player(self.url)
-            joined = await player.join(REPLAY_STUDY, PROLIFIC_PID=prolific_pid)
-            (await player.post("/api/session/consent", {"accept": True})).raise_for_status()
-            (await player.post("/api/session/instructions_done")).raise_for_status()
-            sock = await player.socket()
-            hello = await sock.recv()
-            await play_to_end(sock)
-            await sock.close()
-            (await player.post("/api/session/questionnaire", {"questionnaire_id": "q", "answers": {"a": 5}})
-             ).raise_for_status()
-            await player.close()
+            try:  # closed on a failure too, else its socket is left for the next test to find unclosed
+                joined = await player.join(REPLAY_STUDY, PROLIFIC_PID=prolific_pid)
+                (await player.post("/api/session/consent", {"accept": True})).raise_for_status()
+                (await player.post("/api/session/instructions_done")).raise_for_status()
+                sock = await player.socket()
+                hello = await sock.recv()
+                await play_to_end(sock)
+                await sock.close()
+                (await player.post("/api/session/questionnaire", {"questionnaire_id": "q", "answers": {"a": 5}})
+                 ).raise_for_status()
+            finally:
+                await player.close()
             return joined["participant_id"], int(hello["trial"]["id"])
 
         finished: tuple[str, int] = in_thread(scenario)

@@ -90,7 +90,14 @@ def test_a_flood_of_messages_stores_a_bounded_number_of_rows_and_the_game_goes_o
         with server.services.store.transaction() as session:
             return [(e.kind, e.payload) for e in session.query(EventRow).filter_by(trial_id=trial_id)]
 
-    stored = eventually(rows, lambda found: any(kind == "disconnect" for kind, _ in found))
+    def both_connections_closed(found: list[tuple[str, Any]]) -> bool:
+        # Both connections' rows (the reconnection's connect stored or counted as dropped, and its disconnect) reach
+        # the store in a later batch than the first connection's.
+        connects = sum(kind == "connect" for kind, _ in found) + sum(
+            payload["by_kind"].get("connect", 0) for kind, payload in found if kind == "events_dropped")
+        return connects == 2 and sum(kind == "disconnect" for kind, _ in found) == 2
+
+    stored = eventually(rows, both_connections_closed)
     focus = [payload for kind, payload in stored if kind == "focus"]
     dropped = [payload for kind, payload in stored if kind == "events_dropped"]
     assert len(focus) == accepted, "every applied message has its row, no refused one has"
