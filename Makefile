@@ -48,7 +48,7 @@ test: setup examples lint browser postgres
 	$(PY) -m pytest -n $(PYTEST_WORKERS) --dist $(PYTEST_DIST) --cov --cov-report= $(PYTEST_ARGS)
 	$(PY) tests/tools/coverage_floor.py
 
-# The whole suite RUNS times from a fresh clone with every core kept busy, then once in random order
+# The whole suite from a fresh clone with every core kept busy: once in random order, then RUNS times
 # (docs/testing.md, "Flake hunt").
 RUNS ?= 5
 flake-hunt:

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The flake hunt (docs/testing.md, "Flake hunt"): the whole suite, from a fresh clone of this checkout's HEAD, run
-# RUNS times (default 5) while busy loops keep every core taken, then once more in a random test order
-# (pytest-random-order, bucket "global"). Prints one line per run (pass/fail, wall seconds, pytest's summary)
+# once in a random test order (pytest-random-order, bucket "global") and then RUNS times (default 5) in the suite's
+# own order, while busy loops keep every core taken. Prints one line per run (pass/fail, wall seconds, pytest's summary)
 # and exits 1 if any run failed; each run's whole output stays in the hunt's folder for reading.
 #
 #   bash tests/tools/flake_hunt.sh [RUNS]        (make flake-hunt RUNS=5)
@@ -35,8 +35,8 @@ run() {  # name, extra pytest arguments
     "$(( $(date +%s) - start ))" "${summary:-(no pytest summary: see $log)}"
   [ $status -eq 0 ] || failed=1
 }
+run "random-order" "--random-order-bucket=global"
 for i in $(seq "$runs"); do
   run "loaded-$i" ""
 done
-run "random-order" "--random-order-bucket=global"
 exit $failed
