@@ -101,7 +101,12 @@ def test_the_decision_is_asked_for_the_tick_the_world_is_at(loaded: LoadedStudy)
     assert asyncio.run(scenario()) == [0, 1]
 
 
-def test_the_first_decision_has_longer_and_a_fast_pilot_trial_has_no_real_time_deadline(loaded: LoadedStudy) -> None:
+def test_the_first_decision_has_longer_and_a_fast_pilot_trial_has_no_real_time_deadline(
+        loaded: LoadedStudy, monkeypatch: pytest.MonkeyPatch) -> None:
+    # The deadline clock stands still, so the budget the pool reads is the one given (a busy machine once let 10 ms
+    # pass between setting the deadline and reading it).
+    monkeypatch.setattr(decision_deadline, "now", lambda: 1000.0)
+
     async def budgets(fast: bool) -> list[float]:
         pool, cook = Pool(), engine()
         decisions = robot(pool, loaded, Events(), [], fast=fast)
