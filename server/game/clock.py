@@ -1,7 +1,8 @@
 """The wall clock of a live round, injected so that tests can move it by hand (``tests`` pass a manual clock).
 
-:class:`Clock` is what :class:`server.game.round_time.RoundTime` and the game loop ask for the time and for a
-bounded wait; :class:`MonotonicClock` is the real one (``time.monotonic`` and an asyncio timeout).
+:class:`Clock` is what :class:`server.game.round_time.RoundTime` and the game loop ask for the time, for a
+bounded wait and for a sleep; :class:`MonotonicClock` is the real one (``time.monotonic``, an asyncio timeout and
+``asyncio.sleep``, which the step schedule uses every tick: no event and no timeout task to make).
 """
 
 from __future__ import annotations
@@ -21,6 +22,10 @@ class Clock(Protocol):
         """Return when ``event`` is set or ``seconds`` have passed on this clock (``None``: no limit)."""
         ...
 
+    async def sleep(self, seconds: float) -> None:
+        """Return once ``seconds`` have passed on this clock (the steps' schedule: nothing can cut it short)."""
+        ...
+
 
 class MonotonicClock:
     def now(self) -> float:
@@ -32,3 +37,6 @@ class MonotonicClock:
             return
         with contextlib.suppress(TimeoutError):
             await asyncio.wait_for(event.wait(), max(seconds, 0.0))
+
+    async def sleep(self, seconds: float) -> None:
+        await asyncio.sleep(max(seconds, 0.0))

@@ -25,7 +25,6 @@ by default, so a round whose limit a test holds still keeps stepping).
 
 from __future__ import annotations
 
-import asyncio
 from collections import deque
 from collections.abc import Callable
 
@@ -101,7 +100,7 @@ class Pacing:
         else:
             scheduled = self.scheduled(now)
         if scheduled > now:
-            await self.ticker.wait(asyncio.Event(), scheduled - now)
+            await self.ticker.sleep(scheduled - now)
         if not link.connected.is_set() or not self._may_step(engine, refuse):
             return None
         self._scheduled, self._started = scheduled, self.ticker.now()

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import replace
-from typing import cast
 
 import numpy as np
 import pytest
@@ -103,15 +102,25 @@ def stubborn(layout: Layout, target: tuple[int, int]) -> Human:
     return act
 
 
-def play(layout: Layout, world: WorldState, config: PlannerConfig, human: Human, ticks: int = 40) -> WorldState:
-    robot = make_robot("fov_aware", layout, RULES, config)
-    robot.reset(world)
+def play(layout: Layout, world: WorldState, config: PlannerConfig, human: Human, ticks: int = 40, *,
+         robot_name: str = "fov_aware", kb: KnowledgeBase | None = None,
+         seen: Callable[[WorldState], None] | None = None) -> WorldState:
+    """The robot (modelling the person's KB as ``kb``, by default the start's) with a scripted ``human`` for
+    ``ticks`` ticks; ``seen`` is shown every world reached."""
+    robot = make_robot(robot_name, layout, RULES, config)
+    robot.reset(world, kb)
     rng = np.random.default_rng(0)
     events: tuple[Event, ...] = ()
     for _ in range(ticks):
         action = robot.decide(world, events, rng).action
         world, events = step(layout, world, {"human": human(world), "robot": action}, RULES)
+        if seen is not None:
+            seen(world)
     return world
+
+
+def interact(world: WorldState) -> Action:
+    return Action.INTERACT
 
 
 def test_blocked_by_an_idle_person_the_robot_puts_its_load_down_and_does_other_work():
@@ -155,14 +164,8 @@ def test_behind_a_still_person_the_robot_takes_over_the_person_s_errand():
     person_kb = replace(initial_kb(world), grills=(3,))
 
     def held_each_tick(config: PlannerConfig) -> list[str | None]:
-        robot = make_robot("fov_aware", ERRANDS, RULES, config)
-        robot.reset(world, person_kb)
-        rng = np.random.default_rng(0)
-        now, events, held = world, cast(tuple[Event, ...], ()), []
-        for _ in range(24):
-            action = robot.decide(now, events, rng).action
-            now, events = step(ERRANDS, now, {"human": Action.STAY, "robot": action}, RULES)
-            held.append(now.robot.held)
+        held: list[str | None] = []
+        play(ERRANDS, world, config, idle, 24, kb=person_kb, seen=lambda now: held.append(now.robot.held))
         return held
 
     held = held_each_tick(ON)
@@ -219,16 +222,7 @@ def test_a_person_shuttling_a_plate_does_not_stall_the_baseline_robot():
     stale = replace(initial_kb(world), boards=(RULES.chop_time,), sinks=(0,))
 
     def shuttle(config: PlannerConfig) -> WorldState:
-        robot = make_robot("baseline", SHUTTLE, RULES, config)
-        robot.reset(world, stale)
-        rng = np.random.default_rng(0)
-        now, events = world, cast(tuple[Event, ...], ())
-        for _ in range(150):
-            action = robot.decide(now, events, rng).action
-            now, events = step(SHUTTLE, now, {"human": Action.INTERACT, "robot": action}, RULES)
-            if now.orders_left == 0:
-                break
-        return now
+        return play(SHUTTLE, world, config, interact, 150, robot_name="baseline", kb=stale)
 
     stalled = shuttle(replace(ON, stall_ticks=10**6, visit_ticks=10**6, cycle_returns=10**6))
     assert (stalled.orders_left, stalled.boards, stalled.sinks) == (1, (None,), (None,))
@@ -247,14 +241,8 @@ def test_the_robot_visits_a_person_who_stands_still(robot):
     start = initial_state(NOOK, RULES)
 
     def beside_each_tick(config: PlannerConfig) -> list[bool]:
-        partner = make_robot(robot, NOOK, RULES, config)
-        partner.reset(start)
-        rng = np.random.default_rng(0)
-        world, events, near = start, cast(tuple[Event, ...], ()), []
-        for _ in range(60):
-            action = partner.decide(world, events, rng).action
-            world, events = step(NOOK, world, {"human": Action.STAY, "robot": action}, RULES)
-            near.append(beside(world))
+        near: list[bool] = []
+        play(NOOK, start, config, idle, 60, robot_name=robot, seen=lambda now: near.append(beside(now)))
         return near
 
     visits = beside_each_tick(ON)

@@ -78,6 +78,9 @@ class HandClock:
         finally:
             self.waiting.clear()
 
+    async def sleep(self, seconds: float) -> None:
+        await self.wait(asyncio.Event(), seconds)
+
     def advance(self, seconds: float) -> None:
         self.t += seconds
         self._moved.set()

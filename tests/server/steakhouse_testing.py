@@ -402,6 +402,9 @@ class ManualClock:
             for task in pending:
                 task.cancel()
 
+    async def sleep(self, seconds: float) -> None:
+        await self.wait(asyncio.Event(), seconds)
+
     def advance(self, seconds: float) -> None:
         with self._lock:
             self.t += seconds

@@ -62,13 +62,8 @@ def process_of(server: ProcessServer) -> str:
 @pytest.mark.parametrize("db_url", ["postgresql"], indirect=True)
 def test_participants_play_whole_studies_through_nginx_over_two_processes(db_url, study_file, tmp_path, nginx):
     players = 12
-    # The scripted participants answer each state as it comes; on a loaded machine one may make less than a tenth
-    # of a 30-tick round's task steps, which the engagement rules rightly screen out. Their subject is not this
-    # test's (tests/server/flow/test_flow_engagement.py): here every participant is to reach the end.
     study = study_file(kitchens=["practice", "mid_2", "none_3"], factors=["kitchen"],
-                       timing={"tick_rate_hz": 20}, world={"orders": 1, "horizon": 30, "kb_delay": 1},
-                       validity={"max_missed_decisions_pct": 100, "min_task_step_pct": 0, "max_refused_task_pct": 100,
-                                 "max_idle_pct": 100})
+                       timing={"tick_rate_hz": 20}, world={"orders": 1, "horizon": 30, "kb_delay": 1})
     servers = start_servers(study, db_url, tmp_path, 2)
     try:
         proxy = nginx([f"127.0.0.1:{s.port}" for s in servers])

@@ -17,6 +17,9 @@ class Hand:
     async def wait(self, event: asyncio.Event, seconds: float | None) -> None:
         return None
 
+    async def sleep(self, seconds: float) -> None:
+        return None
+
 
 def test_the_limit_counts_connected_time_only():
     clock = Hand()
