@@ -43,6 +43,10 @@ def study_robots(name: str, layout: Any, rules: Any, config: Any = None) -> Any:
     return StayRobot() if name == "stay" else SimulatedPartner(layout, rules)
 
 
+DECISION_S = 600.0
+"""The robot's decision deadline while a stored study is played: one no machine reaches. The planner stops valuing
+options at its deadline, so with a short one (it was 1 s) a loaded machine could store other trials than a quiet one
+(a loaded run once found a wide-file cell empty that quiet runs fill): the stored studies must be the same anywhere."""
 def study_overrides(**extra: object) -> dict[str, object]:
     """A fast 2 robots × 2 kitchens study: one practice trial, one order, short horizon, 30 Hz (no trial is ever
     robot-invalid for missed deadlines nor low-engagement for how its scripted participants chose: ``write_study``'s
@@ -122,7 +126,7 @@ def play_stored_trial(store: Store, loaded: LoadedStudy, participant_id: int, wh
                 events.append(_event(participant_id, row.id, engine.tick, "interrupt", {"action": which.value}))
         start = time.perf_counter()
         action, info = run_decision(policy, engine.world, engine.last_events, row.seed, engine.tick,
-                                    time.monotonic() + 1.0)
+                                    time.monotonic() + DECISION_S)
         choice_ = RobotChoice(Action(action), decision_ms=(time.perf_counter() - start) * 1000, info=info)
         outcome = engine.advance(choice_.action)
         # Under the round's lease (store/lease.py): rows of another epoch would be refused.
