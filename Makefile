@@ -45,7 +45,7 @@ lint: setup
 
 test: setup examples lint browser postgres
 	@bash tests/tools/ensure_nginx.sh
-	$(PY) -m pytest -n $(PYTEST_WORKERS) --dist $(PYTEST_DIST) --cov --cov-report= $(PYTEST_ARGS)
+	$(PY) -m pytest -n $(PYTEST_WORKERS) --dist $(PYTEST_DIST) --cov --cov-report= --durations=15 $(PYTEST_ARGS)
 	$(PY) tests/tools/coverage_floor.py
 
 # The whole suite from a fresh clone with every core kept busy: once in random order, then RUNS times

@@ -13,7 +13,7 @@ import asyncio
 import logging
 import secrets
 from collections.abc import AsyncIterator
-from contextlib import asynccontextmanager
+from contextlib import AsyncExitStack, asynccontextmanager
 
 from fastapi import FastAPI
 
@@ -51,28 +51,30 @@ def create_app(settings: Settings | None = None, *, robot_factory: RobotFactory 
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
-        store = Store(settings.database_url)
-        await asyncio.to_thread(_prepare_store, store, catalog)
-        writer = BatchWriter(store, settings.flush_interval_s)
-        writer.start()
-        pool = make_pool(settings.workers, settings.robot_factory, robot_factory)
-        await pool.start()
-        deps = GameDeps(store, writer, pool, settings.decision_deadline_fraction, settings.max_message_bytes,
-                        on_end=lambda game: None, clock=clock or MonotonicClock())
-        lobby = Lobby(catalog, store, writer, Admission(settings.live_trial_capacity),
-                      settings.admission_max_wait_s)
-        registry = GameRegistry(catalog, deps, settings.sweep_interval_s, lobby)
-        await registry.start()
-        app.state.services = Services(settings, catalog, store, writer, pool, registry, admin_token)
-        log.info("serving %s on %s with %s robot worker(s), at most %d live trial(s)", ", ".join(catalog.studies),
-                 store.dialect, settings.workers or "in-process", settings.live_trial_capacity)
-        try:
+        # Each part is closed when the app stops, in the reverse order of opening, even when opening a later part
+        # or closing an earlier one fails (a store left open would hold its database connections).
+        async with AsyncExitStack() as opened:
+            store = Store(settings.database_url)
+            opened.callback(store.dispose)
+            await asyncio.to_thread(_prepare_store, store, catalog)
+            writer = BatchWriter(store, settings.flush_interval_s)
+            writer.start()
+            opened.push_async_callback(writer.close)
+            pool = make_pool(settings.workers, settings.robot_factory, robot_factory)
+            await pool.start()
+            opened.push_async_callback(pool.shutdown)
+            deps = GameDeps(store, writer, pool, settings.decision_deadline_fraction, settings.max_message_bytes,
+                            on_end=lambda game: None, clock=clock or MonotonicClock())
+            lobby = Lobby(catalog, store, writer, Admission(settings.live_trial_capacity),
+                          settings.admission_max_wait_s)
+            registry = GameRegistry(catalog, deps, settings.sweep_interval_s, lobby)
+            await registry.start()
+            opened.push_async_callback(registry.shutdown)
+            app.state.services = Services(settings, catalog, store, writer, pool, registry, admin_token)
+            log.info("serving %s on %s with %s robot worker(s), at most %d live trial(s)",
+                     ", ".join(catalog.studies), store.dialect, settings.workers or "in-process",
+                     settings.live_trial_capacity)
             yield
-        finally:
-            await registry.shutdown()
-            await writer.close()
-            await pool.shutdown()
-            store.dispose()
 
     app = FastAPI(title="Steakhouse Study", version="0.1.0", lifespan=lifespan)
     app.state.catalog = catalog
