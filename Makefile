@@ -48,8 +48,9 @@ test: setup examples lint browser postgres
 	$(PY) -m pytest -n $(PYTEST_WORKERS) --dist $(PYTEST_DIST) --cov --cov-report= --durations=15 $(PYTEST_ARGS)
 	$(PY) tests/tools/coverage_floor.py
 
-# The whole suite from a fresh clone with every core kept busy: once in random order, then RUNS times
+# The whole suite from a fresh clone with every core kept busy: RUNS times, then RANDOM_RUNS times in a random order
 # (docs/testing.md, "Flake hunt").
 RUNS ?= 5
+RANDOM_RUNS ?= 1
 flake-hunt:
-	@bash tests/tools/flake_hunt.sh $(RUNS)
+	@bash tests/tools/flake_hunt.sh $(RUNS) $(RANDOM_RUNS)

@@ -32,16 +32,17 @@ def make_settings(db_url: str, tmp_path: Path) -> Callable[..., Any]:
 
 @pytest.fixture
 def live_server(make_settings: Callable[..., Any]) -> Iterator[Callable[..., ThreadServer]]:
-    """``live_server(studies, robot_factory=None, clock=None, **settings)``: a started :class:`ThreadServer`
-    (``clock``: the rounds' wall clock, e.g. a ``ManualClock``), stopped at the end of the test."""
+    """``live_server(studies, robot_factory=None, clock=None, pings=True, **settings)``: a started
+    :class:`ThreadServer` (``clock``: the rounds' wall clock, e.g. a ``ManualClock``; ``pings``: see there), stopped
+    at the end of the test."""
     from server.app import create_app
 
     started: list[ThreadServer] = []
 
     def start(studies: list[Path], robot_factory: Callable[..., Any] | None = None, clock: Any = None,
-              **overrides: Any) -> ThreadServer:
+              pings: bool = True, **overrides: Any) -> ThreadServer:
         server = ThreadServer(create_app(make_settings(studies, **overrides), robot_factory=robot_factory,
-                                         clock=clock))
+                                         clock=clock), pings=pings)
         started.append(server.__enter__())
         return server
 

@@ -123,12 +123,17 @@ def free_port() -> int:
 
 
 class ThreadServer:
-    """The app on a real uvicorn server in a background thread of this process (a real TCP socket)."""
+    """The app on a real uvicorn server in a background thread of this process (a real TCP socket).
 
-    def __init__(self, app: Any) -> None:
+    ``pings``: the server pings its websockets every 20 s, as ``steakhouse serve`` does. A Hypothesis test turns
+    that off: the ping's payload comes from the ``random`` module, and Hypothesis fails a draw during which anything
+    in the process, this server's thread included, used that module."""
+
+    def __init__(self, app: Any, *, pings: bool = True) -> None:
         self.app = app
         self.server = uvicorn.Server(uvicorn.Config(app, host="127.0.0.1", port=0, log_level="warning",
-                                                    ws_max_size=1 << 20, lifespan="on"))
+                                                    ws_max_size=1 << 20, lifespan="on",
+                                                    ws_ping_interval=20.0 if pings else None))
         self.thread = threading.Thread(target=self.server.run, name="test-server", daemon=True)
 
     def __enter__(self) -> ThreadServer:

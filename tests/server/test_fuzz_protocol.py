@@ -268,7 +268,7 @@ def assert_no_crash(server: Any, trial_ids: list[int]) -> None:
 
 
 def test_fuzzed_frames_interleaved_with_play_each_get_one_typed_reply(live_server, study_file):
-    server = live_server([study(study_file)], join_rate_per_minute=0)
+    server = live_server([study(study_file)], pings=False, join_rate_per_minute=0)
     trial_ids: list[int] = []
     sent: list[int] = []
 
@@ -313,7 +313,7 @@ def test_fuzzed_frames_interleaved_with_play_each_get_one_typed_reply(live_serve
 @given(data=st.data())
 def test_a_burst_of_fuzzed_frames_without_waiting_is_answered_frame_for_frame(live_server, study_file, data):
     burst = [data.draw(recipes()) for _ in range(BURST)]
-    server = live_server([study(study_file)], join_rate_per_minute=0)
+    server = live_server([study(study_file)], pings=False, join_rate_per_minute=0)
 
     async def scenario() -> tuple[list[dict[str, Any]], dict[str, Any], dict[str, Any]]:
         player = Player(server.url)

@@ -1,19 +1,24 @@
 #!/usr/bin/env bash
 # The flake hunt (docs/testing.md, "Flake hunt"): the whole suite, from a fresh clone of this checkout's HEAD, run
-# once in a random test order (pytest-random-order, bucket "global") and then RUNS times (default 5) in the suite's
-# own order, while busy loops keep every core taken. Prints one line per run (pass/fail, wall seconds, pytest's summary)
-# and exits 1 if any run failed; each run's whole output stays in the hunt's folder for reading.
+# RUNS times (default 5) in the suite's own order and then RANDOM_RUNS times (default 1) in a random test order
+# (pytest-random-order, bucket "global"), while busy loops keep every core taken. Prints one line per run (pass/fail,
+# wall seconds, pytest's summary) as it ends and exits 1 if any run failed; each run's whole output stays in the
+# hunt's folder for reading.
 #
-#   bash tests/tools/flake_hunt.sh [RUNS]        (make flake-hunt RUNS=5)
+#   bash tests/tools/flake_hunt.sh [RUNS [RANDOM_RUNS]]        (make flake-hunt RUNS=5 RANDOM_RUNS=1)
 set -uo pipefail
 runs="${1:-5}"
-case "$runs" in
-  ''|*[!0-9]*) echo "usage: bash tests/tools/flake_hunt.sh [RUNS]  (RUNS: a whole number of loaded runs)" >&2; exit 2 ;;
-esac
+random_runs="${2:-1}"
+for n in "$runs" "$random_runs"; do
+  case "$n" in
+    ''|*[!0-9]*) echo "usage: bash tests/tools/flake_hunt.sh [RUNS [RANDOM_RUNS]]  (whole numbers of runs)" >&2
+                 exit 2 ;;
+  esac
+done
 repo="$(cd "$(dirname "$0")/../.." && pwd)"
 hunt="$(mktemp -d /tmp/flake-hunt.XXXXXX)"
 git clone -q "$repo" "$hunt/clone" || exit 1
-echo "flake hunt of $(git -C "$repo" rev-parse --short HEAD) in $hunt: $runs loaded runs and one in random order"
+echo "flake hunt of $(git -C "$repo" rev-parse --short HEAD) in $hunt: $runs loaded runs, then $random_runs in random order"
 
 loads=()
 stop_loads() { for pid in "${loads[@]}"; do kill "$pid" 2>/dev/null; done; }
@@ -35,8 +40,10 @@ run() {  # name, extra pytest arguments
     "$(( $(date +%s) - start ))" "${summary:-(no pytest summary: see $log)}"
   [ $status -eq 0 ] || failed=1
 }
-run "random-order" "--random-order-bucket=global"
 for i in $(seq "$runs"); do
   run "loaded-$i" ""
+done
+for i in $(seq "$random_runs"); do
+  run "random-order-$i" "--random-order-bucket=global"
 done
 exit $failed
