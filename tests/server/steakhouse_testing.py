@@ -122,6 +122,36 @@ def free_port() -> int:
         return int(sock.getsockname()[1])
 
 
+class PortTaken(RuntimeError):
+    """Another process listens on the port a :class:`ProcessServer` was given (free when chosen)."""
+
+
+def listening_pids(port: int) -> set[int]:
+    """The processes with a TCP socket listening on ``port`` (Linux: ``/proc/net/tcp*`` and each process's open
+    sockets; processes this one may not read are left out)."""
+    inodes: set[str] = set()
+    for table in ("/proc/net/tcp", "/proc/net/tcp6"):
+        with contextlib.suppress(OSError), open(table) as rows:
+            for row in list(rows)[1:]:
+                fields = row.split()
+                if fields[3] == "0A" and int(fields[1].rsplit(":", 1)[1], 16) == port:  # 0A: LISTEN
+                    inodes.add(fields[9])
+    pids: set[int] = set()
+    if not inodes:
+        return pids
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        with contextlib.suppress(OSError):
+            for fd in os.listdir(f"/proc/{entry}/fd"):
+                with contextlib.suppress(OSError):
+                    link = os.readlink(f"/proc/{entry}/fd/{fd}")
+                    if link.startswith("socket:[") and link[8:-1] in inodes:
+                        pids.add(int(entry))
+                        break
+    return pids
+
+
 class ThreadServer:
     """The app on a real uvicorn server in a background thread of this process (a real TCP socket).
 
@@ -161,11 +191,10 @@ class ProcessServer:
 
     def __init__(self, *, study: Path, database_url: str, workers: int = 1, env: dict[str, str] | None = None,
                  log: Path | None = None) -> None:
-        self.port = free_port()
-        self.url = f"http://127.0.0.1:{self.port}"
         self.database_url = database_url
-        self.args = [sys.executable, "-m", "server.cli", "serve", "--port", str(self.port), "--study", str(study),
-                     "--database-url", database_url, "--workers", str(workers), "--log-level", "warning"]
+        self._serve = ["--study", str(study), "--database-url", database_url, "--workers", str(workers),
+                       "--log-level", "warning"]
+        self._take_port(free_port())
         self.env = {**os.environ, "STEAKHOUSE_ADMIN_TOKEN": "admin-secret", "STEAKHOUSE_FLUSH_INTERVAL_S": "0.2",
                     "STEAKHOUSE_JOIN_RATE_PER_MINUTE": "0", **(env or {})}
         self.env["PYTHONPATH"] = os.pathsep.join([str(REPO), str(Path(__file__).parent)])
@@ -173,8 +202,21 @@ class ProcessServer:
         self.process: subprocess.Popen[bytes] | None = None
         self._out: IO[bytes] | int | None = None  # the log file while running, or subprocess.DEVNULL
 
+    def _take_port(self, port: int) -> None:
+        self.port = port
+        self.url = f"http://127.0.0.1:{port}"
+        self.args = [sys.executable, "-m", "server.cli", "serve", "--port", str(port), *self._serve]
+
     def start(self) -> ProcessServer:
-        return self.launch().wait_ready()
+        """Launch and wait until ready; on a port another process took meanwhile (:class:`PortTaken`), again on
+        another free port."""
+        for _ in range(3):
+            try:
+                return self.launch().wait_ready()
+            except PortTaken:
+                self.kill()
+                self._take_port(free_port())
+        raise RuntimeError("three free ports in a row were taken before the server could bind one")
 
     def launch(self) -> ProcessServer:
         """Start the process without waiting (several servers can start side by side)."""
@@ -190,13 +232,20 @@ class ProcessServer:
         with httpx.Client(timeout=1, verify=TLS) as http:
             while time.monotonic() < deadline:
                 if self.process.poll() is not None:
+                    if listening_pids(self.port):
+                        raise PortTaken(self.port)
                     raise RuntimeError(f"server exited with {self.process.returncode}")
                 try:
-                    if http.get(self.url + "/healthz").status_code == 200:
+                    # Another test's server may answer on this port (it took the port between free_port() and
+                    # this server's bind): ready only once this process is the one listening.
+                    if (http.get(self.url + "/healthz").status_code == 200
+                            and self.process.pid in listening_pids(self.port)):
                         return self
                 except httpx.HTTPError:
                     pass
                 time.sleep(0.05)
+        if listening_pids(self.port) - {self.process.pid}:
+            raise PortTaken(self.port)
         raise RuntimeError("server did not become healthy")
 
     def kill(self) -> None:
