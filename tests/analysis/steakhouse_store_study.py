@@ -47,6 +47,8 @@ DECISION_S = 600.0
 """The robot's decision deadline while a stored study is played: one no machine reaches. The planner stops valuing
 options at its deadline, so with a short one (it was 1 s) a loaded machine could store other trials than a quiet one
 (a loaded run once found a wide-file cell empty that quiet runs fill): the stored studies must be the same anywhere."""
+
+
 def study_overrides(**extra: object) -> dict[str, object]:
     """A fast 2 robots × 2 kitchens study: one practice trial, one order, short horizon, 30 Hz (no trial is ever
     robot-invalid for missed deadlines nor low-engagement for how its scripted participants chose: ``write_study``'s

@@ -194,7 +194,7 @@ class ProcessServer:
         self.database_url = database_url
         self._serve = ["--study", str(study), "--database-url", database_url, "--workers", str(workers),
                        "--log-level", "warning"]
-        self._take_port(free_port())
+        self.port = free_port()
         self.env = {**os.environ, "STEAKHOUSE_ADMIN_TOKEN": "admin-secret", "STEAKHOUSE_FLUSH_INTERVAL_S": "0.2",
                     "STEAKHOUSE_JOIN_RATE_PER_MINUTE": "0", **(env or {})}
         self.env["PYTHONPATH"] = os.pathsep.join([str(REPO), str(Path(__file__).parent)])
@@ -202,10 +202,9 @@ class ProcessServer:
         self.process: subprocess.Popen[bytes] | None = None
         self._out: IO[bytes] | int | None = None  # the log file while running, or subprocess.DEVNULL
 
-    def _take_port(self, port: int) -> None:
-        self.port = port
-        self.url = f"http://127.0.0.1:{port}"
-        self.args = [sys.executable, "-m", "server.cli", "serve", "--port", str(port), *self._serve]
+    @property
+    def url(self) -> str:
+        return f"http://127.0.0.1:{self.port}"
 
     def start(self) -> ProcessServer:
         """Launch and wait until ready; on a port another process took meanwhile (:class:`PortTaken`), again on
@@ -215,14 +214,15 @@ class ProcessServer:
                 return self.launch().wait_ready()
             except PortTaken:
                 self.kill()
-                self._take_port(free_port())
+                self.port = free_port()
         raise RuntimeError("three free ports in a row were taken before the server could bind one")
 
     def launch(self) -> ProcessServer:
         """Start the process without waiting (several servers can start side by side)."""
         out = open(self.log, "ab") if self.log else subprocess.DEVNULL  # noqa: SIM115 - closed in stop()
         self._out = out
-        self.process = subprocess.Popen(self.args, cwd=REPO, env=self.env, stdout=out, stderr=out)
+        args = [sys.executable, "-m", "server.cli", "serve", "--port", str(self.port), *self._serve]
+        self.process = subprocess.Popen(args, cwd=REPO, env=self.env, stdout=out, stderr=out)
         return self
 
     def wait_ready(self) -> ProcessServer:

@@ -21,7 +21,7 @@ def test_a_server_whose_port_was_taken_starts_on_another_and_is_the_one_answerin
         taken = squatter.getsockname()[1]
         assert listening_pids(taken) == {os.getpid()}
         server = ProcessServer(study=study_file(), database_url=db_url, workers=0)
-        server._take_port(taken)  # as if another process bound the port between free_port() and the launch
+        server.port = taken  # as if another process bound the port between free_port() and the launch
         try:
             server.start()
             assert server.port != taken
