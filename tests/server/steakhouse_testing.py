@@ -190,10 +190,10 @@ class ProcessServer:
     """``steakhouse serve`` in a child process (for SIGKILL and multi-process tests)."""
 
     def __init__(self, *, study: Path, database_url: str, workers: int = 1, env: dict[str, str] | None = None,
-                 log: Path | None = None) -> None:
+                 log: Path | None = None, log_level: str = "warning") -> None:
         self.database_url = database_url
         self._serve = ["--study", str(study), "--database-url", database_url, "--workers", str(workers),
-                       "--log-level", "warning"]
+                       "--log-level", log_level]
         self.port = free_port()
         self.env = {**os.environ, "STEAKHOUSE_ADMIN_TOKEN": "admin-secret", "STEAKHOUSE_FLUSH_INTERVAL_S": "0.2",
                     "STEAKHOUSE_JOIN_RATE_PER_MINUTE": "0", **(env or {})}

@@ -38,8 +38,7 @@ def test_install_is_idempotent():
 def test_a_served_websocket_and_a_query_token_leave_no_token_in_the_log(study_file, tmp_path):
     log = tmp_path / "server.log"
     server = ProcessServer(study=study_file(), database_url=f"sqlite:///{tmp_path / 'store.sqlite3'}", workers=0,
-                           log=log)
-    server.args[server.args.index("--log-level") + 1] = "info"
+                           log=log, log_level="info")
     server.start()
     try:
         async def scenario() -> str:
