@@ -85,6 +85,11 @@ def record_health(session: Session, trial_id: int, *, decisions: int, missed: in
     session.execute(update(TrialRow).where(*where).values(**values))
 
 
+def robot_invalid(session: Session, trial_id: int) -> bool:
+    """Whether the robot's health made trial ``trial_id`` invalid (:func:`record_health`)."""
+    return session.scalar(select(TrialRow.invalid_reason).where(TrialRow.id == trial_id)) is not None
+
+
 def decision_counts(session: Session, trial_id: int) -> tuple[int, int]:
     """``(decisions, missed)`` over the stored ticks of a trial (one robot decision per tick)."""
     row = session.execute(select(func.count(), func.sum(case((TickRow.robot_missed, 1), else_=0)))

@@ -316,7 +316,8 @@ def end_trial_in(session: Session, participant_id: int, trial_id: int, kind: str
     stored with the end under its epoch (only when the end is stored, so a round ends once, with one event).
 
     With the ``study``, the participant's activity in the trial is counted and stored, a finished main trial is
-    judged for engagement, and after a main trial the participant's standing is reviewed: they stop counting
+    judged for engagement (unless the robot's health made it invalid: a broken robot's round says nothing about
+    the participant), and after a main trial the participant's standing is reviewed: they stop counting
     toward their order when a round cannot become a cell, and are screened out when they did not take part
     (:mod:`server.flow.standing`). Without it (tools that build a store by hand) only the trial ends.
 
@@ -335,8 +336,9 @@ def end_trial_in(session: Session, participant_id: int, trial_id: int, kind: str
     if study is not None:
         session.flush()
         done = activity.measure(session, trial_id, study.timing.tick_rate_hz)
+        judged = kind == "main" and status == trials.FINISHED and not trials.robot_invalid(session, trial_id)
         problem = (engagement_problem(done, study.validity, standing.earlier_choices(session, participant_id, index))
-                   if kind == "main" and status == trials.FINISHED else None)
+                   if judged else None)
         activity.record(session, trial_id, done, problem.text() if problem else None)
         if problem is not None:
             log.warning("trial %d (participant %s) is low-engagement: %s", trial_id, row.public_id, problem.text())

@@ -4,7 +4,7 @@ now, would not count (docs/protocol.md, "Taking part"; the judgement is ``server
 It counts what ``store.activity`` counts when the round ends — choices, interrupts and keys, refused steps, waited
 seconds, ticks and idle ticks, each cook's task steps — from the same events and steps, as they happen in this
 process. A round resumed from the store counts from its resumption here; the judgement at its end counts it whole.
-Practice rounds are never judged.
+Practice rounds are never judged, nor a round once its robot's health made it invalid (as at its end).
 """
 
 from __future__ import annotations
@@ -27,8 +27,11 @@ class TakingPart:
         self.steps = {"human": 0, "robot": 0}
 
     def note(self, kind: str, payload: dict[str, Any]) -> None:
-        """One stored event of the round (the others are ignored)."""
-        if kind in self.counts:
+        """One stored event of the round (the others are ignored). Once the robot's health made the round invalid
+        (``trial_invalid``) it is no longer judged: what a broken robot did is not the participant's to answer for."""
+        if kind == "trial_invalid":
+            self.judged = False
+        elif kind in self.counts:
             self.counts[kind] += 1
             self.counts["key"] += kind == "interrupt" and payload.get("action") in KEY_ACTIONS
         elif kind == "wait":

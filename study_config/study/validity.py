@@ -51,18 +51,20 @@ FINISHED: RoundStatus = "finished"
 def round_status(status: str, engagement_reason: str | None, invalid_reason: str | None) -> RoundStatus:
     """What an attempt at a trial is worth as data, from its stored ``status`` (running / finished / abandoned)
     and the server's marks: ``running``, ``abandoned`` (the participant did not return within the grace window),
-    ``low_engagement`` (finished, but the participant did not take part), ``robot_invalid`` (finished, the
-    robot's decisions missed their deadlines too often) or ``finished`` (it can be an analysable cell)."""
+    ``robot_invalid`` (finished, the robot's decisions missed their deadlines too often), ``low_engagement``
+    (finished, but the participant did not take part) or ``finished`` (it can be an analysable cell). The robot's
+    failure comes first: a round the robot broke says nothing about the participant (a stalled robot standing in
+    the way refuses their tasks), so it never counts against them, whatever else it was marked."""
     if status == RUNNING:
         return RUNNING
     if status == ABANDONED:
         return ABANDONED
     if status != FINISHED:
         raise ValueError(f"unknown trial status {status!r}")
-    if engagement_reason:
-        return LOW_ENGAGEMENT
     if invalid_reason:
         return ROBOT_INVALID
+    if engagement_reason:
+        return LOW_ENGAGEMENT
     return FINISHED
 
 

@@ -5,6 +5,8 @@ paper's clock with the study's default validity rules; the rounds' wall clock is
   enabled buttons, as ``pilot.scripts`` does) are screened out, each told the rule their round failed, with the
   value measured in it.
 - The human-like simulated participant (``pilot``) thinking 0.5–3 s per choice completes.
+- A round whose robot broke (its decisions late, so the round is robot-invalid) is not judged: a participant who
+  left it standing goes on.
 """
 
 from __future__ import annotations
@@ -16,18 +18,20 @@ from typing import Any
 import httpx
 import numpy as np
 import pytest
-from steakhouse_test_robots import simulated_partner
+from steakhouse_test_robots import simulated_partner, slow
 from steakhouse_testing import ENGAGEMENT_RULES, ManualClock, Player
 
 from pilot.client import Seat, SimulatedParticipant
 from pilot.config import ParticipantConfig
-from pilot.scripts import Script
+from pilot.scripts import STAY, Script
 from study_config.catalog import load_one
-from study_config.study.validity import Validity
+from study_config.study.validity import DEFAULT_MAX_MISSED_DECISIONS_PCT, Validity
 
 pytestmark = pytest.mark.store_agnostic
 
 PAPER_CLOCK = {"mode": "wait_for_participant", "tick_rate_hz": 5, "max_round_seconds": 240, "idle_nudge_seconds": 10}
+WITH_ROBOT_HEALTH = {**ENGAGEMENT_RULES, "max_missed_decisions_pct": DEFAULT_MAX_MISSED_DECISIONS_PCT}
+"""The study's default engagement and robot-health rules together."""
 CODES = {"completion_code": "DONE-1", "screen_out_code": "OUT-1"}
 ADMIN = {"Authorization": "Bearer admin-secret"}
 
@@ -80,6 +84,23 @@ async def flow_to_round(player: Player) -> dict[str, Any]:
     return joined
 
 
+async def left_standing(sock: Any, clock: ManualClock) -> dict[str, Any]:
+    """The participant does nothing more: the round's wall clock is moved on until it ends; its ``trial_end``."""
+    while True:
+        clock.advance(20.0)
+        with contextlib.suppress(TimeoutError):
+            end: dict[str, Any] = await sock.until(lambda m: m["type"] == "trial_end", timeout=0.5)
+            return end
+
+
+async def closed(player: Player, sock: Any) -> dict[str, Any]:
+    """Close the round's socket; the participant's session as it stands after the round."""
+    await sock.close()
+    session: dict[str, Any] = await player.session()
+    await player.close()
+    return session
+
+
 def test_a_held_key_is_one_press_and_a_round_left_standing_is_screened_out_as_idle(live_server, study_file):
     clock = ManualClock()
     server = live_server([paper_clock_study(study_file)], clock=clock)
@@ -94,14 +115,8 @@ def test_a_held_key_is_one_press_and_a_round_left_standing_is_screened_out_as_id
         assert script.delay(hello["mode"], hello["tick_rate_hz"], 1) is None, "held: one press on this clock"
         await send(sock, script.send(None, hello["needs"], np.random.default_rng(0)))
         await sock.until(lambda m: m["type"] == "state" and m["tick"] == 1)
-        while True:
-            clock.advance(20.0)
-            with contextlib.suppress(TimeoutError):
-                end = await sock.until(lambda m: m["type"] == "trial_end", timeout=0.5)
-                break
-        await sock.close()
-        session = await player.session()
-        await player.close()
+        end = await left_standing(sock, clock)
+        session = await closed(player, sock)
         return joined, end, session
 
     joined, end, session = asyncio.run(scenario())
@@ -130,10 +145,7 @@ def test_a_random_task_every_8_seconds_is_screened_out_with_its_rule(live_server
                 break
             state = message
             clock.advance(script.every_seconds)
-        await sock.close()
-        session = await player.session()
-        await player.close()
-        return joined, session
+        return joined, await closed(player, sock)
 
     joined, session = asyncio.run(scenario())
     rule = assert_screened_out_for_a_true_reason(server, joined["participant_id"], session)
@@ -141,9 +153,11 @@ def test_a_random_task_every_8_seconds_is_screened_out_with_its_rule(live_server
 
 
 def test_the_human_like_simulated_participant_takes_part(live_server, study_file):
+    """With the study's robot health too: on a machine too busy for the robot's decision deadline the robot stands
+    where it is, in the participant's way, and the round is robot-invalid rather than theirs to answer for."""
     clock = ManualClock()
     path = study_file(kitchens=["none_3"], robots=["baseline"], timing=PAPER_CLOCK,
-                      world={"orders": 2, "horizon": 400, "kb_delay": 3}, recruiting=CODES, validity=ENGAGEMENT_RULES)
+                      world={"orders": 2, "horizon": 400, "kb_delay": 3}, recruiting=CODES, validity=WITH_ROBOT_HEALTH)
     server = live_server([path], robot_factory=simulated_partner, clock=clock)
 
     async def think(seconds: float) -> None:
@@ -155,6 +169,38 @@ def test_the_human_like_simulated_participant_takes_part(live_server, study_file
     outcome = asyncio.run(SimulatedParticipant(seat, "pilot-human-1", (1, 0)).run())
     assert outcome.completed and outcome.selections > 0
     trial = main_trial(server, outcome.participant_id)
-    assert not trial["low_engagement"], trial["engagement_reason"]
+    assert not trial["low_engagement"], (trial["engagement_reason"], trial["missed_decisions_pct"])
     assert trial["task_steps"] > 0 and trial["stand_ticks"] == 0
     assert Validity().min_task_step_pct > 0, "the rules judged it"
+
+
+def test_a_round_the_robot_broke_is_not_judged_and_never_screens_out(live_server, study_file):
+    """The ``slow`` robot (0.3 s a decision, past every deadline of a 5 Hz round after the first) makes the round
+    robot-invalid as it is played; the participant pressed "." and then left it standing, which a working robot's
+    round screens out as idle (above), and goes on."""
+    clock = ManualClock()
+    path = study_file(kitchens=["none_3"], robots=["stay"], timing=PAPER_CLOCK, world={"orders": 1, "horizon": 400},
+                      recruiting=CODES, validity=WITH_ROBOT_HEALTH)
+    server = live_server([path], robot_factory=slow, clock=clock)
+    presses = 30  # more late decisions than 5 % of the horizon: invalid as it happens
+
+    async def scenario():
+        player = Player(server.url)
+        joined = await flow_to_round(player)
+        sock = await player.socket()
+        await sock.recv()
+        await sock.until(lambda m: m["type"] == "state")
+        for tick in range(1, presses + 1):
+            await send(sock, STAY)
+            await sock.until(lambda m, t=tick: m["type"] == "state" and m["tick"] == t)
+        end = await left_standing(sock, clock)
+        session = await closed(player, sock)
+        return joined, end, session
+
+    joined, end, session = asyncio.run(scenario())
+    assert (end["reason"], end["ticks"]) == ("time_limit", presses) and end["next"] != "screened_out"
+    assert session["state"] != "screened_out"
+    trial = main_trial(server, joined["participant_id"])
+    assert trial["invalid"] and trial["missed_decisions_pct"] > DEFAULT_MAX_MISSED_DECISIONS_PCT
+    assert trial["idle_pct"] > Validity().max_idle_pct, "left standing: idle past the rule"
+    assert not trial["low_engagement"] and trial["engagement_reason"] is None

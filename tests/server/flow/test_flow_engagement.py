@@ -50,6 +50,9 @@ def test_rounds_the_participant_did_not_take_part_in_screen_out_beyond_the_allow
     robot = trial(0, invalid="robot decisions missed their deadline")
     assert not_taking_part([robot], rules) is None, "the robot's failure is not the participant's"
     assert round_problem(robot) == "main round 1 robot-invalid: robot decisions missed their deadline"
+    both = trial(0, engagement="low_engagement: 30.0 % refused", invalid="robot decisions missed their deadline")
+    assert not_taking_part([both], rules) is None, "a round the robot broke says nothing of the participant"
+    assert round_problem(both) == "main round 1 robot-invalid: robot decisions missed their deadline"
 
 
 def test_a_refused_device_stops_counting_until_an_accepted_one():

@@ -1,6 +1,6 @@
 """The round's taking part so far (``server.game.taking_part``): counted from the round's events and steps as they
 happen, it says while the participant can still act that the round, ended now, would not count; a practice round
-is never judged."""
+is never judged, nor a round once its robot's health made it invalid."""
 
 from __future__ import annotations
 
@@ -51,3 +51,10 @@ def test_the_cooks_task_steps_are_counted_and_a_blocked_key_is_none() -> None:
 
 def test_practice_is_never_judged() -> None:
     assert TakingPart(Validity(), 5.0, judged=False).problem() is None
+
+
+def test_a_round_the_robot_made_invalid_is_no_longer_judged() -> None:
+    part = TakingPart(Validity(), 5.0, judged=True)
+    assert part.problem() is not None, "no action yet: it would not count"
+    part.note("trial_invalid", {"invalid_reason": "missed 12 % of its decision deadlines"})
+    assert part.problem() is None, "a broken robot's round is not the participant's to answer for"
