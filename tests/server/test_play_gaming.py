@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+from collections import Counter
 from typing import Any
 
 import httpx
@@ -46,6 +47,12 @@ def main_trial(server: Any, public_id: str) -> dict[str, Any]:
     rows = httpx.get(f"{server.url}/api/admin/trials", params={"participant_id": public_id}, headers=ADMIN,
                      timeout=10).json()
     return next(t for t in rows if t["kind"] == "main")
+
+
+def refusals(server: Any, trial_id: int) -> Counter[tuple[str, str]]:
+    """The trial's refused tasks, counted by (reason, task)."""
+    events = httpx.get(f"{server.url}/api/admin/trials/{trial_id}/events", headers=ADMIN, timeout=10).json()
+    return Counter((e["payload"]["reason"], e["payload"]["subtask"]) for e in events if e["kind"] == "subtask_blocked")
 
 
 def measured(trial: dict[str, Any], rule: str) -> float:
@@ -167,9 +174,12 @@ def test_the_human_like_simulated_participant_takes_part(live_server, study_file
 
     seat = Seat(server.url, "admin-secret", load_one(path), ParticipantConfig(), pace="realtime", sleep=think)
     outcome = asyncio.run(SimulatedParticipant(seat, "pilot-human-1", (1, 0)).run())
-    assert outcome.completed and outcome.selections > 0
     trial = main_trial(server, outcome.participant_id)
-    assert not trial["low_engagement"], (trial["engagement_reason"], trial["missed_decisions_pct"])
+    # What a failure needs to be understood: the refusals, the robot's lateness, the presses and choices.
+    story = (trial["engagement_reason"], refusals(server, trial["trial_id"]), trial["missed_decisions_pct"],
+             outcome.interrupts, outcome.selections)
+    assert outcome.completed and outcome.selections > 0, story
+    assert not trial["low_engagement"], story
     assert trial["task_steps"] > 0 and trial["stand_ticks"] == 0
     assert Validity().min_task_step_pct > 0, "the rules judged it"
 

@@ -2,8 +2,8 @@
 # The flake hunt (docs/testing.md, "Flake hunt"): the whole suite, from a fresh clone of this checkout's HEAD, run
 # RUNS times (default 5) in the suite's own order and then RANDOM_RUNS times (default 1) in a random test order
 # (pytest-random-order, bucket "global"), while busy loops keep every core taken. Prints one line per run (pass/fail,
-# wall seconds, pytest's summary) as it ends and exits 1 if any run failed; each run's whole output stays in the
-# hunt's folder for reading.
+# wall seconds, pytest's summary) as it ends and exits 1 if any run failed; each run's whole output and its tests'
+# temporary folders (stores, server logs) stay in the hunt's folder for reading.
 #
 #   bash tests/tools/flake_hunt.sh [RUNS [RANDOM_RUNS]]        (make flake-hunt RUNS=5 RANDOM_RUNS=1)
 set -uo pipefail
@@ -32,7 +32,8 @@ failed=0
 run() {  # name, extra pytest arguments
   local log="$hunt/$1.log" start status
   start=$(date +%s)
-  (cd "$hunt/clone" && CI=true make test PYTEST_ARGS="$2" </dev/null >"$log" 2>&1)
+  # Each run's temporary folders (the failed test's store and server log among them) stay for reading.
+  (cd "$hunt/clone" && CI=true make test PYTEST_ARGS="--basetemp=$hunt/$1.tmp $2" </dev/null >"$log" 2>&1)
   status=$?
   local summary
   summary=$(grep -E '^=+ .*(passed|failed|error).* in [0-9.]+s' "$log" | tail -1 | tr -d '=')
