@@ -9,6 +9,7 @@ and their frames for the replay viewer, and the robot worker pool. The logic liv
 
 from __future__ import annotations
 
+import asyncio
 import time
 from datetime import UTC, datetime, timedelta
 from typing import Annotated, Any
@@ -150,37 +151,52 @@ def _live_since(services: Services) -> datetime:
 
 
 @router.get("/live")
-def live(services: ServicesDep) -> list[dict[str, Any]]:
-    """The live trials of every server process: this one's from memory, the others' from the store."""
-    games = services.registry.live()
-    recruit = _recruit_ids(services, {g.meta.participant_id for g in games})
+async def live(services: ServicesDep) -> list[dict[str, Any]]:
+    """The live trials of every server process: this one's from memory, each taken on the event loop between two of
+    its steps (:func:`live_trial`), the others' from the store."""
     here = process_name()
-    out = [{**g.meta.to_dict(), "recruit_id": recruit.get(g.meta.participant_id), "tick": g.engine.tick,
-            "connected": g.connection is not None, "deadline_misses": g.robot.misses,
-            "stall_hints": g.hints.stall_hints, "health": g.health.to_dict(),
-            "lateness_ms": g.spectator()["lateness_ms"], "process": here, "source": "process"}
-           for g in games]
+    mine = [{**g.meta.to_dict(), "tick": g.engine.tick, "connected": g.connection is not None,
+             "deadline_misses": g.robot.misses, "stall_hints": g.hints.stall_hints, "health": g.health.to_dict(),
+             "lateness_ms": g.spectator()["lateness_ms"], "process": here, "source": "process"}
+            for g in services.registry.live()]
+    recruit, elsewhere = await asyncio.to_thread(_live_from_store, services, {t["participant_id"] for t in mine})
+    out = [{**t, "recruit_id": recruit.get(t["participant_id"])} for t in mine] + elsewhere
+    return sorted(out, key=lambda t: t["trial_id"])
+
+
+def _live_from_store(services: Services, participant_ids: set[int]) -> tuple[dict[int, str | None],
+                                                                          list[dict[str, Any]]]:
+    """The recruiting ids of this process's live participants, and the trials other processes run."""
+    recruit = _recruit_ids(services, participant_ids)
+    elsewhere: list[dict[str, Any]] = []
     with services.store.transaction() as session:
         for row in running_elsewhere(session, services.catalog.studies, set(services.registry.games),
                                      _live_since(services)):
             entry = stored_summary(session, row, services.catalog)
             if entry is not None:
-                out.append(entry)
-    return sorted(out, key=lambda t: t["trial_id"])
+                elsewhere.append(entry)
+    return recruit, elsewhere
+
+
+def _stored_live(services: Services, trial_id: int) -> dict[str, Any] | None:
+    with services.store.transaction() as session:
+        return stored_live_view(session, services.catalog, trial_id)
 
 
 @router.get("/live/{trial_id}")
-def live_trial(trial_id: TrialId, services: ServicesDep) -> dict[str, Any]:
-    """The spectator view of a running trial, whichever process runs it (another's lags by ≤ one flush)."""
+async def live_trial(trial_id: TrialId, services: ServicesDep) -> dict[str, Any]:
+    """The spectator view of a running trial, whichever process runs it (another's lags by ≤ one flush). A trial of
+    this process is viewed on the event loop, between two of its steps, so that every part of the view (its tick,
+    frame, KB and field of view) is of the same step; the store is read off the loop."""
     game = services.registry.games.get(trial_id)
     if game is None:
-        with services.store.transaction() as session:
-            stored = stored_live_view(session, services.catalog, trial_id)
+        stored = await asyncio.to_thread(_stored_live, services, trial_id)
         if stored is None:
             raise ApiError(404, "not_live", "no running trial with this id")
         return stored
     view = live_view(game)
-    view["trial"]["recruit_id"] = _recruit_ids(services, {game.meta.participant_id}).get(game.meta.participant_id)
+    recruit = await asyncio.to_thread(_recruit_ids, services, {game.meta.participant_id})
+    view["trial"]["recruit_id"] = recruit.get(game.meta.participant_id)
     return view
 
 
