@@ -186,4 +186,8 @@ class LiveGame:
             "connected": self.link.connection is not None, "mode": self.pacing.mode, "tick_rate_hz": self.pacing.rate,
             "decision": last.info if last else None, "decision_ms": last.decision_ms if last else None,
             "deadline_misses": self.robot.misses, "stall_hints": self.hints.stall_hints,
-            "health": self.keeper.health.to_dict(), "lateness_ms": snapshot.percentiles(list(self.pacing.lateness))})
+            "health": self.keeper.health.to_dict(), "lateness_ms": self.lateness_ms()})
+
+    def lateness_ms(self) -> dict[str, Any]:
+        """The percentiles of the recent steps' lateness (milliseconds)."""
+        return snapshot.percentiles(list(self.pacing.lateness))

@@ -157,7 +157,7 @@ async def live(services: ServicesDep) -> list[dict[str, Any]]:
     here = process_name()
     mine = [{**g.meta.to_dict(), "tick": g.engine.tick, "connected": g.connection is not None,
              "deadline_misses": g.robot.misses, "stall_hints": g.hints.stall_hints, "health": g.health.to_dict(),
-             "lateness_ms": g.spectator()["lateness_ms"], "process": here, "source": "process"}
+             "lateness_ms": g.lateness_ms(), "process": here, "source": "process"}
             for g in services.registry.live()]
     recruit, elsewhere = await asyncio.to_thread(_live_from_store, services, {t["participant_id"] for t in mine})
     out = [{**t, "recruit_id": recruit.get(t["participant_id"])} for t in mine] + elsewhere
