@@ -32,7 +32,7 @@ from websockets.exceptions import ConnectionClosed
 
 from pilot.answers import answer
 from pilot.config import ParticipantConfig
-from pilot.mind import STAY, WAIT_REASONS, Mind, belief_of, decide, faced_station_working, told_refused
+from pilot.mind import STAY, WAIT_REASONS, Mind, decide, faced_station_working, read_refusal
 from pilot.perception import Perception
 from pilot.scripts import Script
 from planner.subtasks import Subtask
@@ -285,11 +285,10 @@ class SimulatedParticipant:
                         seen, mind, body = respond(mind, seen, message, needs, loaded, config, rng, angle)
                         await send(ws, body)
                     elif kind == "blocked" and message["ended"] and message["subtask"] and seen is not None:
-                        if message["reason"] not in WAIT_REASONS and seen.kb is not None:
-                            refused = Subtask(message["subtask"])
-                            mind = told_refused(mind, refused, belief_of(seen.layout, loaded.rules, seen.kb, refused))
-                        elif (realtime and paper_clock and message["reason"] in WAIT_REASONS
-                                and (thinking is None or thinking.done())):
+                        waits = realtime and paper_clock and message["reason"] in WAIT_REASONS
+                        mind = read_refusal(mind, seen, Subtask(message["subtask"]), message["reason"],
+                                            loaded.rules, waits=waits)
+                        if waits and (thinking is None or thinking.done()):
                             thinking = asyncio.create_task(wait_then_choose(ws))
                     elif (kind == "ack" and realtime and message["subtask"] is None and not message["queued"]
                           and latest and (thinking is None or thinking.done())):

@@ -19,8 +19,10 @@ Each frame, with its KB (:mod:`pilot.perception`) and the subtask the server say
 On the paper's clock (``wait_for_participant``), a task refused because the station it needs is still at work
 (:data:`WAIT_REASONS`: the steak is still cooking, the onion not chopped yet) is waited for as the page says: the
 simulated participant presses "." (stay) every ``wait_tap_seconds`` while the station it faces is at work
-(:func:`faced_station_working`), at most ``wait_taps`` times, and then chooses again (``pilot.client``). The world
-moves only for those presses; the simulated human of the paper waited at the station, stepping the world.
+(:func:`faced_station_working`), at most ``wait_taps`` times, and then chooses again (``pilot.client``), asking for
+the same task again only if the wait taught it something new of its places (:func:`read_refusal`): an onion
+nobody chops does not keep it pressing at the board. The world moves only for those presses; the simulated human
+of the paper waited at the station, stepping the world.
 
 Randomness comes from the ``numpy.random.Generator`` passed in (one per trial, from the pilot's seed).
 """
@@ -95,6 +97,17 @@ def told_refused(mind: Mind, subtask: Subtask, belief: object) -> Mind:
     """The mind after the page said ``subtask`` cannot work, when it believed ``belief`` (:func:`belief_of`)."""
     kept = tuple(entry for entry in mind.refused if entry[0] is not subtask)
     return replace(mind, refused=(*kept, (subtask, belief)))
+
+
+def read_refusal(mind: Mind, seen: Perception, subtask: Subtask, reason: str, rules: Rules, *, waits: bool) -> Mind:
+    """The mind after a ``blocked`` that ended ``subtask`` for ``reason``. A task refused for what time does not
+    answer is noted (:func:`told_refused`). A task refused because its station is still at work (:data:`WAIT_REASONS`)
+    is noted too when the participant ``waits`` for it (the paper's clock): once the wait is over, it asks again only
+    if it has learnt something new of the places the task needs (the steak cooked on, the onion was chopped), not
+    for an onion nobody chops. Otherwise (the world goes on) it is not noted: the world answers it."""
+    if seen.kb is None or (reason in WAIT_REASONS and not waits):
+        return mind
+    return told_refused(mind, subtask, belief_of(seen.layout, rules, seen.kb, subtask))
 
 
 def fits(subtask: Subtask, held: str | None, needs: Mapping[str, str]) -> bool:

@@ -12,7 +12,7 @@ from offline import play_offline
 
 from pilot.client import respond
 from pilot.config import ParticipantConfig
-from pilot.mind import Mind, belief_of, decide, told_refused
+from pilot.mind import Mind, belief_of, decide, read_refusal, told_refused
 from pilot.perception import Perception
 from planner.geometry import DIRECTIONS, Direction, Pos
 from planner.layout import Layout
@@ -50,6 +50,19 @@ def frames_until_reply(loaded: LoadedStudy, engine: TrialEngine, config: Partici
         seen, mind, body = respond(mind, seen, frame, NEEDS_BY_NAME, loaded, config, rng)
         out.append(body)
     return out
+
+
+def idle_on_the_paper_clock(loaded: LoadedStudy, engine: TrialEngine,
+                            **believed: Any) -> tuple[dict[str, Any], Perception]:
+    """The frame of a cook with no task running on the paper's clock (tick 7), and what it knows from it, with the
+    station statuses in ``believed`` (e.g. ``grills=(10,)``) taken as known."""
+    engine.controller.subtask = None
+    layout = engine.layout
+    frame = {**snapshot.state(engine, mode="wait_for_participant", rate=5.0, ack=0).model_dump(mode="json"),
+             "tick": 7}
+    seen = Perception(layout.width, layout.height, tuple(loaded.layouts.values())).observe(frame, 120.0, 3)
+    assert seen.kb is not None
+    return frame, replace(seen, kb=replace(seen.kb, **believed))
 
 
 def carrying_meat_to_a_busy_grill(loaded: LoadedStudy) -> TrialEngine:
@@ -140,13 +153,8 @@ def test_a_task_the_page_refused_is_not_chosen_again_while_it_believes_the_same_
     again once it knows something new of them (it saw the grill)."""
     engine = carrying_meat_to_a_busy_grill(paper)
     engine.world = replace(engine.world, human=replace(engine.world.human, held="clean_plate"))
-    engine.controller.subtask = None
     layout = engine.layout
-    frame = {**snapshot.state(engine, mode="wait_for_participant", rate=5.0, ack=0).model_dump(mode="json"),
-             "tick": 7}
-    seen = Perception(layout.width, layout.height, tuple(paper.layouts.values())).observe(frame, 120.0, 3)
-    assert seen.kb is not None
-    seen = replace(seen, kb=replace(seen.kb, grills=(10,) * len(layout.grills)))  # it believes a steak is there
+    frame, seen = idle_on_the_paper_clock(paper, engine, grills=(10,) * len(layout.grills))  # a steak is there
     config = ParticipantConfig(error_rate=0.0, decision_latency_ticks=0)
 
     def chosen(mind: Mind, state: dict[str, Any], seed: int, knows: Perception = seen) -> tuple[str, Mind]:
@@ -161,3 +169,32 @@ def test_a_task_the_page_refused_is_not_chosen_again_while_it_believes_the_same_
     saw = replace(seen, kb=replace(seen.kb, grills=(3,) * len(layout.grills)))  # it saw a new steak cooking there
     again, mind = chosen(told, {**frame, "tick": 31}, 0, saw)
     assert again == "pickup_steak" and not mind.refused
+
+
+def test_after_waiting_at_an_onion_nobody_chops_it_asks_for_the_garnish_again_only_once_it_is_chopped(paper) -> None:
+    """Holding a steak plate its rule offers only Pick up garnish; on the paper's clock the page says the onion is not
+    chopped yet, and it waits. If nothing changed at the board meanwhile (nobody chopped), it does something else that
+    fits its hands rather than ask again (a loaded run once asked 15 times in a round, pressing "." 243 times, and was
+    screened out for refused tasks); once it sees the onion chopped it asks again. Where the world goes on without
+    it, the refusal is not noted: time answers it."""
+    engine = carrying_meat_to_a_busy_grill(paper)
+    layout = engine.layout
+    pos, facing = beside(layout, layout.boards[0])
+    engine.world = replace(engine.world, human=AgentState(pos, facing, "steak_plate"),
+                           boards=(0,) * len(layout.boards))
+    frame, seen = idle_on_the_paper_clock(paper, engine, boards=(0,) * len(layout.boards))  # an onion, not chopped
+    config = ParticipantConfig(error_rate=0.0, decision_latency_ticks=0)
+
+    def chosen(mind: Mind, knows: Perception, seed: int) -> str:
+        reply, _ = decide(mind, knows, {**frame, "tick": 30}, NEEDS_BY_NAME, paper.rules, config,
+                          np.random.default_rng(seed))
+        return str(reply.body()["subtask"])
+
+    assert chosen(Mind(), seen, 0) == "pickup_garnish", "its rule offers only this"
+    waited = read_refusal(Mind(), seen, Subtask.PICKUP_GARNISH, "not_chopped", paper.rules, waits=True)
+    assert {chosen(waited, seen, seed) for seed in range(10)} == {"drop_on_counter"}
+    assert seen.kb is not None
+    chopped = replace(seen, kb=replace(seen.kb, boards=(paper.rules.chop_time,) * len(layout.boards)))
+    assert chosen(waited, chopped, 0) == "pickup_garnish", "the onion is chopped now: it asks again"
+    world_goes_on = read_refusal(Mind(), seen, Subtask.PICKUP_GARNISH, "not_chopped", paper.rules, waits=False)
+    assert world_goes_on == Mind() and chosen(world_goes_on, seen, 0) == "pickup_garnish"
