@@ -15,6 +15,7 @@ REPEATABLE READ. Reading never creates a database: a SQLite file that does not e
 
 from __future__ import annotations
 
+import logging
 import sqlite3
 import time
 from collections.abc import Iterator
@@ -25,8 +26,12 @@ from typing import Any
 from sqlalchemy import Engine, create_engine, event, text
 from sqlalchemy.engine import make_url
 from sqlalchemy.orm import Session, sessionmaker
+from sqlalchemy.pool import QueuePool
 
 SQLITE_BUSY_MS = 30_000
+DRAIN_S = 10.0
+"""How long closing a store waits for its connections in use to come back."""
+log = logging.getLogger(__name__)
 
 
 class Store:
@@ -63,7 +68,18 @@ class Store:
 
         upgrade(self.engine)
 
-    def dispose(self) -> None:
+    def dispose(self, drain_s: float = DRAIN_S) -> None:
+        """Close the store's connections, once those in use elsewhere (a read in another thread, a last write)
+        are back, waiting at most ``drain_s``. A connection in use when the engine is disposed goes back to a pool
+        nobody holds any more and stays open until the garbage collector finds it."""
+        pool = self.engine.pool
+        deadline = time.monotonic() + drain_s
+        while isinstance(pool, QueuePool) and pool.checkedout() > 0:
+            if time.monotonic() >= deadline:
+                log.warning("closing the store with %d connection(s) still in use after %.0f s",
+                            pool.checkedout(), drain_s)
+                break
+            time.sleep(0.01)
         self.engine.dispose()
 
 
