@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import fcntl
 import os
 import shutil
 import sys
@@ -199,6 +200,21 @@ def _fresh_store_url(request: pytest.FixtureRequest, sqlite_dir: Path, prefix: s
         with engine.connect() as conn:
             conn.execute(text(f'DROP SCHEMA IF EXISTS "{schema}" CASCADE'))
         engine.dispose()
+
+
+@pytest.fixture
+def many_connections(tmp_path_factory: pytest.TempPathFactory) -> Iterator[None]:
+    """Held by a test that opens tens of database connections at once (joins from 41 threads, two server processes
+    with pools of up to 40 each): such tests run one at a time across the workers, waiting on a lock file shared by
+    them, since two at once could pass PostgreSQL's connection limit (100 by default) and fail each other with "too
+    many clients"."""
+    lock = tmp_path_factory.getbasetemp().parent / "many_connections.lock"
+    with lock.open("a") as handle:
+        fcntl.flock(handle, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(handle, fcntl.LOCK_UN)
 
 
 STORES = ["sqlite", pytest.param("postgresql", marks=pytest.mark.postgres)]

@@ -37,7 +37,7 @@ async def join_all(urls: list[str]) -> list[dict[str, Any]]:
         return list(await asyncio.gather(*(join(i) for i in range(JOINS + REPEATS))))
 
 
-def test_two_hundred_simultaneous_joins_stay_balanced(db_url, tmp_path):
+def test_two_hundred_simultaneous_joins_stay_balanced(db_url, tmp_path, many_connections):
     study = STUDY_DIR / "paper_study.yaml"
     servers = []
     try:

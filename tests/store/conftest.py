@@ -32,7 +32,7 @@ def loaded(study_file, store: Store) -> LoadedStudy:
 
 
 @pytest.fixture
-def join_at_once(store: Store) -> Callable[[LoadedStudy, int], list[int]]:
+def join_at_once(store: Store, many_connections: None) -> Callable[[LoadedStudy, int], list[int]]:
     """``join_at_once(loaded, n)``: n participants join ``loaded`` from n threads at once; their order indexes
     (fails the test if any join raised)."""
     from server.flow import service
