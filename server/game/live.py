@@ -183,11 +183,12 @@ class LiveGame:
     def spectator(self) -> dict[str, Any]:
         last = self.robot.last
         return snapshot.spectator(self.meta, self.engine, {
-            "connected": self.link.connection is not None, "mode": self.pacing.mode, "tick_rate_hz": self.pacing.rate,
-            "decision": last.info if last else None, "decision_ms": last.decision_ms if last else None,
-            "deadline_misses": self.robot.misses, "stall_hints": self.hints.stall_hints,
-            "health": self.keeper.health.to_dict(), "lateness_ms": self.lateness_ms()})
+            **self.status(), "mode": self.pacing.mode, "tick_rate_hz": self.pacing.rate,
+            "decision": last.info if last else None, "decision_ms": last.decision_ms if last else None})
 
-    def lateness_ms(self) -> dict[str, Any]:
-        """The percentiles of the recent steps' lateness (milliseconds)."""
-        return snapshot.percentiles(list(self.pacing.lateness))
+    def status(self) -> dict[str, Any]:
+        """What the admin's list of live trials shows of this round: its link, the robot's misses and health, the
+        stall hints, and the percentiles of the recent steps' lateness (milliseconds)."""
+        return {"connected": self.link.connection is not None, "deadline_misses": self.robot.misses,
+                "stall_hints": self.hints.stall_hints, "health": self.keeper.health.to_dict(),
+                "lateness_ms": snapshot.percentiles(list(self.pacing.lateness))}

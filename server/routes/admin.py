@@ -155,9 +155,7 @@ async def live(services: ServicesDep) -> list[dict[str, Any]]:
     """The live trials of every server process: this one's from memory, each taken on the event loop between two of
     its steps (:func:`live_trial`), the others' from the store."""
     here = process_name()
-    mine = [{**g.meta.to_dict(), "tick": g.engine.tick, "connected": g.connection is not None,
-             "deadline_misses": g.robot.misses, "stall_hints": g.hints.stall_hints, "health": g.health.to_dict(),
-             "lateness_ms": g.lateness_ms(), "process": here, "source": "process"}
+    mine = [{**g.meta.to_dict(), "tick": g.engine.tick, **g.status(), "process": here, "source": "process"}
             for g in services.registry.live()]
     recruit, elsewhere = await asyncio.to_thread(_live_from_store, services, {t["participant_id"] for t in mine})
     out = [{**t, "recruit_id": recruit.get(t["participant_id"])} for t in mine] + elsewhere
