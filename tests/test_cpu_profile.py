@@ -55,7 +55,9 @@ def test_a_folder_without_a_run_gets_a_usage_error(tmp_path, capsys):
 def test_as_a_plugin_it_writes_one_line_per_test(tmp_path):
     (tmp_path / "test_two.py").write_text("def test_one():\n    pass\n\ndef test_two():\n    sum(range(10**5))\n")
     out = tmp_path / "profile"
-    env = {**os.environ, "PYTHONPATH": str(TOOL.parent), "PYTEST_DISABLE_PLUGIN_AUTOLOAD": "1"}
+    # Not an xdist worker itself, though the test may run in one (whose name it would otherwise take).
+    env = {name: value for name, value in os.environ.items() if not name.startswith("PYTEST_XDIST")}
+    env |= {"PYTHONPATH": str(TOOL.parent), "PYTEST_DISABLE_PLUGIN_AUTOLOAD": "1"}
     run = subprocess.run([sys.executable, "-m", "pytest", "-q", "-c", os.devnull, "--rootdir", str(tmp_path),
                           "-p", "cpu_profile", f"--cpu-profile={out}", "test_two.py"],
                          cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120)
