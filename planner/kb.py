@@ -125,7 +125,12 @@ def update_kb(kb: KnowledgeBase, layout: Layout, world: WorldState, *, angle: fl
         memory = kb.tracking
         things = advance(memory.things, layout, world, own_events)
     memory, robot = acknowledge(memory, things, world.human, world.robot, seen, kb_delay)
-    return _contents(memory, layout, kb.robot if robot is None else robot)
+    believed_robot = kb.robot if robot is None else robot
+    if kb.tracking is not None and memory.believed == kb.tracking.believed:
+        # The same believed objects, so the same contents (a KB with a memory holds its contents: it was made
+        # here, or restored from its own record): most ticks.
+        return KnowledgeBase(kb.objects, kb.grills, kb.boards, kb.sinks, believed_robot, memory)
+    return _contents(memory, layout, believed_robot)
 
 
 def _taken_up(kb: KnowledgeBase, layout: Layout, world: WorldState) -> Tracking:

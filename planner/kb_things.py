@@ -108,11 +108,19 @@ def first_things(layout: Layout, world: WorldState) -> Things:
 
 def advance(things: Things, layout: Layout, world: WorldState, human_events: Iterable[Event] = ()) -> Things:
     """The identities after one step that led to ``world`` (module docstring)."""
-    w = _Working(things)
     swapped = any(e.kind is EventKind.SWAP for e in human_events)
+    if not swapped and _same_hands(things.robot, world.robot) and _same_hands(things.human, world.human):
+        return reconcile(things, layout, world)  # nobody interacted: most ticks
+    w = _Working(things)
     for agent, state in (("robot", world.robot), ("human", world.human)):
         w.interact(layout, agent, state, same_swap=agent == "human" and swapped)
     return reconcile(Things(tuple(w.lying.values()), w.hands["robot"], w.hands["human"], w.next_id), layout, world)
+
+
+def _same_hands(thing: Thing | None, agent: AgentState) -> bool:
+    """Whether the agent holds what it held (by kind), so that its step moved no object (:meth:`_Working.interact`
+    reads no interaction then, a swap of equal objects aside)."""
+    return (None if thing is None else OBJECT_OF_KIND.get(thing.kind)) == agent.held
 
 
 class _Working:
@@ -185,10 +193,9 @@ def reconcile(things: Things, layout: Layout, world: WorldState) -> Things:
         if want is not None and want[0] == t.kind:
             lying.append(t if t.state == want[1] else Thing(t.id, t.place, t.kind, want[1]))
     have = {t.place for t in lying}
-    for cell in sorted(expected, key=lambda p: (p[1], p[0])):
-        if cell not in have:
-            lying.append(Thing(next_id, cell, *expected[cell]))
-            next_id += 1
+    for cell in sorted((c for c in expected if c not in have), key=lambda p: (p[1], p[0])):
+        lying.append(Thing(next_id, cell, *expected[cell]))
+        next_id += 1
     hands: list[Thing | None] = []
     for agent, held, thing in (("robot", world.robot.held, things.robot), ("human", world.human.held, things.human)):
         if held is None:

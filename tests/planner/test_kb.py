@@ -11,7 +11,7 @@ import pytest
 from planner.fov import visible_cells
 from planner.geometry import Action, Direction
 from planner.human import HumanMemory, HumanModel
-from planner.kb import KnowledgeBase, initial_kb, update_kb
+from planner.kb import KnowledgeBase, _contents, initial_kb, update_kb
 from planner.objects import MEAT, ONION
 from planner.partner import SimulatedPartner
 from planner.play import TrialSettings, run_trial
@@ -266,6 +266,29 @@ def test_a_kb_read_back_from_json_is_the_same_kb_at_every_tick():
         assert KnowledgeBase.from_dict(json.loads(json.dumps(kb.to_dict()))) == kb
         with_streaks += bool(kb.streaks)
     assert with_streaks > 0, "the walk must cross ticks with running streaks to test them"
+
+
+@pytest.mark.parametrize("kitchen_name", ["mid_2", "side_1"])
+def test_the_kbs_contents_are_those_of_what_it_believes_at_every_tick(kitchen_name):
+    """update_kb keeps the last contents while the believed objects are unchanged (most ticks): they must be the
+    contents recomputed from those objects, tick after tick, through interactions, cooking and the view's turns."""
+    layout = load_layout(kitchen_name)
+    world = initial_state(layout, RULES)
+    kb = initial_kb(world)
+    human, memory, partner = HumanModel(layout, RULES), HumanMemory(), SimulatedPartner(layout, RULES)
+    rng = np.random.default_rng(5)
+    kept = changed = 0
+    for _ in range(150):
+        h, memory = human.act(world, kb, memory, rng)
+        world, events = step(layout, world, {"human": h, "robot": partner.act(world, (), rng)}, RULES)
+        before = kb
+        kb = tick(layout, kb, world, events=[e for e in events if e.agent == "human"])
+        assert kb.tracking is not None
+        assert kb == _contents(kb.tracking, layout, kb.robot)
+        same = before.tracking is not None and before.tracking.believed == kb.tracking.believed
+        kept += same
+        changed += not same
+    assert kept > 0 and changed > 0, "the walk must cross ticks of both kinds"
 
 
 def test_a_stored_kb_naming_an_unknown_object_is_refused(kitchen):
