@@ -19,8 +19,8 @@ import resource
 import sys
 import time
 from collections import defaultdict
-from collections.abc import Generator, Iterable
-from dataclasses import dataclass
+from collections.abc import Callable, Generator, Iterable
+from dataclasses import asdict, dataclass
 from pathlib import Path
 
 import pytest
@@ -52,6 +52,10 @@ def pytest_addoption(parser: pytest.Parser) -> None:
                      help="folder for one JSON line per test: CPU of the worker and its children, wall time")
 
 
+def pytest_configure(config: pytest.Config) -> None:
+    Path(config.getoption("--cpu-profile")).mkdir(parents=True, exist_ok=True)
+
+
 @pytest.hookimpl(hookwrapper=True)
 def pytest_runtest_protocol(item: pytest.Item) -> Generator[None, None, None]:
     own, children, wall = *_cpu(), time.perf_counter()
@@ -59,10 +63,9 @@ def pytest_runtest_protocol(item: pytest.Item) -> Generator[None, None, None]:
     own_after, children_after = _cpu()
     worker = os.environ.get("PYTEST_XDIST_WORKER", "main")
     spent = Spent(item.nodeid, worker, own_after - own, children_after - children, time.perf_counter() - wall)
-    folder = Path(item.config.getoption("--cpu-profile"))
-    folder.mkdir(parents=True, exist_ok=True)
-    with (folder / f"{worker}.jsonl").open("a") as out:
-        out.write(json.dumps(spent.__dict__) + "\n")
+    # One line as each test ends, so a run that is stopped keeps what it measured.
+    with (Path(item.config.getoption("--cpu-profile")) / f"{worker}.jsonl").open("a") as out:
+        out.write(json.dumps(asdict(spent)) + "\n")
 
 
 def read(folder: Path) -> list[Spent]:
@@ -70,14 +73,21 @@ def read(folder: Path) -> list[Spent]:
             for line in path.read_text().splitlines() if line]
 
 
-def _by(rows: Iterable[Spent], key: str) -> list[tuple[str, float, float, int]]:
-    """(group, CPU, wall, tests) per group, most CPU first; ``key`` is "module" or "package"."""
+def _module(test: str) -> str:
+    return test.split("::", 1)[0]
+
+
+def _package(test: str) -> str:
+    return "/".join(_module(test).split("/")[:2])
+
+
+def _by(rows: Iterable[Spent], group_of: Callable[[str], str]) -> list[tuple[str, float, float, int]]:
+    """(group, CPU, wall, tests) per group of tests, most CPU first."""
     cpu: dict[str, float] = defaultdict(float)
     wall: dict[str, float] = defaultdict(float)
     count: dict[str, int] = defaultdict(int)
     for row in rows:
-        path = row.test.split("::", 1)[0]
-        group = path if key == "module" else "/".join(path.split("/")[:2])
+        group = group_of(row.test)
         cpu[group] += row.cpu
         wall[group] += row.wall
         count[group] += 1
@@ -95,10 +105,9 @@ def report(rows: list[Spent], top: int) -> str:
     lines += ["", f"{'CPU s':>7} {'own':>6} {'child':>6} {'wall s':>7}  test (the {top} costliest in CPU)"]
     for row in sorted(rows, key=lambda r: -r.cpu)[:top]:
         lines.append(f"{row.cpu:7.1f} {row.own:6.1f} {row.children:6.1f} {row.wall:7.1f}  {row.test}")
-    for key in ("package", "module"):
-        lines += ["", f"{'CPU s':>7} {'wall s':>7} {'tests':>5}  {key}"]
-        groups = _by(rows, key)
-        lines += [f"{c:7.1f} {w:7.1f} {n:5d}  {g}" for g, c, w, n in (groups if key == "package" else groups[:top])]
+    for title, group_of, shown in (("package", _package, None), ("module", _module, top)):
+        lines += ["", f"{'CPU s':>7} {'wall s':>7} {'tests':>5}  {title}"]
+        lines += [f"{c:7.1f} {w:7.1f} {n:5d}  {g}" for g, c, w, n in _by(rows, group_of)[:shown]]
     return "\n".join(lines)
 
 
