@@ -26,9 +26,9 @@ def load() -> Any:
 
 def test_the_summary_adds_up_by_test_module_package_and_worker(tmp_path, capsys):
     tool = load()
-    rows = [tool.Spent("tests/server/test_a.py::one", "gw0", 2.0, 1.0, 10.0),
-            tool.Spent("tests/server/test_a.py::two", "gw1", 0.5, 0.0, 1.0),
-            tool.Spent("tests/planner/test_b.py::three[x]", "gw0", 4.0, 0.0, 5.0)]
+    rows = [tool.Spent("tests/server/test_a.py::one", "gw0", 2.0, 1.0, 10.0, 100.0),
+            tool.Spent("tests/server/test_a.py::two", "gw1", 0.5, 0.0, 1.0, 101.0),
+            tool.Spent("tests/planner/test_b.py::three[x]", "gw0", 4.0, 0.0, 5.0, 110.0)]
     for row in rows:
         with (tmp_path / f"{row.worker}.jsonl").open("a") as out:
             out.write(json.dumps(row.__dict__) + "\n")
@@ -38,6 +38,7 @@ def test_the_summary_adds_up_by_test_module_package_and_worker(tmp_path, capsys)
     assert lines[0] == ("3 tests: worker CPU 6.5 s, reaped children's CPU 1.0 s, wall 16.0 s (summed over "
                         "workers)")
     assert "  gw0       15.0 s" in lines and "  gw1        1.0 s" in lines
+    assert "  gw0        0.0 s    15.0 s" in lines and "  gw1        1.0 s     2.0 s" in lines, "each worker's span"
     costliest = [line.split()[-1] for line in lines if line.endswith(("::one", "::two", "::three[x]"))]
     assert costliest == ["tests/planner/test_b.py::three[x]", "tests/server/test_a.py::one"], "top 2, most CPU first"
     packages = lines[lines.index(next(line for line in lines if line.endswith("package"))) + 1:][:2]
@@ -65,3 +66,4 @@ def test_as_a_plugin_it_writes_one_line_per_test(tmp_path):
     rows = load().read(out)
     assert [r.test for r in rows] == ["test_two.py::test_one", "test_two.py::test_two"]
     assert all(r.worker == "main" and r.wall >= 0 and r.own >= 0 and r.children >= 0 for r in rows)
+    assert 0 < rows[0].start <= rows[1].start, "when each began, in order"

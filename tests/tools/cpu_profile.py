@@ -28,13 +28,15 @@ import pytest
 
 @dataclass(frozen=True)
 class Spent:
-    """One test's cost: its worker's CPU seconds, its reaped children's CPU seconds, its wall seconds."""
+    """One test's cost: its worker's CPU seconds, its reaped children's CPU seconds, its wall seconds, and when it
+    began (seconds since the epoch; 0 in files written before it was kept)."""
 
     test: str
     worker: str
     own: float
     children: float
     wall: float
+    start: float = 0.0
 
     @property
     def cpu(self) -> float:
@@ -58,11 +60,12 @@ def pytest_configure(config: pytest.Config) -> None:
 
 @pytest.hookimpl(hookwrapper=True)
 def pytest_runtest_protocol(item: pytest.Item) -> Generator[None, None, None]:
-    own, children, wall = *_cpu(), time.perf_counter()
+    own, children, wall, start = *_cpu(), time.perf_counter(), time.time()
     yield
     own_after, children_after = _cpu()
     worker = os.environ.get("PYTEST_XDIST_WORKER", "main")
-    spent = Spent(item.nodeid, worker, own_after - own, children_after - children, time.perf_counter() - wall)
+    spent = Spent(item.nodeid, worker, own_after - own, children_after - children, time.perf_counter() - wall,
+                  start)
     # One line as each test ends, so a run that is stopped keeps what it measured.
     with (Path(item.config.getoption("--cpu-profile")) / f"{worker}.jsonl").open("a") as out:
         out.write(json.dumps(asdict(spent)) + "\n")
@@ -102,6 +105,13 @@ def report(rows: list[Spent], top: int) -> str:
     for row in rows:
         busy[row.worker] += row.wall
     lines += [f"  {worker:6} {seconds:7.1f} s" for worker, seconds in sorted(busy.items())]
+    if all(row.start for row in rows):
+        lines += ["", "each worker's first test began and its last test ended (seconds after the run's first test):"]
+        first = min(row.start for row in rows)
+        for worker in sorted(busy):
+            own = [row for row in rows if row.worker == worker]
+            began, ended = min(r.start for r in own) - first, max(r.start + r.wall for r in own) - first
+            lines.append(f"  {worker:6} {began:7.1f} s {ended:7.1f} s")
     lines += ["", f"{'CPU s':>7} {'own':>6} {'child':>6} {'wall s':>7}  test (the {top} costliest in CPU)"]
     for row in sorted(rows, key=lambda r: -r.cpu)[:top]:
         lines.append(f"{row.cpu:7.1f} {row.own:6.1f} {row.children:6.1f} {row.wall:7.1f}  {row.test}")
