@@ -32,8 +32,8 @@ async def play_moving(server, seed: int) -> tuple[dict[str, Any], list[dict[str,
         message = await sock.recv()
         if message["type"] == "trial_end":
             break
-        if message["type"] != "state" or message["hud"]["ticks_left"] == 0:
-            continue
+        if message["type"] != "state" or message["hud"]["ticks_left"] == 0 or message["hud"]["orders_left"] == 0:
+            continue  # the round's last state: the server closes the socket after its trial_end
         if rng.random() < 0.25:
             await sock.send("interrupt", action=rng.choice(MOVES))
         elif message["subtask"] is None and message["available"]:

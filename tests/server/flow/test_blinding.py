@@ -6,6 +6,7 @@ can meet, loads every file of the participant client, and searches every byte re
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import json
 from typing import Any
 
@@ -15,6 +16,7 @@ from steakhouse_blinding import Recorder, forbidden_names, hits
 from steakhouse_test_robots import simulated_partner
 from steakhouse_testing import REPO, http_client
 from websockets.asyncio.client import connect
+from websockets.exceptions import ConnectionClosedOK
 from websockets.typing import Subprotocol
 
 from study_config.study import load_study
@@ -62,8 +64,11 @@ async def play_trial(base: str, token: str, record: Recorder) -> None:
                 return
             if message["type"] == "state" and message["subtask"] is None and message["available"]:
                 seq += 1
-                await ws.send(json.dumps({"v": 1, "seq": seq, "type": "select_subtask",
-                                          "subtask": message["available"][0]}))
+                # The round may have ended as we chose (its trial_end and the close received, still unread): the
+                # send then fails, and the next recv() returns that trial_end.
+                with contextlib.suppress(ConnectionClosedOK):
+                    await ws.send(json.dumps({"v": 1, "seq": seq, "type": "select_subtask",
+                                              "subtask": message["available"][0]}))
 
 
 async def probe(base: str, record: Recorder) -> dict[str, Any]:
