@@ -102,16 +102,17 @@ def report(rows: list[Spent], top: int) -> str:
              f"{sum(r.children for r in rows):.1f} s, wall {sum(r.wall for r in rows):.1f} s (summed over workers)",
              "", "busy time per worker (sum of its tests' wall seconds):"]
     busy: dict[str, float] = defaultdict(float)
+    began: dict[str, float] = defaultdict(lambda: float("inf"))
+    ended: dict[str, float] = defaultdict(float)
     for row in rows:
         busy[row.worker] += row.wall
+        began[row.worker] = min(began[row.worker], row.start)
+        ended[row.worker] = max(ended[row.worker], row.start + row.wall)
     lines += [f"  {worker:6} {seconds:7.1f} s" for worker, seconds in sorted(busy.items())]
     if all(row.start for row in rows):
         lines += ["", "each worker's first test began and its last test ended (seconds after the run's first test):"]
-        first = min(row.start for row in rows)
-        for worker in sorted(busy):
-            own = [row for row in rows if row.worker == worker]
-            began, ended = min(r.start for r in own) - first, max(r.start + r.wall for r in own) - first
-            lines.append(f"  {worker:6} {began:7.1f} s {ended:7.1f} s")
+        first = min(began.values())
+        lines += [f"  {w:6} {began[w] - first:7.1f} s {ended[w] - first:7.1f} s" for w in sorted(busy)]
     lines += ["", f"{'CPU s':>7} {'own':>6} {'child':>6} {'wall s':>7}  test (the {top} costliest in CPU)"]
     for row in sorted(rows, key=lambda r: -r.cpu)[:top]:
         lines.append(f"{row.cpu:7.1f} {row.own:6.1f} {row.children:6.1f} {row.wall:7.1f}  {row.test}")
